@@ -1,0 +1,451 @@
+//! The four-bar linkage: validated lengths, its loop equations as a Newton [`System`],
+//! the closed form of both assembly modes, and velocity/acceleration from the same
+//! Jacobian. Ground O2 = (0, 0) to O4 = (r1, 0); angles in radians, counter-clockwise.
+
+use nalgebra::{Matrix2, Vector2};
+
+use crate::error::{positive_finite, Error};
+use crate::newton::{self, NewtonOptions, System};
+use crate::{wrap_angle, Status};
+
+/// Assembly mode: which of the (up to) two solutions at a crank angle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// sin(theta4 - theta3) > 0: rocker pin B left of the line from crank pin A to O4.
+    Open,
+    /// sin(theta4 - theta3) < 0: the mirror of open about the line A-O4.
+    Crossed,
+}
+
+impl Mode {
+    /// +1 for open, -1 for crossed: the sign sin(theta4 - theta3) must have.
+    #[inline]
+    pub fn sign(self) -> f64 {
+        match self {
+            Mode::Open => 1.0,
+            Mode::Crossed => -1.0,
+        }
+    }
+
+    /// Parses "open" / "crossed".
+    pub fn parse(s: &str) -> Result<Self, Error> {
+        match s {
+            "open" => Ok(Mode::Open),
+            "crossed" => Ok(Mode::Crossed),
+            other => Err(Error::invalid("mode", "must be 'open' or 'crossed'", format!("{other:?}"))),
+        }
+    }
+}
+
+/// What the closed form finds at one crank angle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Assembly {
+    /// The solution of the requested mode, wrapped to (-pi, pi], with its branch
+    /// indicator sin(theta4 - theta3) (its sign is the mode's, or 0 at a toggle).
+    Closed { theta3: f64, theta4: f64, sin34: f64 },
+    /// No real solution: |r3 - r4| <= |A O4| <= r3 + r4 fails.
+    NotAssemblable,
+    /// Crank pin A on O4 with r3 = r4: every coupler angle closes the loop.
+    Indeterminate,
+}
+
+/// One solved point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point {
+    /// Coupler angle, wrapped to (-pi, pi]; NaN unless converged.
+    pub theta3: f64,
+    /// Rocker angle, wrapped to (-pi, pi]; NaN unless converged.
+    pub theta4: f64,
+    /// How the solve ended.
+    pub status: Status,
+    /// Newton steps taken.
+    pub nit: u32,
+    /// Dimensionless residual max(|f1|, |f2|) / longest link at the last iterate.
+    pub residual: f64,
+}
+
+impl Point {
+    pub(crate) fn failed(status: Status, nit: u32, residual: f64) -> Self {
+        Point { theta3: f64::NAN, theta4: f64::NAN, status, nit, residual }
+    }
+}
+
+/// A four-bar linkage with validated lengths: r1 ground, r2 crank, r3 coupler, r4 rocker.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FourBar {
+    r: [f64; 4],
+    longest: f64,
+}
+
+impl FourBar {
+    /// Validates every length (finite and > 0); the error names the parameter.
+    pub fn new(r1: f64, r2: f64, r3: f64, r4: f64) -> Result<Self, Error> {
+        let names = ["r1", "r2", "r3", "r4"];
+        let r = [r1, r2, r3, r4];
+        for (name, &v) in names.iter().zip(&r) {
+            positive_finite(*name, v)?;
+        }
+        Ok(Self::new_unchecked(r))
+    }
+
+    /// For lengths already validated (batches validate once up front).
+    pub(crate) fn new_unchecked(r: [f64; 4]) -> Self {
+        FourBar { r, longest: r[0].max(r[1]).max(r[2]).max(r[3]) }
+    }
+
+    /// The lengths [r1, r2, r3, r4].
+    pub fn lengths(&self) -> [f64; 4] {
+        self.r
+    }
+
+    /// The longest link: the scale that makes residuals dimensionless.
+    pub fn longest(&self) -> f64 {
+        self.longest
+    }
+
+    /// The loop equations at crank angle `theta2`, as a Newton system in (theta3, theta4).
+    pub fn at(&self, theta2: f64) -> Loop<'_> {
+        let (s2, c2) = theta2.sin_cos();
+        Loop { fb: self, c2, s2 }
+    }
+
+    /// Closed form (circle intersection) for `mode` at `theta2`.
+    pub fn closed_form(&self, theta2: f64, mode: Mode) -> Assembly {
+        let (s2, c2) = theta2.sin_cos();
+        self.closed_form_cs(c2, s2, mode)
+    }
+
+    /// Closed form from cos/sin of the crank angle. B lies at distance r3 from A and r4
+    /// from O4; with d = |A O4| the angles at A and O4 come from atan2 of exact
+    /// factorizations, so nothing cancels near a toggle and power-of-two scaling is exact.
+    pub(crate) fn closed_form_cs(&self, c2: f64, s2: f64, mode: Mode) -> Assembly {
+        let [r1, r2, r3, r4] = self.r;
+        let ux = r1 - r2 * c2; // O4 - A
+        let uy = -(r2 * s2);
+        let d = ux.hypot(uy);
+        if d == 0.0 {
+            return if r3 == r4 { Assembly::Indeterminate } else { Assembly::NotAssemblable };
+        }
+        let q1 = d + r3 - r4;
+        let q2 = d - r3 + r4;
+        let q3 = r3 + r4 - d;
+        if !(q1 >= 0.0 && q2 >= 0.0 && q3 >= 0.0) {
+            return Assembly::NotAssemblable;
+        }
+        let two_dh = ((r3 + r4 + d) * q1 * q2 * q3).sqrt(); // 2 d h, h = height of B over line A-O4
+        let k = (r3 - r4) * (r3 + r4);
+        let phi = uy.atan2(ux);
+        let g3 = two_dh.atan2(k + d * d); // angle at A between AO4 and AB
+        let g4 = two_dh.atan2(k - d * d); // angle of O4B from the direction AO4
+        let sign = mode.sign();
+        Assembly::Closed {
+            theta3: wrap_angle(phi + sign * g3),
+            theta4: wrap_angle(phi + sign * g4),
+            sin34: sign * two_dh / (2.0 * r3 * r4),
+        }
+    }
+
+    /// Solves one crank angle by Newton-Raphson from `guess` (default: the closed form of
+    /// `mode`). Not-assemblable angles are reported before any iteration; a converged
+    /// point on the other mode is reported [`Status::BranchJump`].
+    pub fn solve(
+        &self,
+        theta2: f64,
+        mode: Mode,
+        guess: Option<[f64; 2]>,
+        opts: &NewtonOptions,
+        history: Option<&mut Vec<f64>>,
+    ) -> Point {
+        self.solve_point(theta2, mode, guess, opts, history).0
+    }
+
+    /// [`FourBar::solve`] that also hands back the loop and the Jacobian at the solution.
+    pub(crate) fn solve_point(
+        &self,
+        theta2: f64,
+        mode: Mode,
+        guess: Option<[f64; 2]>,
+        opts: &NewtonOptions,
+        history: Option<&mut Vec<f64>>,
+    ) -> (Point, Matrix2<f64>) {
+        let nan = Matrix2::repeat(f64::NAN);
+        if !theta2.is_finite() {
+            return (Point::failed(Status::NonFinite, 0, f64::NAN), nan);
+        }
+        let sys = self.at(theta2);
+        let start = match (self.closed_form_cs(sys.c2, sys.s2, mode), guess) {
+            (Assembly::NotAssemblable, _) => return (Point::failed(Status::NotAssemblable, 0, f64::NAN), nan),
+            (_, Some(g)) => Vector2::from(g),
+            (Assembly::Closed { theta3, theta4, .. }, None) => Vector2::new(theta3, theta4),
+            (Assembly::Indeterminate, None) => return (Point::failed(Status::Singular, 0, f64::NAN), nan),
+        };
+        self.solve_from(&sys, start, mode, opts, history)
+    }
+
+    /// Newton from `start` on the loop `sys`, then the mode check.
+    pub(crate) fn solve_from(
+        &self,
+        sys: &Loop<'_>,
+        start: Vector2<f64>,
+        mode: Mode,
+        opts: &NewtonOptions,
+        history: Option<&mut Vec<f64>>,
+    ) -> (Point, Matrix2<f64>) {
+        let out = newton::solve(sys, start, opts, history);
+        let mut status = out.status;
+        if status == Status::Converged && sys.sin34(&out.jacobian) * mode.sign() < 0.0 {
+            status = Status::BranchJump;
+        }
+        let point = if status == Status::Converged {
+            Point {
+                theta3: wrap_angle(out.x[0]),
+                theta4: wrap_angle(out.x[1]),
+                status,
+                nit: out.nit,
+                residual: out.residual,
+            }
+        } else {
+            Point::failed(status, out.nit, out.residual)
+        };
+        (point, out.jacobian)
+    }
+
+    /// Jacobian of the loop at (theta3, theta4).
+    pub fn jacobian(&self, theta3: f64, theta4: f64) -> Matrix2<f64> {
+        let [_, _, r3, r4] = self.r;
+        let (s3, c3) = theta3.sin_cos();
+        let (s4, c4) = theta4.sin_cos();
+        Matrix2::new(-r3 * s3, r4 * s4, r3 * c3, -r4 * c4)
+    }
+
+    /// Angular velocities (omega3, omega4) for crank speed `omega2`, solving
+    /// J w = -dF/dtheta2 omega2. NaN with [`Status::Singular`] at a dead point.
+    pub fn velocity(&self, theta2: f64, theta3: f64, theta4: f64, omega2: f64, singular: f64) -> ([f64; 2], Status) {
+        let j = self.jacobian(theta3, theta4);
+        self.velocity_with(&j, theta2.sin(), theta2.cos(), omega2, singular)
+    }
+
+    pub(crate) fn velocity_with(&self, j: &Matrix2<f64>, s2: f64, c2: f64, omega2: f64, singular: f64) -> ([f64; 2], Status) {
+        let r2 = self.r[1];
+        self.solve_linear(j, Vector2::new(r2 * s2 * omega2, -(r2 * c2) * omega2), singular)
+    }
+
+    /// Angular accelerations (alpha3, alpha4), differentiating the loop twice: the same
+    /// Jacobian with a right-hand side of centripetal terms and the crank's alpha2.
+    #[allow(clippy::too_many_arguments)]
+    pub fn acceleration(
+        &self,
+        theta2: f64,
+        theta3: f64,
+        theta4: f64,
+        omega2: f64,
+        omega3: f64,
+        omega4: f64,
+        alpha2: f64,
+        singular: f64,
+    ) -> ([f64; 2], Status) {
+        let [_, r2, r3, r4] = self.r;
+        let (s2, c2) = theta2.sin_cos();
+        let (s3, c3) = theta3.sin_cos();
+        let (s4, c4) = theta4.sin_cos();
+        let j = Matrix2::new(-r3 * s3, r4 * s4, r3 * c3, -r4 * c4);
+        let (w2s, w3s, w4s) = (omega2 * omega2, omega3 * omega3, omega4 * omega4);
+        let b1 = r2 * s2 * alpha2 + r2 * c2 * w2s + r3 * c3 * w3s - r4 * c4 * w4s;
+        let b2 = -(r2 * c2) * alpha2 + r2 * s2 * w2s + r3 * s3 * w3s - r4 * s4 * w4s;
+        self.solve_linear(&j, Vector2::new(b1, b2), singular)
+    }
+
+    /// Solves J x = b by Cramer's rule, refusing when |sin(theta4 - theta3)| < singular.
+    fn solve_linear(&self, j: &Matrix2<f64>, b: Vector2<f64>, singular: f64) -> ([f64; 2], Status) {
+        let ok = j.iter().chain(b.iter()).all(|v| v.is_finite());
+        if !ok {
+            return ([f64::NAN; 2], Status::NonFinite);
+        }
+        if self.sin34_of(j).abs() < singular {
+            return ([f64::NAN; 2], Status::Singular);
+        }
+        match cramer(j, &b) {
+            Some(x) => ([x[0], x[1]], Status::Converged),
+            None => ([f64::NAN; 2], Status::Singular),
+        }
+    }
+
+    /// sin(theta4 - theta3) from the loop Jacobian: det J = r3 r4 sin(theta3 - theta4).
+    #[inline]
+    pub(crate) fn sin34_of(&self, j: &Matrix2<f64>) -> f64 {
+        -det2(j) / (self.r[2] * self.r[3])
+    }
+
+    /// Position of a coupler point at distance `p` from the crank pin A, at angle `delta`
+    /// from the coupler line A-B.
+    pub fn coupler_point(&self, theta2: f64, theta3: f64, p: f64, delta: f64) -> [f64; 2] {
+        let r2 = self.r[1];
+        let (s2, c2) = theta2.sin_cos();
+        let (s, c) = (theta3 + delta).sin_cos();
+        [r2 * c2 + p * c, r2 * s2 + p * s]
+    }
+}
+
+/// Transmission angle (Norton): the acute angle between coupler and rocker, in [0, pi/2].
+pub fn transmission_angle(theta3: f64, theta4: f64) -> f64 {
+    let mu = wrap_angle(theta4 - theta3).abs();
+    if mu > std::f64::consts::FRAC_PI_2 {
+        std::f64::consts::PI - mu
+    } else {
+        mu
+    }
+}
+
+#[inline]
+fn det2(j: &Matrix2<f64>) -> f64 {
+    j[(0, 0)] * j[(1, 1)] - j[(0, 1)] * j[(1, 0)]
+}
+
+/// Cramer's rule, as the seed reports write it (same operation order as the NumPy reference).
+#[inline]
+pub(crate) fn cramer(j: &Matrix2<f64>, b: &Vector2<f64>) -> Option<Vector2<f64>> {
+    let d = det2(j);
+    if d == 0.0 {
+        return None;
+    }
+    let x0 = (b[0] * j[(1, 1)] - b[1] * j[(0, 1)]) / d;
+    let x1 = (j[(0, 0)] * b[1] - j[(1, 0)] * b[0]) / d;
+    Some(Vector2::new(x0, x1))
+}
+
+/// The four-bar loop at a fixed crank angle: f1, f2 in the unknowns (theta3, theta4).
+#[derive(Clone, Copy, Debug)]
+pub struct Loop<'a> {
+    fb: &'a FourBar,
+    pub(crate) c2: f64,
+    pub(crate) s2: f64,
+}
+
+impl Loop<'_> {
+    #[inline]
+    pub(crate) fn sin34(&self, j: &Matrix2<f64>) -> f64 {
+        self.fb.sin34_of(j)
+    }
+}
+
+impl System<2> for Loop<'_> {
+    #[inline]
+    fn eval(&self, x: &Vector2<f64>) -> (Vector2<f64>, Matrix2<f64>) {
+        let [r1, r2, r3, r4] = self.fb.r;
+        let (s3, c3) = x[0].sin_cos();
+        let (s4, c4) = x[1].sin_cos();
+        let f1 = r2 * self.c2 + r3 * c3 - r4 * c4 - r1;
+        let f2 = r2 * self.s2 + r3 * s3 - r4 * s4;
+        let j = Matrix2::new(-r3 * s3, r4 * s4, r3 * c3, -r4 * c4);
+        (Vector2::new(f1, f2), j)
+    }
+
+    #[inline]
+    fn scale(&self) -> f64 {
+        self.fb.longest
+    }
+
+    /// |sin(theta4 - theta3)| = |det J| / (r3 r4): the Hadamard ratio, without square roots.
+    #[inline]
+    fn conditioning(&self, j: &Matrix2<f64>) -> f64 {
+        self.sin34(j).abs()
+    }
+
+    #[inline]
+    fn step(&self, j: &Matrix2<f64>, f: &Vector2<f64>) -> Option<Vector2<f64>> {
+        cramer(j, &-f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    const DEG: f64 = PI / 180.0;
+
+    fn seed() -> FourBar {
+        FourBar::new(6.0, 2.0, 5.0, 5.0).unwrap()
+    }
+
+    #[test]
+    fn design_note_open_mode_at_zero() {
+        // DESIGN.md: r = (6, 2, 5, 5), theta2 = 0, open: theta3 = 66.42 deg, theta4 = 113.58 deg
+        let Assembly::Closed { theta3, theta4, sin34 } = seed().closed_form(0.0, Mode::Open) else { panic!() };
+        assert!((theta3 / DEG - 66.42).abs() < 5e-3);
+        assert!((theta4 / DEG - 113.58).abs() < 5e-3);
+        assert!(sin34 > 0.0);
+    }
+
+    #[test]
+    fn norton_example_4_1() {
+        // Norton, Design of Machinery, Example 4-1: a=40, b=120, c=80, d=100, theta2=40 deg
+        let fb = FourBar::new(100.0, 40.0, 120.0, 80.0).unwrap();
+        for (mode, t3, t4) in [(Mode::Open, 20.30, 57.32), (Mode::Crossed, -60.98, -98.00)] {
+            let Assembly::Closed { theta3, theta4, .. } = fb.closed_form(40.0 * DEG, mode) else { panic!() };
+            assert!((theta3 / DEG - t3).abs() < 5e-3, "{mode:?} theta3 {}", theta3 / DEG);
+            assert!((theta4 / DEG - t4).abs() < 5e-3, "{mode:?} theta4 {}", theta4 / DEG);
+        }
+    }
+
+    #[test]
+    fn newton_matches_closed_form_from_a_cold_guess() {
+        let fb = seed();
+        let opts = NewtonOptions::default();
+        let p = fb.solve(45.0 * DEG, Mode::Open, Some([80.0 * DEG, 100.0 * DEG]), &opts, None);
+        assert_eq!(p.status, Status::Converged);
+        let Assembly::Closed { theta3, theta4, .. } = fb.closed_form(45.0 * DEG, Mode::Open) else { panic!() };
+        assert!((p.theta3 - theta3).abs() < 1e-9 && (p.theta4 - theta4).abs() < 1e-9);
+        assert!(p.residual < 1e-9);
+    }
+
+    #[test]
+    fn crossed_guess_for_open_request_is_a_branch_jump() {
+        let fb = seed();
+        let Assembly::Closed { theta3, theta4, .. } = fb.closed_form(0.3, Mode::Crossed) else { panic!() };
+        let p = fb.solve(0.3, Mode::Open, Some([theta3, theta4]), &NewtonOptions::default(), None);
+        assert_eq!(p.status, Status::BranchJump);
+        assert!(p.theta3.is_nan());
+    }
+
+    #[test]
+    fn not_assemblable_before_any_iteration() {
+        // triple rocker: r2 too long to turn fully
+        let fb = FourBar::new(2.0, 5.0, 2.5, 2.0).unwrap();
+        let p = fb.solve(PI, Mode::Open, None, &NewtonOptions::default(), None);
+        assert_eq!((p.status, p.nit), (Status::NotAssemblable, 0));
+    }
+
+    #[test]
+    fn invalid_lengths_name_the_parameter() {
+        for (i, name) in ["r1", "r2", "r3", "r4"].iter().enumerate() {
+            for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+                let mut r = [6.0, 2.0, 5.0, 5.0];
+                r[i] = bad;
+                let e = FourBar::new(r[0], r[1], r[2], r[3]).unwrap_err().to_string();
+                assert!(e.starts_with(name), "{e}");
+            }
+        }
+    }
+
+    #[test]
+    fn velocity_matches_finite_difference_of_closed_form() {
+        let fb = seed();
+        let (t2, h) = (0.7, 1e-6);
+        let cf = |t: f64| match fb.closed_form(t, Mode::Open) {
+            Assembly::Closed { theta3, theta4, .. } => [theta3, theta4],
+            _ => panic!(),
+        };
+        let [t3, t4] = cf(t2);
+        let (w, st) = fb.velocity(t2, t3, t4, 1.0, 1e-7);
+        assert_eq!(st, Status::Converged);
+        let (p, m) = (cf(t2 + h), cf(t2 - h));
+        assert!((w[0] - (p[0] - m[0]) / (2.0 * h)).abs() < 1e-7);
+        assert!((w[1] - (p[1] - m[1]) / (2.0 * h)).abs() < 1e-7);
+        let (wp, _) = fb.velocity(t2 + h, p[0], p[1], 1.0, 1e-7);
+        let (wm, _) = fb.velocity(t2 - h, m[0], m[1], 1.0, 1e-7);
+        let (a, _) = fb.acceleration(t2, t3, t4, 1.0, w[0], w[1], 0.0, 1e-7);
+        assert!((a[0] - (wp[0] - wm[0]) / (2.0 * h)).abs() < 1e-6);
+        assert!((a[1] - (wp[1] - wm[1]) / (2.0 * h)).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,57 @@
+//! The one status vocabulary: every solve reports one of these, never a silent wrong number.
+//! Codes follow scipy's elementwise solvers where they overlap (0, -2, -3).
+
+/// Outcome of solving one point. `#[repr(i8)]`: sweeps store it in an `i8` array.
+#[repr(i8)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Status {
+    /// The dimensionless residual fell below `tol` on the requested assembly mode.
+    Converged = 0,
+    /// `max_iter` Newton steps were taken without reaching `tol`.
+    MaxIterations = -2,
+    /// The crank angle, a residual or an iterate was NaN or infinite.
+    NonFinite = -3,
+    /// |sin(theta4 - theta3)| fell below the singular threshold: a dead (toggle) or
+    /// change point, where the Jacobian is singular and the two assembly modes meet.
+    Singular = -4,
+    /// The loop cannot close at this crank angle (known from the geometry, before any iteration).
+    NotAssemblable = -5,
+    /// Newton converged, but on the other assembly mode than the one requested.
+    BranchJump = -6,
+}
+
+impl Status {
+    /// All statuses, in code order from 0 down.
+    pub const ALL: [Status; 6] = [
+        Status::Converged,
+        Status::MaxIterations,
+        Status::NonFinite,
+        Status::Singular,
+        Status::NotAssemblable,
+        Status::BranchJump,
+    ];
+
+    /// The `i8` code stored in status arrays.
+    #[inline]
+    pub fn code(self) -> i8 {
+        self as i8
+    }
+
+    /// True only for [`Status::Converged`].
+    #[inline]
+    pub fn is_success(self) -> bool {
+        self == Status::Converged
+    }
+
+    /// A one-line human-readable message.
+    pub fn message(self) -> &'static str {
+        match self {
+            Status::Converged => "converged: residual below tolerance on the requested mode",
+            Status::MaxIterations => "maximum number of iterations reached without convergence",
+            Status::NonFinite => "a non-finite value (NaN or infinity) was met",
+            Status::Singular => "singular: dead (toggle) or change point, the two modes meet",
+            Status::NotAssemblable => "not assemblable: the loop cannot close at this crank angle",
+            Status::BranchJump => "converged on the other assembly mode than the one requested",
+        }
+    }
+}

@@ -1,0 +1,332 @@
+//! Continuation sweep over crank angles: each point starts from the previous solution
+//! (or a tangent prediction from it); a point whose continuation fails falls back to the
+//! closed form of the requested mode, so the sweep never follows the other branch.
+
+use nalgebra::{Matrix2, Vector2};
+
+use crate::error::Error;
+use crate::fourbar::{cramer, Assembly, FourBar, Mode, Point};
+use crate::newton::NewtonOptions;
+use crate::{wrap_angle, Status};
+
+/// How the next point's first guess is made from the last converged one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Predictor {
+    /// The previous solution itself (zeroth order; the seeds' continuation).
+    Previous,
+    /// First order: x + dtheta2 * dx/dtheta2, with dx/dtheta2 = -J^-1 dF/dtheta2.
+    Tangent,
+    /// Second order: adds dtheta2^2 / 2 * d2x/dtheta2^2 from the acceleration solve.
+    Quadratic,
+}
+
+impl Predictor {
+    /// Parses "previous" / "tangent" / "quadratic".
+    pub fn parse(s: &str) -> Result<Self, Error> {
+        match s {
+            "previous" => Ok(Predictor::Previous),
+            "tangent" => Ok(Predictor::Tangent),
+            "quadratic" => Ok(Predictor::Quadratic),
+            other => Err(Error::invalid(
+                "predictor",
+                "must be 'previous', 'tangent' or 'quadratic'",
+                format!("{other:?}"),
+            )),
+        }
+    }
+}
+
+/// Everything a sweep needs besides the linkage and the angles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SweepOptions {
+    /// Assembly mode to solve at every point.
+    pub mode: Mode,
+    /// Newton stopping criteria.
+    pub newton: NewtonOptions,
+    /// First-guess predictor.
+    pub predictor: Predictor,
+}
+
+/// Output slices of one sweep, all of the length of the crank-angle array.
+pub struct SweepOut<'a> {
+    pub theta3: &'a mut [f64],
+    pub theta4: &'a mut [f64],
+    pub status: &'a mut [i8],
+    pub nit: &'a mut [u32],
+    pub residual: &'a mut [f64],
+}
+
+/// Optional velocity (and acceleration) outputs, computed only when asked for.
+pub struct MotionOut<'a> {
+    /// Crank angular velocity.
+    pub omega2: f64,
+    pub omega3: &'a mut [f64],
+    pub omega4: &'a mut [f64],
+    /// Crank angular acceleration and the alpha3, alpha4 outputs.
+    pub alpha: Option<(f64, &'a mut [f64], &'a mut [f64])>,
+}
+
+/// The last converged point, with what the predictors need.
+struct Prev {
+    theta2: f64,
+    x: Vector2<f64>,
+    v: Vector2<f64>,
+    a: Vector2<f64>,
+}
+
+impl Prev {
+    fn predict(&self, theta2: f64, predictor: Predictor) -> Vector2<f64> {
+        let h = wrap_angle(theta2 - self.theta2);
+        match predictor {
+            Predictor::Previous => self.x,
+            Predictor::Tangent => self.x + self.v * h,
+            Predictor::Quadratic => self.x + self.v * h + self.a * (0.5 * h * h),
+        }
+    }
+}
+
+fn check_len(name: &str, got: usize, expected: usize) -> Result<(), Error> {
+    if got == expected {
+        Ok(())
+    } else {
+        Err(Error::Shape { name: name.to_string(), got, expected })
+    }
+}
+
+impl SweepOut<'_> {
+    fn check(&self, n: usize) -> Result<(), Error> {
+        check_len("theta3", self.theta3.len(), n)?;
+        check_len("theta4", self.theta4.len(), n)?;
+        check_len("status", self.status.len(), n)?;
+        check_len("nit", self.nit.len(), n)?;
+        check_len("residual", self.residual.len(), n)
+    }
+}
+
+/// Sweeps `theta2` in order into `out` (and `motion` when given). `guess` seeds the
+/// first point instead of the closed form.
+pub fn sweep_into(
+    fb: &FourBar,
+    theta2: &[f64],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    motion: Option<MotionOut<'_>>,
+) -> Result<(), Error> {
+    let n = theta2.len();
+    out.check(n)?;
+    if let Some(m) = &motion {
+        check_len("omega3", m.omega3.len(), n)?;
+        check_len("omega4", m.omega4.len(), n)?;
+        if let Some((_, a3, a4)) = &m.alpha {
+            check_len("alpha3", a3.len(), n)?;
+            check_len("alpha4", a4.len(), n)?;
+        }
+    }
+    sweep_unchecked(fb, theta2, guess, opts, out, motion);
+    Ok(())
+}
+
+/// [`sweep_into`] for slices known to have the right lengths (the batch kernel).
+pub(crate) fn sweep_unchecked(
+    fb: &FourBar,
+    theta2: &[f64],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    mut motion: Option<MotionOut<'_>>,
+) {
+    let mut prev: Option<Prev> = None;
+    for (i, &t2) in theta2.iter().enumerate() {
+        let start = match &prev {
+            Some(p) => Some(p.predict(t2, opts.predictor)),
+            None if i == 0 => guess.map(Vector2::from),
+            None => None,
+        };
+        let (point, j) = sweep_point(fb, t2, start, opts);
+        out.theta3[i] = point.theta3;
+        out.theta4[i] = point.theta4;
+        out.status[i] = point.status.code();
+        out.nit[i] = point.nit;
+        out.residual[i] = point.residual;
+        let converged = point.status == Status::Converged;
+        if let Some(m) = motion.as_mut() {
+            fill_motion(fb, t2, &point, converged, i, m, opts.newton.singular);
+        }
+        prev = converged.then(|| {
+            let x = Vector2::new(point.theta3, point.theta4);
+            let (v, a) = predictor_rates(fb, t2, &j, opts.predictor);
+            Prev { theta2: t2, x, v, a }
+        });
+    }
+}
+
+/// Solves one sweep point: continuation from `start` first, then, if that fails in any
+/// way, the closed form of the mode as the starting guess. `nit` counts both attempts.
+fn sweep_point(fb: &FourBar, t2: f64, start: Option<Vector2<f64>>, opts: &SweepOptions) -> (Point, Matrix2<f64>) {
+    let Some(x0) = start else {
+        return fb.solve_point(t2, opts.mode, None, &opts.newton, None);
+    };
+    if !t2.is_finite() {
+        return fb.solve_point(t2, opts.mode, None, &opts.newton, None);
+    }
+    let sys = fb.at(t2);
+    let cf = fb.closed_form_cs(sys.c2, sys.s2, opts.mode);
+    if cf == Assembly::NotAssemblable {
+        return (Point::failed(Status::NotAssemblable, 0, f64::NAN), Matrix2::repeat(f64::NAN));
+    }
+    let (first, j) = fb.solve_from(&sys, x0, opts.mode, &opts.newton, None);
+    if first.status == Status::Converged {
+        return (first, j);
+    }
+    let (mut second, j) = match cf {
+        Assembly::Closed { theta3, theta4, .. } => {
+            fb.solve_from(&sys, Vector2::new(theta3, theta4), opts.mode, &opts.newton, None)
+        }
+        _ => (Point::failed(Status::Singular, 0, f64::NAN), Matrix2::repeat(f64::NAN)),
+    };
+    second.nit += first.nit;
+    (second, j)
+}
+
+/// dx/dtheta2 and d2x/dtheta2^2 at unit crank speed, as far as the predictor needs them.
+/// Both reuse the Jacobian at the solution (r3 c3 = J10, r3 s3 = -J00, r4 c4 = -J11,
+/// r4 s4 = J01), so a prediction costs no trigonometry.
+fn predictor_rates(fb: &FourBar, t2: f64, j: &Matrix2<f64>, p: Predictor) -> (Vector2<f64>, Vector2<f64>) {
+    let zero = Vector2::zeros();
+    if p == Predictor::Previous {
+        return (zero, zero);
+    }
+    let r2 = fb.lengths()[1];
+    let (s2, c2) = t2.sin_cos();
+    let Some(v) = cramer(j, &Vector2::new(r2 * s2, -(r2 * c2))) else { return (zero, zero) };
+    if p == Predictor::Tangent {
+        return (v, zero);
+    }
+    let (w3s, w4s) = (v[0] * v[0], v[1] * v[1]);
+    let b = Vector2::new(
+        r2 * c2 + j[(1, 0)] * w3s + j[(1, 1)] * w4s,
+        r2 * s2 - j[(0, 0)] * w3s - j[(0, 1)] * w4s,
+    );
+    (v, cramer(j, &b).unwrap_or(zero))
+}
+
+fn fill_motion(fb: &FourBar, t2: f64, p: &Point, converged: bool, i: usize, m: &mut MotionOut<'_>, singular: f64) {
+    let (w, a) = if converged {
+        let (w, _) = fb.velocity(t2, p.theta3, p.theta4, m.omega2, singular);
+        let a = m.alpha.as_ref().map(|(alpha2, _, _)| {
+            fb.acceleration(t2, p.theta3, p.theta4, m.omega2, w[0], w[1], *alpha2, singular).0
+        });
+        (w, a)
+    } else {
+        ([f64::NAN; 2], Some([f64::NAN; 2]))
+    };
+    m.omega3[i] = w[0];
+    m.omega4[i] = w[1];
+    if let (Some((_, a3, a4)), Some(a)) = (m.alpha.as_mut(), a) {
+        a3[i] = a[0];
+        a4[i] = a[1];
+    }
+}
+
+/// Default sweep angles: 0..=2 pi in `n - 1` equal steps (361 points: 1 degree apart).
+pub fn default_angles(n: usize) -> Vec<f64> {
+    let step = std::f64::consts::TAU / (n.max(2) - 1) as f64;
+    (0..n).map(|i| i as f64 * step).collect()
+}
+
+/// Closed form of `mode` at each crank angle, with a status: Converged, NotAssemblable,
+/// Singular (|sin(theta4 - theta3)| below `singular`, or indeterminate), NonFinite.
+/// Angles are NaN only where no solution exists or it is indeterminate.
+pub fn closed_form_into(
+    fb: &FourBar,
+    theta2: &[f64],
+    mode: Mode,
+    singular: f64,
+    theta3: &mut [f64],
+    theta4: &mut [f64],
+    status: &mut [i8],
+) {
+    for (i, &t2) in theta2.iter().enumerate() {
+        let (t3, t4, st) = if !t2.is_finite() {
+            (f64::NAN, f64::NAN, Status::NonFinite)
+        } else {
+            match fb.closed_form(t2, mode) {
+                Assembly::Closed { theta3, theta4, sin34 } => {
+                    let st = if sin34.abs() < singular { Status::Singular } else { Status::Converged };
+                    (theta3, theta4, st)
+                }
+                Assembly::NotAssemblable => (f64::NAN, f64::NAN, Status::NotAssemblable),
+                Assembly::Indeterminate => (f64::NAN, f64::NAN, Status::Singular),
+            }
+        };
+        theta3[i] = t3;
+        theta4[i] = t4;
+        status[i] = st.code();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(fb: &FourBar, t2: &[f64], opts: &SweepOptions) -> (Vec<f64>, Vec<f64>, Vec<i8>, Vec<u32>, Vec<f64>) {
+        let n = t2.len();
+        let (mut a, mut b, mut s, mut k, mut r) = (vec![0.0; n], vec![0.0; n], vec![0; n], vec![0; n], vec![0.0; n]);
+        let out = SweepOut { theta3: &mut a, theta4: &mut b, status: &mut s, nit: &mut k, residual: &mut r };
+        sweep_into(fb, t2, None, opts, out, None).unwrap();
+        (a, b, s, k, r)
+    }
+
+    fn opts(mode: Mode, predictor: Predictor) -> SweepOptions {
+        SweepOptions { mode, newton: NewtonOptions::default(), predictor }
+    }
+
+    #[test]
+    fn seed_sweep_matches_the_closed_form_within_the_residual_bound() {
+        // tol bounds the residual; the angle error is bounded by
+        // sqrt(2) * residual * L / (r_other * |sin(theta4 - theta3)|) to first order.
+        let fb = FourBar::new(6.0, 2.0, 5.0, 5.0).unwrap();
+        let t2 = default_angles(361);
+        for mode in [Mode::Open, Mode::Crossed] {
+            for p in [Predictor::Previous, Predictor::Tangent, Predictor::Quadratic] {
+                let (a, b, s, _, r) = run(&fb, &t2, &opts(mode, p));
+                assert!(s.iter().all(|&c| c == 0));
+                for i in 0..t2.len() {
+                    let Assembly::Closed { theta3, theta4, sin34 } = fb.closed_form(t2[i], mode) else { panic!() };
+                    let bound = 1.01 * 2f64.sqrt() * r[i] * 6.0 / (5.0 * sin34.abs()) + 1e-14;
+                    assert!(wrap_angle(a[i] - theta3).abs() <= bound, "{mode:?} {p:?} {i}");
+                    assert!(wrap_angle(b[i] - theta4).abs() <= bound, "{mode:?} {p:?} {i}");
+                    if p == Predictor::Quadratic {
+                        assert!(wrap_angle(a[i] - theta3).abs() < 1e-9);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn tangent_predictor_needs_fewer_iterations() {
+        let fb = FourBar::new(6.0, 2.0, 5.0, 5.0).unwrap();
+        let t2 = default_angles(361);
+        let total = |p| run(&fb, &t2, &opts(Mode::Open, p)).3.iter().sum::<u32>();
+        let (prev, tan) = (total(Predictor::Previous), total(Predictor::Tangent));
+        assert!(tan < prev, "tangent {tan} vs previous {prev}");
+    }
+
+    #[test]
+    fn non_grashof_sweep_flags_unreachable_angles_and_carries_on() {
+        let fb = FourBar::new(2.0, 5.0, 2.5, 2.0).unwrap(); // crank cannot turn fully
+        let t2 = default_angles(361);
+        let (_, _, s, k, _) = run(&fb, &t2, &opts(Mode::Open, Predictor::Tangent));
+        let na = Status::NotAssemblable.code();
+        assert!(s.contains(&na) && s.contains(&0));
+        for i in 0..t2.len() {
+            let cf = fb.closed_form(t2[i], Mode::Open);
+            assert_eq!(cf == Assembly::NotAssemblable, s[i] == na);
+            if s[i] == na {
+                assert_eq!(k[i], 0);
+            }
+        }
+    }
+}
