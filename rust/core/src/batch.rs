@@ -6,7 +6,8 @@ use rayon::prelude::*;
 
 use crate::error::{positive_finite, Error};
 use crate::fourbar::{FourBar, Mode};
-use crate::sweep::{closed_form_into, sweep_unchecked, SweepOptions, SweepOut};
+use crate::arrays::closed_form_into;
+use crate::sweep::{sweep_unchecked, SweepOptions, SweepOut};
 
 /// (M, N) row-major outputs of a batch sweep.
 pub struct BatchOut<'a> {

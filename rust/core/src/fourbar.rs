@@ -122,7 +122,7 @@ impl FourBar {
         let [r1, r2, r3, r4] = self.r;
         let ux = r1 - r2 * c2; // O4 - A
         let uy = -(r2 * s2);
-        let d = ux.hypot(uy);
+        let d = (ux * ux + uy * uy).sqrt(); // not hypot: CPython's math.hypot differs from libm's
         if d == 0.0 {
             return if r3 == r4 { Assembly::Indeterminate } else { Assembly::NotAssemblable };
         }

@@ -4,6 +4,7 @@
 //! four-bar linkage that plugs into it ([`fourbar`]), continuation sweeps over crank
 //! angles ([`sweep`]) and rayon-parallel batches of linkages ([`batch`]).
 
+pub mod arrays;
 pub mod batch;
 pub mod error;
 pub mod fourbar;

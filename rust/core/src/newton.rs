@@ -89,12 +89,13 @@ pub struct NewtonOptions {
 }
 
 impl NewtonOptions {
-    /// Validates: `tol` finite and > 0, `max_iter` >= 1.
-    pub fn new(tol: f64, max_iter: u32) -> Result<Self, Error> {
+    /// Validates: `tol` finite and > 0, `max_iter` in 1..=u32::MAX.
+    pub fn new(tol: f64, max_iter: i64) -> Result<Self, Error> {
         positive_finite("tol", tol)?;
-        if max_iter < 1 {
-            return Err(Error::invalid("max_iter", "must be >= 1", max_iter));
-        }
+        let max_iter = u32::try_from(max_iter)
+            .ok()
+            .filter(|&m| m >= 1)
+            .ok_or_else(|| Error::invalid("max_iter", "must be an integer in 1..=4294967295", max_iter))?;
         Ok(Self { tol, max_iter, singular: SINGULAR_THRESHOLD })
     }
 }
@@ -145,7 +146,7 @@ pub fn solve<S: System<N>, const N: usize>(
         }
         let done = |status| Outcome { x, status, nit, residual, jacobian: j };
         if !finite {
-            return done(Status::NonFinite);
+            return Outcome { x, status: Status::NonFinite, nit, residual: f64::NAN, jacobian: j };
         }
         let cond = sys.conditioning(&j);
         if residual < opts.tol {
@@ -218,6 +219,7 @@ mod tests {
         assert!(NewtonOptions::new(0.0, 10).is_err());
         assert!(NewtonOptions::new(f64::NAN, 10).is_err());
         assert!(NewtonOptions::new(1e-9, 0).is_err());
+        assert!(NewtonOptions::new(1e-9, -3).is_err());
         let msg = NewtonOptions::new(-1.0, 10).unwrap_err().to_string();
         assert!(msg.starts_with("tol "), "{msg}");
     }

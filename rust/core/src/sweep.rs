@@ -235,37 +235,6 @@ pub fn default_angles(n: usize) -> Vec<f64> {
     (0..n).map(|i| i as f64 * step).collect()
 }
 
-/// Closed form of `mode` at each crank angle, with a status: Converged, NotAssemblable,
-/// Singular (|sin(theta4 - theta3)| below `singular`, or indeterminate), NonFinite.
-/// Angles are NaN only where no solution exists or it is indeterminate.
-pub fn closed_form_into(
-    fb: &FourBar,
-    theta2: &[f64],
-    mode: Mode,
-    singular: f64,
-    theta3: &mut [f64],
-    theta4: &mut [f64],
-    status: &mut [i8],
-) {
-    for (i, &t2) in theta2.iter().enumerate() {
-        let (t3, t4, st) = if !t2.is_finite() {
-            (f64::NAN, f64::NAN, Status::NonFinite)
-        } else {
-            match fb.closed_form(t2, mode) {
-                Assembly::Closed { theta3, theta4, sin34 } => {
-                    let st = if sin34.abs() < singular { Status::Singular } else { Status::Converged };
-                    (theta3, theta4, st)
-                }
-                Assembly::NotAssemblable => (f64::NAN, f64::NAN, Status::NotAssemblable),
-                Assembly::Indeterminate => (f64::NAN, f64::NAN, Status::Singular),
-            }
-        };
-        theta3[i] = t3;
-        theta4[i] = t4;
-        status[i] = st.code();
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

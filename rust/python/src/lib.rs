@@ -1,1 +1,297 @@
+//! Python bindings of planarkin-core, the extension module `planarkin._core`.
+//! This crate only converts arguments, releases the GIL around kernel calls and maps
+//! core errors to ValueError; every number is computed in planarkin-core.
 
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use planarkin_core as core;
+use planarkin_core::{arrays, batch, sweep, FourBar, Mode, NewtonOptions, Predictor, Status, SweepOptions};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+/// The one place core errors become Python exceptions.
+fn err(e: core::Error) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+type Arr1<'py, T> = Bound<'py, PyArray1<T>>;
+type Arr2<'py, T> = Bound<'py, PyArray2<T>>;
+
+fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+    a.as_slice().map_err(|_| PyValueError::new_err(format!("{name} must be a contiguous 1-D float64 array")))
+}
+
+fn sweep_options(mode: &str, tol: f64, max_iter: i64, predictor: &str) -> PyResult<SweepOptions> {
+    Ok(SweepOptions {
+        mode: Mode::parse(mode).map_err(err)?,
+        newton: NewtonOptions::new(tol, max_iter).map_err(err)?,
+        predictor: Predictor::parse(predictor).map_err(err)?,
+    })
+}
+
+/// A four-bar linkage with validated lengths (r1 ground, r2 crank, r3 coupler, r4 rocker).
+#[pyclass(frozen, module = "planarkin._core", name = "FourBar")]
+struct PyFourBar {
+    inner: FourBar,
+}
+
+type SolveOut<'py> = (f64, f64, i8, u32, f64, Option<Arr1<'py, f64>>);
+type SweepArrays<'py> = (
+    Arr1<'py, f64>,
+    Arr1<'py, f64>,
+    Arr1<'py, i8>,
+    Arr1<'py, u32>,
+    Arr1<'py, f64>,
+    Option<(Arr1<'py, f64>, Arr1<'py, f64>)>,
+    Option<(Arr1<'py, f64>, Arr1<'py, f64>)>,
+);
+type Triple<'py, T> = (Arr1<'py, T>, Arr1<'py, T>, Arr1<'py, i8>);
+
+#[pymethods]
+impl PyFourBar {
+    #[new]
+    fn new(r1: f64, r2: f64, r3: f64, r4: f64) -> PyResult<Self> {
+        Ok(Self { inner: FourBar::new(r1, r2, r3, r4).map_err(err)? })
+    }
+
+    /// (r1, r2, r3, r4)
+    #[getter]
+    fn lengths(&self) -> (f64, f64, f64, f64) {
+        let [a, b, c, d] = self.inner.lengths();
+        (a, b, c, d)
+    }
+
+    /// Newton-Raphson at one crank angle: (theta3, theta4, status, nit, residual, history).
+    #[pyo3(signature = (theta2, mode, guess, tol, max_iter, history))]
+    fn solve<'py>(
+        &self,
+        py: Python<'py>,
+        theta2: f64,
+        mode: &str,
+        guess: Option<(f64, f64)>,
+        tol: f64,
+        max_iter: i64,
+        history: bool,
+    ) -> PyResult<SolveOut<'py>> {
+        let mode = Mode::parse(mode).map_err(err)?;
+        let opts = NewtonOptions::new(tol, max_iter).map_err(err)?;
+        let mut hist = history.then(Vec::new);
+        let p = self.inner.solve(theta2, mode, guess.map(|(a, b)| [a, b]), &opts, hist.as_mut());
+        Ok((p.theta3, p.theta4, p.status.code(), p.nit, p.residual, hist.map(|h| h.into_pyarray(py))))
+    }
+
+    /// Continuation sweep: (theta3, theta4, status, nit, residual, (omega3, omega4)?, (alpha3, alpha4)?).
+    #[pyo3(signature = (theta2, mode, guess, tol, max_iter, predictor, omega2, alpha2))]
+    #[allow(clippy::too_many_arguments)]
+    fn sweep<'py>(
+        &self,
+        py: Python<'py>,
+        theta2: PyReadonlyArray1<'py, f64>,
+        mode: &str,
+        guess: Option<(f64, f64)>,
+        tol: f64,
+        max_iter: i64,
+        predictor: &str,
+        omega2: Option<f64>,
+        alpha2: Option<f64>,
+    ) -> PyResult<SweepArrays<'py>> {
+        let opts = sweep_options(mode, tol, max_iter, predictor)?;
+        let t2 = slice("theta2", &theta2)?;
+        let n = t2.len();
+        let fb = self.inner;
+        let (mut t3, mut t4, mut st, mut nit, mut res) = (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
+        let mut w = omega2.map(|_| (vec![0.0; n], vec![0.0; n]));
+        let mut a = alpha2.filter(|_| omega2.is_some()).map(|_| (vec![0.0; n], vec![0.0; n]));
+        py.detach(|| {
+            let out = sweep::SweepOut { theta3: &mut t3, theta4: &mut t4, status: &mut st, nit: &mut nit, residual: &mut res };
+            let motion = match (omega2, w.as_mut()) {
+                (Some(omega2), Some((w3, w4))) => Some(sweep::MotionOut {
+                    omega2,
+                    omega3: w3,
+                    omega4: w4,
+                    alpha: a.as_mut().map(|(a3, a4)| (alpha2.unwrap_or(0.0), a3.as_mut_slice(), a4.as_mut_slice())),
+                }),
+                _ => None,
+            };
+            sweep::sweep_into(&fb, t2, guess.map(|(x, y)| [x, y]), &opts, out, motion)
+        })
+        .map_err(err)?;
+        let pair = |p: Option<(Vec<f64>, Vec<f64>)>| p.map(|(x, y)| (x.into_pyarray(py), y.into_pyarray(py)));
+        Ok((t3.into_pyarray(py), t4.into_pyarray(py), st.into_pyarray(py), nit.into_pyarray(py), res.into_pyarray(py), pair(w), pair(a)))
+    }
+
+    /// Closed form of `mode`: (theta3, theta4, status).
+    fn closed_form<'py>(&self, py: Python<'py>, theta2: PyReadonlyArray1<'py, f64>, mode: &str) -> PyResult<Triple<'py, f64>> {
+        let mode = Mode::parse(mode).map_err(err)?;
+        let t2 = slice("theta2", &theta2)?;
+        let n = t2.len();
+        let (mut t3, mut t4, mut st) = (vec![0.0; n], vec![0.0; n], vec![0i8; n]);
+        let fb = self.inner;
+        py.detach(|| arrays::closed_form_into(&fb, t2, mode, core::newton::SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st));
+        Ok((t3.into_pyarray(py), t4.into_pyarray(py), st.into_pyarray(py)))
+    }
+
+    /// (omega3, omega4, status) at given positions.
+    fn velocity<'py>(
+        &self,
+        py: Python<'py>,
+        theta2: PyReadonlyArray1<'py, f64>,
+        theta3: PyReadonlyArray1<'py, f64>,
+        theta4: PyReadonlyArray1<'py, f64>,
+        omega2: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Triple<'py, f64>> {
+        let (t2, t3, t4, w2) = (slice("theta2", &theta2)?, slice("theta3", &theta3)?, slice("theta4", &theta4)?, slice("omega2", &omega2)?);
+        let n = t2.len();
+        let (mut w3, mut w4, mut st) = (vec![0.0; n], vec![0.0; n], vec![0i8; n]);
+        let fb = self.inner;
+        py.detach(|| arrays::velocity_into(&fb, t2, t3, t4, w2, core::newton::SINGULAR_THRESHOLD, &mut w3, &mut w4, &mut st))
+            .map_err(err)?;
+        Ok((w3.into_pyarray(py), w4.into_pyarray(py), st.into_pyarray(py)))
+    }
+
+    /// (alpha3, alpha4, status) at given positions.
+    #[allow(clippy::too_many_arguments)]
+    fn acceleration<'py>(
+        &self,
+        py: Python<'py>,
+        theta2: PyReadonlyArray1<'py, f64>,
+        theta3: PyReadonlyArray1<'py, f64>,
+        theta4: PyReadonlyArray1<'py, f64>,
+        omega2: PyReadonlyArray1<'py, f64>,
+        alpha2: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Triple<'py, f64>> {
+        let (t2, t3, t4) = (slice("theta2", &theta2)?, slice("theta3", &theta3)?, slice("theta4", &theta4)?);
+        let (w2, a2) = (slice("omega2", &omega2)?, slice("alpha2", &alpha2)?);
+        let n = t2.len();
+        let (mut a3, mut a4, mut st) = (vec![0.0; n], vec![0.0; n], vec![0i8; n]);
+        let fb = self.inner;
+        py.detach(|| {
+            arrays::acceleration_into(&fb, t2, t3, t4, w2, a2, core::newton::SINGULAR_THRESHOLD, &mut a3, &mut a4, &mut st)
+        })
+        .map_err(err)?;
+        Ok((a3.into_pyarray(py), a4.into_pyarray(py), st.into_pyarray(py)))
+    }
+
+    /// (x, y) of a coupler point at distance p from the crank pin, angle delta from the coupler.
+    fn coupler_point<'py>(
+        &self,
+        py: Python<'py>,
+        theta2: PyReadonlyArray1<'py, f64>,
+        theta3: PyReadonlyArray1<'py, f64>,
+        p: f64,
+        delta: f64,
+    ) -> PyResult<(Arr1<'py, f64>, Arr1<'py, f64>)> {
+        let (t2, t3) = (slice("theta2", &theta2)?, slice("theta3", &theta3)?);
+        let n = t2.len();
+        let (mut x, mut y) = (vec![0.0; n], vec![0.0; n]);
+        let fb = self.inner;
+        py.detach(|| arrays::coupler_into(&fb, t2, t3, p, delta, &mut x, &mut y)).map_err(err)?;
+        Ok((x.into_pyarray(py), y.into_pyarray(py)))
+    }
+
+    /// (class, barker code, kind, description, s, l, p, q)
+    fn grashof(&self) -> (&'static str, &'static str, &'static str, &'static str, f64, f64, f64, f64) {
+        let g = core::grashof::classify(self.inner.lengths());
+        let class = match g.class {
+            core::GrashofClass::Grashof => "grashof",
+            core::GrashofClass::ChangePoint => "change-point",
+            core::GrashofClass::NonGrashof => "non-grashof",
+        };
+        (class, g.barker.code(), g.barker.kind(), g.barker.description(), g.s, g.l, g.p, g.q)
+    }
+}
+
+/// (mu, sin(theta4 - theta3)) elementwise.
+#[pyfunction]
+fn transmission<'py>(
+    py: Python<'py>,
+    theta3: PyReadonlyArray1<'py, f64>,
+    theta4: PyReadonlyArray1<'py, f64>,
+) -> PyResult<(Arr1<'py, f64>, Arr1<'py, f64>)> {
+    let (t3, t4) = (slice("theta3", &theta3)?, slice("theta4", &theta4)?);
+    let n = t3.len();
+    let (mut mu, mut s) = (vec![0.0; n], vec![0.0; n]);
+    py.detach(|| arrays::transmission_into(t3, t4, &mut mu, &mut s)).map_err(err)?;
+    Ok((mu.into_pyarray(py), s.into_pyarray(py)))
+}
+
+fn links_of(links: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<FourBar>> {
+    let shape = links.shape();
+    if shape[1] != 4 {
+        return Err(PyValueError::new_err(format!("links must have shape (M, 4), got {shape:?}")));
+    }
+    let flat = links.as_slice().map_err(|_| PyValueError::new_err("links must be a C-contiguous float64 array"))?;
+    batch::validate_links(flat).map_err(err)
+}
+
+fn grid<'py, T: numpy::Element>(py: Python<'py>, m: usize, n: usize, v: Vec<T>) -> Arr2<'py, T> {
+    Array2::from_shape_vec((m, n), v).expect("m * n values").into_pyarray(py)
+}
+
+type BatchArrays<'py> = (Arr2<'py, f64>, Arr2<'py, f64>, Arr2<'py, i8>, Arr2<'py, u32>, Arr2<'py, f64>);
+
+/// Sweeps M linkages over N crank angles in parallel: (M, N) arrays.
+#[pyfunction]
+#[pyo3(signature = (links, theta2, mode, tol, max_iter, predictor, threads))]
+#[allow(clippy::too_many_arguments)]
+fn sweep_batch<'py>(
+    py: Python<'py>,
+    links: PyReadonlyArray2<'py, f64>,
+    theta2: PyReadonlyArray1<'py, f64>,
+    mode: &str,
+    tol: f64,
+    max_iter: i64,
+    predictor: &str,
+    threads: Option<usize>,
+) -> PyResult<BatchArrays<'py>> {
+    let opts = sweep_options(mode, tol, max_iter, predictor)?;
+    let fbs = links_of(&links)?;
+    let t2 = slice("theta2", &theta2)?;
+    let (m, n) = (fbs.len(), t2.len());
+    let mn = m * n;
+    let (mut t3, mut t4, mut st, mut nit, mut res) = (vec![0.0; mn], vec![0.0; mn], vec![0i8; mn], vec![0u32; mn], vec![0.0; mn]);
+    py.detach(|| {
+        let out = batch::BatchOut { theta3: &mut t3, theta4: &mut t4, status: &mut st, nit: &mut nit, residual: &mut res };
+        batch::sweep_batch(&fbs, t2, &opts, out, threads)
+    })
+    .map_err(err)?;
+    Ok((grid(py, m, n, t3), grid(py, m, n, t4), grid(py, m, n, st), grid(py, m, n, nit), grid(py, m, n, res)))
+}
+
+/// Closed form for M linkages at N crank angles in parallel: (M, N) arrays.
+#[pyfunction]
+#[pyo3(signature = (links, theta2, mode, threads))]
+fn closed_form_batch<'py>(
+    py: Python<'py>,
+    links: PyReadonlyArray2<'py, f64>,
+    theta2: PyReadonlyArray1<'py, f64>,
+    mode: &str,
+    threads: Option<usize>,
+) -> PyResult<(Arr2<'py, f64>, Arr2<'py, f64>, Arr2<'py, i8>)> {
+    let mode = Mode::parse(mode).map_err(err)?;
+    let fbs = links_of(&links)?;
+    let t2 = slice("theta2", &theta2)?;
+    let (m, n) = (fbs.len(), t2.len());
+    let (mut t3, mut t4, mut st) = (vec![0.0; m * n], vec![0.0; m * n], vec![0i8; m * n]);
+    py.detach(|| {
+        batch::closed_form_batch(&fbs, t2, mode, core::newton::SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st, threads)
+    })
+    .map_err(err)?;
+    Ok((grid(py, m, n, t3), grid(py, m, n, t4), grid(py, m, n, st)))
+}
+
+/// The extension module.
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyFourBar>()?;
+    m.add_function(wrap_pyfunction!(transmission, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(closed_form_batch, m)?)?;
+    let statuses: Vec<(i8, String, &str)> =
+        Status::ALL.iter().map(|s| (s.code(), format!("{s:?}"), s.message())).collect();
+    m.add("STATUSES", statuses)?;
+    m.add("SINGULAR_THRESHOLD", core::newton::SINGULAR_THRESHOLD)?;
+    m.add("BUILD_PROFILE", if cfg!(debug_assertions) { "debug" } else { "release" })?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,38 @@
+"""planarkin: planar linkage kinematics with a Rust core.
+
+>>> import planarkin as pk
+>>> fb = pk.FourBar(6, 2, 5, 5)
+>>> fb.sweep().summary().converged
+361
+"""
+
+from . import reference
+from ._core import BUILD_PROFILE
+from ._core import __version__ as __version__
+from ._types import (
+    DEFAULT_THETA2,
+    SINGULAR_THRESHOLD,
+    BatchSweep,
+    Grashof,
+    Solution,
+    Status,
+    Sweep,
+    SweepSummary,
+)
+from .fourbar import FourBar, closed_form_batch, sweep_batch
+
+__all__ = [
+    "BUILD_PROFILE",
+    "DEFAULT_THETA2",
+    "SINGULAR_THRESHOLD",
+    "BatchSweep",
+    "FourBar",
+    "Grashof",
+    "Solution",
+    "Status",
+    "Sweep",
+    "SweepSummary",
+    "closed_form_batch",
+    "reference",
+    "sweep_batch",
+]

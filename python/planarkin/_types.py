@@ -1,0 +1,265 @@
+"""Plain result types shared by the Rust-backed API and the NumPy reference.
+
+Nothing here imports the extension: the reference builds the same objects on its own,
+so parity tests compare two independent implementations.
+"""
+
+from __future__ import annotations
+
+import math
+import operator
+from dataclasses import dataclass, field
+from enum import IntEnum
+
+import numpy as np
+
+TAU = 2.0 * math.pi
+
+#: Default crank angles: 0 to 360 degrees in 1 degree steps (361 points), in radians.
+DEFAULT_THETA2 = np.arange(361) * (TAU / 360)
+DEFAULT_THETA2.setflags(write=False)
+
+#: A converged point whose |sin(theta4 - theta3)| is below this is reported SINGULAR:
+#: there an angle cannot be resolved to ~1e-9 rad from double-precision data.
+SINGULAR_THRESHOLD = 1e-7
+
+MODES = ("open", "crossed")
+PREDICTORS = ("previous", "tangent", "quadratic")
+
+
+class Status(IntEnum):
+    """How one solve ended. Arrays of results carry these codes as ``int8``."""
+
+    #: The dimensionless residual fell below ``tol`` on the requested assembly mode.
+    CONVERGED = 0
+    #: ``max_iter`` Newton steps were taken without reaching ``tol``.
+    MAX_ITERATIONS = -2
+    #: The crank angle, a residual or an iterate was NaN or infinite.
+    NON_FINITE = -3
+    #: |sin(theta4 - theta3)| below the singular threshold: a dead (toggle) or change
+    #: point, where the Jacobian is singular and the two assembly modes meet.
+    SINGULAR = -4
+    #: The loop cannot close at this crank angle (known before any iteration).
+    NOT_ASSEMBLABLE = -5
+    #: Newton converged, but on the other assembly mode than the one requested.
+    BRANCH_JUMP = -6
+
+    @property
+    def message(self) -> str:
+        """A one-line description."""
+        return _MESSAGES[self]
+
+
+_MESSAGES = {
+    Status.CONVERGED: "converged: residual below tolerance on the requested mode",
+    Status.MAX_ITERATIONS: "maximum number of iterations reached without convergence",
+    Status.NON_FINITE: "a non-finite value (NaN or infinity) was met",
+    Status.SINGULAR: "singular: dead (toggle) or change point, the two modes meet",
+    Status.NOT_ASSEMBLABLE: "not assemblable: the loop cannot close at this crank angle",
+    Status.BRANCH_JUMP: "converged on the other assembly mode than the one requested",
+}
+
+
+@dataclass(frozen=True)
+class Solution:
+    """One crank angle solved by Newton-Raphson (scipy's vocabulary: success, status, nit)."""
+
+    theta2: float
+    #: Coupler angle in (-pi, pi]; NaN unless converged.
+    theta3: float
+    #: Rocker angle in (-pi, pi]; NaN unless converged.
+    theta4: float
+    success: bool
+    status: Status
+    #: Newton steps taken.
+    nit: int
+    #: Dimensionless residual max(|f1|, |f2|) / longest link at the last iterate.
+    residual: float
+    #: Residual per iteration (length nit + 1) when asked for with ``history=True``.
+    history: np.ndarray | None = field(default=None, compare=False)
+
+    @property
+    def message(self) -> str:
+        return self.status.message
+
+
+@dataclass(frozen=True)
+class SweepSummary:
+    """Totals over a sweep."""
+
+    points: int
+    converged: int
+    success_rate: float
+    nit_total: int
+    nit_mean: float
+    residual_max: float
+    #: Count of points per status name (only statuses that occur).
+    statuses: dict[str, int]
+
+    def __str__(self) -> str:
+        counts = ", ".join(f"{k}={v}" for k, v in self.statuses.items())
+        return (
+            f"{self.converged}/{self.points} converged ({counts}); iterations total "
+            f"{self.nit_total}, mean {self.nit_mean:.3f}; max residual {self.residual_max:.3g}"
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class Sweep:
+    """A crank sweep: one entry per crank angle, NaN angles wherever status != CONVERGED."""
+
+    lengths: tuple[float, float, float, float]
+    mode: str
+    theta2: np.ndarray
+    theta3: np.ndarray
+    theta4: np.ndarray
+    status: np.ndarray
+    nit: np.ndarray
+    residual: np.ndarray
+    omega2: float | None = None
+    omega3: np.ndarray | None = None
+    omega4: np.ndarray | None = None
+    alpha2: float | None = None
+    alpha3: np.ndarray | None = None
+    alpha4: np.ndarray | None = None
+
+    @property
+    def success(self) -> np.ndarray:
+        """Boolean array: status == CONVERGED."""
+        return self.status == Status.CONVERGED
+
+    def __len__(self) -> int:
+        return len(self.theta2)
+
+    def summary(self) -> SweepSummary:
+        n = len(self.theta2)
+        ok = int(np.count_nonzero(self.success))
+        codes, counts = np.unique(self.status, return_counts=True)
+        statuses = {Status(int(c)).name: int(k) for c, k in zip(codes, counts, strict=True)}
+        nit_total = int(self.nit.sum(dtype=np.int64))
+        res = self.residual[self.success]
+        return SweepSummary(
+            points=n,
+            converged=ok,
+            success_rate=ok / n if n else float("nan"),
+            nit_total=nit_total,
+            nit_mean=nit_total / n if n else float("nan"),
+            residual_max=float(res.max()) if res.size else float("nan"),
+            statuses=statuses,
+        )
+
+
+@dataclass(frozen=True)
+class Grashof:
+    """Grashof condition and Barker class (Norton, Design of Machinery, Table 2-4)."""
+
+    #: "grashof", "change-point" or "non-grashof"
+    condition: str
+    #: Barker code: GCRR, GCCC, GRCR, GRRC, RRR1-4, SCCC, SCRR, SRCR, SRRC, S2X, S3X
+    barker: str
+    #: crank-rocker, double-crank, rocker-crank, double-rocker, change-point, triple-rocker
+    kind: str
+    description: str
+    s: float
+    l: float  # noqa: E741 - the textbook's name
+    p: float
+    q: float
+
+    @property
+    def is_grashof(self) -> bool:
+        """S + L < P + Q (decided exactly on the float inputs)."""
+        return self.condition == "grashof"
+
+
+@dataclass(frozen=True, eq=False)
+class BatchSweep:
+    """Sweeps of M linkages over N crank angles: (M, N) arrays."""
+
+    links: np.ndarray
+    mode: str
+    theta2: np.ndarray
+    theta3: np.ndarray
+    theta4: np.ndarray
+    status: np.ndarray
+    nit: np.ndarray
+    residual: np.ndarray
+
+    @property
+    def success(self) -> np.ndarray:
+        return self.status == Status.CONVERGED
+
+
+# --- argument normalisation shared by the API and the reference -------------------
+
+
+def as_float(name: str, value: object) -> float:
+    """A real scalar, or ValueError naming the parameter."""
+    try:
+        if isinstance(value, (str, bytes, complex)) or np.iscomplexobj(value):
+            raise TypeError
+        return float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+
+
+def as_int(name: str, value: object) -> int:
+    """An integer, or ValueError naming the parameter."""
+    if isinstance(value, bool):
+        raise ValueError(f"{name} must be an integer, got {value!r}")
+    try:
+        return operator.index(value)  # type: ignore[arg-type]
+    except TypeError:
+        raise ValueError(f"{name} must be an integer, got {value!r}") from None
+
+
+def as_angles(name: str, value: object) -> np.ndarray:
+    """A float64 array (any shape), or ValueError naming the parameter."""
+    try:
+        arr = np.asarray(value)
+    except Exception:  # ragged nested sequences and the like
+        raise ValueError(f"{name} must be an array of real numbers") from None
+    if arr.dtype.kind not in "biuf":
+        raise ValueError(f"{name} must be an array of real numbers, got dtype {arr.dtype}")
+    return np.ascontiguousarray(arr, dtype=np.float64)
+
+
+def as_theta2_1d(value: object | None) -> np.ndarray:
+    """Crank angles for a sweep: a 1-D float64 array (default: 0..360 deg, 1 deg steps)."""
+    if value is None:
+        return DEFAULT_THETA2
+    arr = as_angles("theta2", value)
+    if arr.ndim != 1:
+        raise ValueError(f"theta2 must be a 1-D array of crank angles, got shape {arr.shape}")
+    return arr
+
+
+def check_mode(mode: object) -> str:
+    if mode not in MODES:
+        raise ValueError(f"mode must be 'open' or 'crossed', got {mode!r}")
+    return mode  # type: ignore[return-value]
+
+
+def check_options(tol: object, max_iter: object) -> tuple[float, int]:
+    t = as_float("tol", tol)
+    if not (math.isfinite(t) and t > 0):
+        raise ValueError(f"tol must be finite and > 0, got {t}")
+    m = as_int("max_iter", max_iter)
+    if not 1 <= m <= 0xFFFFFFFF:
+        raise ValueError(f"max_iter must be an integer in 1..=4294967295, got {m}")
+    return t, m
+
+
+def check_guess(guess: object) -> tuple[float, float] | None:
+    if guess is None:
+        return None
+    try:
+        a, b = guess  # type: ignore[misc]
+    except (TypeError, ValueError):
+        raise ValueError(f"guess must be a pair (theta3, theta4), got {guess!r}") from None
+    return as_float("guess[0]", a), as_float("guess[1]", b)
+
+
+def check_predictor(predictor: object) -> str:
+    if predictor not in PREDICTORS:
+        raise ValueError(f"predictor must be 'previous', 'tangent' or 'quadratic', got {predictor!r}")
+    return predictor  # type: ignore[return-value]

@@ -1,0 +1,248 @@
+"""The public four-bar API: validates and broadcasts at the boundary, calls the Rust
+kernel (``planarkin._core``) and wraps its arrays in plain result objects."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _core
+from ._types import (
+    BatchSweep,
+    Grashof,
+    Solution,
+    Status,
+    Sweep,
+    as_angles,
+    as_float,
+    as_int,
+    as_theta2_1d,
+    check_guess,
+    check_mode,
+    check_options,
+    check_predictor,
+)
+
+
+def _broadcast(**arrays: object) -> tuple[tuple[int, ...], list[np.ndarray]]:
+    """Broadcasts named array-likes; returns the shape and flat contiguous float64 arrays."""
+    conv = [as_angles(name, a) for name, a in arrays.items()]
+    try:
+        b = np.broadcast_arrays(*conv)
+    except ValueError:
+        shapes = ", ".join(f"{n} {a.shape}" for n, a in zip(arrays, conv, strict=True))
+        raise ValueError(f"shapes do not broadcast: {shapes}") from None
+    shape = b[0].shape
+    return shape, [np.ascontiguousarray(x).ravel() for x in b]
+
+
+def _shaped(shape: tuple[int, ...], *arrays: np.ndarray) -> tuple:
+    """Reshapes flat results back; 0-d results become Python floats."""
+    if shape == ():
+        return tuple(float(a[0]) for a in arrays)
+    return tuple(a.reshape(shape) for a in arrays)
+
+
+class FourBar:
+    """A four-bar linkage: r1 ground, r2 crank (input), r3 coupler, r4 rocker (output).
+
+    Ground pivots O2 = (0, 0) and O4 = (r1, 0); angles in radians, counter-clockwise
+    from +x. Lengths must be finite and > 0 (ValueError naming the parameter otherwise).
+    """
+
+    __slots__ = ("_core",)
+
+    def __init__(self, r1: float, r2: float, r3: float, r4: float) -> None:
+        r = [as_float(n, v) for n, v in zip(("r1", "r2", "r3", "r4"), (r1, r2, r3, r4), strict=True)]
+        self._core = _core.FourBar(*r)
+
+    @property
+    def lengths(self) -> tuple[float, float, float, float]:
+        """(r1, r2, r3, r4)"""
+        return self._core.lengths
+
+    r1 = property(lambda self: self.lengths[0], doc="Ground length.")
+    r2 = property(lambda self: self.lengths[1], doc="Crank (input) length.")
+    r3 = property(lambda self: self.lengths[2], doc="Coupler length.")
+    r4 = property(lambda self: self.lengths[3], doc="Rocker (output) length.")
+
+    def __repr__(self) -> str:
+        return "FourBar(r1={!r}, r2={!r}, r3={!r}, r4={!r})".format(*self.lengths)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, FourBar) and self.lengths == other.lengths
+
+    def __hash__(self) -> int:
+        return hash(self.lengths)
+
+    def grashof(self) -> Grashof:
+        """Grashof condition and Barker class. S + L = P + Q is decided exactly on the
+        binary values of the lengths (error-free sums, no tolerance)."""
+        return Grashof(*self._core.grashof())
+
+    def solve(
+        self,
+        theta2: float,
+        *,
+        mode: str = "open",
+        guess: tuple[float, float] | None = None,
+        tol: float = 1e-9,
+        max_iter: int = 100,
+        history: bool = False,
+    ) -> Solution:
+        """Newton-Raphson at one crank angle.
+
+        Starts from ``guess`` (theta3, theta4) or, by default, the closed form of
+        ``mode``. Converged when max(|f1|, |f2|) / longest link < ``tol``. A point that
+        converges on the other mode is BRANCH_JUMP; angles are NaN unless CONVERGED.
+        ``history=True`` records the residual at every iterate.
+        """
+        t2 = as_float("theta2", theta2)
+        mode = check_mode(mode)
+        tol, max_iter = check_options(tol, max_iter)
+        g = check_guess(guess)
+        t3, t4, st, nit, res, hist = self._core.solve(t2, mode, g, tol, max_iter, bool(history))
+        status = Status(st)
+        return Solution(t2, t3, t4, status == Status.CONVERGED, status, nit, res, hist)
+
+    def sweep(
+        self,
+        theta2: object = None,
+        *,
+        mode: str = "open",
+        guess: tuple[float, float] | None = None,
+        tol: float = 1e-9,
+        max_iter: int = 100,
+        predictor: str = "quadratic",
+        omega2: float | None = None,
+        alpha2: float | None = None,
+    ) -> Sweep:
+        """Solves every crank angle in order, by continuation (default: 0..360 deg in 1 deg
+        steps).
+
+        Each point starts from a prediction off the last converged point: ``"previous"``
+        (the seeds' continuation), ``"tangent"`` (first order) or ``"quadratic"`` (second
+        order, the default: about one Newton step per point). The first point, and any
+        point whose continuation fails, starts from the closed form of ``mode``, so a
+        sweep never follows the other assembly mode. ``omega2`` fills omega3/omega4,
+        and ``alpha2`` (with omega2) alpha3/alpha4.
+        """
+        t2 = as_theta2_1d(theta2)
+        mode = check_mode(mode)
+        tol, max_iter = check_options(tol, max_iter)
+        predictor = check_predictor(predictor)
+        g = check_guess(guess)
+        w2 = None if omega2 is None else as_float("omega2", omega2)
+        a2 = None if alpha2 is None else as_float("alpha2", alpha2)
+        if a2 is not None and w2 is None:
+            raise ValueError("alpha2 needs omega2: accelerations depend on the crank speed")
+        t3, t4, st, nit, res, w, a = self._core.sweep(t2, mode, g, tol, max_iter, predictor, w2, a2)
+        return Sweep(
+            self.lengths, mode, t2, t3, t4, st, nit, res,
+            omega2=w2, omega3=w[0] if w else None, omega4=w[1] if w else None,
+            alpha2=a2, alpha3=a[0] if a else None, alpha4=a[1] if a else None,
+        )  # fmt: skip
+
+    def closed_form(self, theta2: object, mode: str = "open") -> tuple:
+        """Closed-form (theta3, theta4) of ``mode``, broadcast over ``theta2``; NaN where
+        the linkage cannot assemble (or the position is indeterminate)."""
+        mode = check_mode(mode)
+        shape, (t2,) = _broadcast(theta2=theta2)
+        t3, t4, _ = self._core.closed_form(t2, mode)
+        return _shaped(shape, t3, t4)
+
+    def closed_form_status(self, theta2: object, mode: str = "open") -> np.ndarray:
+        """Status of the closed form at each crank angle (CONVERGED, SINGULAR at dead
+        points, NOT_ASSEMBLABLE, NON_FINITE), as an int8 array shaped like ``theta2``."""
+        mode = check_mode(mode)
+        shape, (t2,) = _broadcast(theta2=theta2)
+        return self._core.closed_form(t2, mode)[2].reshape(shape)
+
+    def velocity(self, theta2: object, theta3: object, theta4: object, omega2: object) -> tuple:
+        """(omega3, omega4) from J [w3, w4] = -dF/dtheta2 omega2, broadcast over the inputs.
+        NaN at a dead point (|sin(theta4 - theta3)| below the singular threshold)."""
+        shape, arrs = _broadcast(theta2=theta2, theta3=theta3, theta4=theta4, omega2=omega2)
+        w3, w4, _ = self._core.velocity(*arrs)
+        return _shaped(shape, w3, w4)
+
+    def acceleration(
+        self, theta2: object, theta3: object, theta4: object, omega2: object, alpha2: object = 0.0
+    ) -> tuple:
+        """(alpha3, alpha4): the loop differentiated twice, same Jacobian, broadcast.
+        NaN at a dead point."""
+        shape, arrs = _broadcast(
+            theta2=theta2, theta3=theta3, theta4=theta4, omega2=omega2, alpha2=alpha2
+        )
+        a3, a4, _ = self._core.acceleration(*arrs)
+        return _shaped(shape, a3, a4)
+
+    def coupler_point(self, theta2: object, theta3: object, p: float, delta: float) -> tuple:
+        """(x, y) of the coupler point at distance ``p`` from the crank pin A, at angle
+        ``delta`` from the coupler line A-B; broadcast over theta2, theta3."""
+        p = as_float("p", p)
+        delta = as_float("delta", delta)
+        shape, (t2, t3) = _broadcast(theta2=theta2, theta3=theta3)
+        x, y = self._core.coupler_point(t2, t3, p, delta)
+        return _shaped(shape, x, y)
+
+    def coupler_curve(self, sweep: Sweep, p: float, delta: float) -> tuple:
+        """Coupler-point curve (x, y) over a sweep of this linkage (NaN where unsolved)."""
+        return self.coupler_point(sweep.theta2, sweep.theta3, p, delta)
+
+    @staticmethod
+    def transmission_angle(theta3: object, theta4: object) -> object:
+        """Transmission angle: the acute angle between coupler and rocker, in [0, pi/2]."""
+        shape, (t3, t4) = _broadcast(theta3=theta3, theta4=theta4)
+        return _shaped(shape, _core.transmission(t3, t4)[0])[0]
+
+    @staticmethod
+    def branch_indicator(theta3: object, theta4: object) -> object:
+        """sin(theta4 - theta3) = -det J / (r3 r4): > 0 open, < 0 crossed, 0 at a dead point."""
+        shape, (t3, t4) = _broadcast(theta3=theta3, theta4=theta4)
+        return _shaped(shape, _core.transmission(t3, t4)[1])[0]
+
+
+def _links(links: object) -> np.ndarray:
+    arr = as_angles("links", links)
+    if arr.ndim != 2 or arr.shape[1] != 4:
+        raise ValueError(f"links must have shape (M, 4), got {arr.shape}")
+    return arr
+
+
+def sweep_batch(
+    links: object,
+    theta2: object = None,
+    *,
+    mode: str = "open",
+    tol: float = 1e-9,
+    max_iter: int = 100,
+    predictor: str = "quadratic",
+    threads: int | None = None,
+) -> BatchSweep:
+    """Sweeps M linkages (an (M, 4) array of r1, r2, r3, r4) over N crank angles, in
+    parallel over linkages with the GIL released. Returns (M, N) arrays. ``threads=None``
+    uses all cores."""
+    arr = _links(links)
+    t2 = as_theta2_1d(theta2)
+    mode = check_mode(mode)
+    tol, max_iter = check_options(tol, max_iter)
+    predictor = check_predictor(predictor)
+    th = None if threads is None else as_int("threads", threads)
+    if th is not None and th < 1:
+        raise ValueError(f"threads must be >= 1 or None, got {th}")
+    t3, t4, st, nit, res = _core.sweep_batch(arr, t2, mode, tol, max_iter, predictor, th)
+    return BatchSweep(arr, mode, t2, t3, t4, st, nit, res)
+
+
+def closed_form_batch(
+    links: object, theta2: object = None, mode: str = "open", *, threads: int | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Closed-form (theta3, theta4) for M linkages at N crank angles: (M, N) arrays, NaN
+    where a linkage cannot assemble."""
+    arr = _links(links)
+    t2 = as_theta2_1d(theta2)
+    mode = check_mode(mode)
+    th = None if threads is None else as_int("threads", threads)
+    if th is not None and th < 1:
+        raise ValueError(f"threads must be >= 1 or None, got {th}")
+    t3, t4, _ = _core.closed_form_batch(arr, t2, mode, th)
+    return t3, t4

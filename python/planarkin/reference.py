@@ -1,0 +1,333 @@
+"""The NumPy reference: the same algorithms as the Rust kernel, written plainly (a
+scalar loop over ``math``), so tests can prove the kernel computes the same thing and
+benchmarks can show what Rust buys. It imports nothing from the extension.
+
+Operation order follows the kernel's, so on the same machine the two agree bit for bit.
+Functions take any object with ``r1, r2, r3, r4`` attributes (e.g. ``planarkin.FourBar``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._types import (
+    SINGULAR_THRESHOLD,
+    TAU,
+    Solution,
+    Status,
+    Sweep,
+    as_float,
+    as_theta2_1d,
+    check_guess,
+    check_mode,
+    check_options,
+    check_predictor,
+)
+
+_NAN = float("nan")
+
+
+def _lengths(fb: object) -> tuple[float, float, float, float]:
+    r = tuple(as_float(n, getattr(fb, n)) for n in ("r1", "r2", "r3", "r4"))
+    for n, v in zip(("r1", "r2", "r3", "r4"), r, strict=True):
+        if not (math.isfinite(v) and v > 0):
+            raise ValueError(f"{n} must be finite and > 0, got {v}")
+    return r  # type: ignore[return-value]
+
+
+def wrap(a: float) -> float:
+    """Wraps to (-pi, pi]; angles already there are returned unchanged."""
+    if -math.pi < a <= math.pi:
+        return a
+    r = math.fmod(a + math.pi, TAU)
+    if r < 0.0:
+        r += TAU
+    r -= math.pi
+    return math.pi if r <= -math.pi else r
+
+
+def _closed(r: tuple, c2: float, s2: float, sign: float):
+    """(theta3, theta4, sin34) or the strings 'not-assemblable' / 'indeterminate'."""
+    r1, r2, r3, r4 = r
+    ux = r1 - r2 * c2
+    uy = -(r2 * s2)
+    d = math.sqrt(ux * ux + uy * uy)
+    if d == 0.0:
+        return "indeterminate" if r3 == r4 else "not-assemblable"
+    q1 = d + r3 - r4
+    q2 = d - r3 + r4
+    q3 = r3 + r4 - d
+    if not (q1 >= 0.0 and q2 >= 0.0 and q3 >= 0.0):
+        return "not-assemblable"
+    two_dh = math.sqrt((r3 + r4 + d) * q1 * q2 * q3)
+    k = (r3 - r4) * (r3 + r4)
+    phi = math.atan2(uy, ux)
+    g3 = math.atan2(two_dh, k + d * d)
+    g4 = math.atan2(two_dh, k - d * d)
+    return wrap(phi + sign * g3), wrap(phi + sign * g4), sign * two_dh / (2.0 * r3 * r4)
+
+
+def _sign(mode: str) -> float:
+    return 1.0 if mode == "open" else -1.0
+
+
+def _jac(r: tuple, t3: float, t4: float):
+    _, _, r3, r4 = r
+    s3, c3 = math.sin(t3), math.cos(t3)
+    s4, c4 = math.sin(t4), math.cos(t4)
+    return (-r3 * s3, r4 * s4, r3 * c3, -r4 * c4), (s3, c3, s4, c4)
+
+
+def _cramer(j: tuple, b0: float, b1: float):
+    j00, j01, j10, j11 = j
+    d = j00 * j11 - j01 * j10
+    if d == 0.0:
+        return None
+    return (b0 * j11 - b1 * j01) / d, (j00 * b1 - j10 * b0) / d
+
+
+def _sin34(r: tuple, j: tuple) -> float:
+    j00, j01, j10, j11 = j
+    return -(j00 * j11 - j01 * j10) / (r[2] * r[3])
+
+
+def _newton(r, c2, s2, x3, x4, sign, tol, max_iter, hist):
+    """Newton-Raphson from (x3, x4); returns (t3, t4, status, nit, residual, jacobian)."""
+    r1, r2, r3, r4 = r
+    scale = max(r1, r2, r3, r4)
+    nit = 0
+    while True:
+        j, (s3, c3, s4, c4) = _jac(r, x3, x4)
+        f1 = r2 * c2 + r3 * c3 - r4 * c4 - r1
+        f2 = r2 * s2 + r3 * s3 - r4 * s4
+        residual = max(0.0, abs(f1), abs(f2)) / scale
+        finite = all(math.isfinite(v) for v in (f1, f2, x3, x4))
+        if hist is not None:
+            hist.append(residual if finite else _NAN)
+        if not finite:
+            return _NAN, _NAN, Status.NON_FINITE, nit, _NAN, j
+        cond = abs(_sin34(r, j))
+        if residual < tol:
+            if cond < SINGULAR_THRESHOLD:
+                return _NAN, _NAN, Status.SINGULAR, nit, residual, j
+            if _sin34(r, j) * sign < 0.0:
+                return _NAN, _NAN, Status.BRANCH_JUMP, nit, residual, j
+            return wrap(x3), wrap(x4), Status.CONVERGED, nit, residual, j
+        if nit >= max_iter:
+            return _NAN, _NAN, Status.MAX_ITERATIONS, nit, residual, j
+        if cond < SINGULAR_THRESHOLD:
+            return _NAN, _NAN, Status.SINGULAR, nit, residual, j
+        step = _cramer(j, -f1, -f2)
+        if step is None:
+            return _NAN, _NAN, Status.SINGULAR, nit, residual, j
+        x3 = x3 + step[0]
+        x4 = x4 + step[1]
+        nit += 1
+
+
+def solve(fb, theta2, *, mode="open", guess=None, tol=1e-9, max_iter=100, history=False):
+    """Reference of :meth:`planarkin.FourBar.solve`."""
+    r = _lengths(fb)
+    t2 = as_float("theta2", theta2)
+    mode = check_mode(mode)
+    tol, max_iter = check_options(tol, max_iter)
+    g = check_guess(guess)
+    hist = [] if history else None
+    out = _point(r, t2, mode, g, tol, max_iter, hist)
+    t3, t4, st, nit, res = out[:5]
+    h = np.array(hist, dtype=np.float64) if hist is not None else None
+    return Solution(t2, t3, t4, st == Status.CONVERGED, st, nit, res, h)
+
+
+def _point(r, t2, mode, guess, tol, max_iter, hist):
+    if not math.isfinite(t2):
+        return _NAN, _NAN, Status.NON_FINITE, 0, _NAN, None
+    s2, c2 = math.sin(t2), math.cos(t2)
+    cf = _closed(r, c2, s2, _sign(mode))
+    if cf == "not-assemblable":
+        return _NAN, _NAN, Status.NOT_ASSEMBLABLE, 0, _NAN, None
+    if guess is not None:
+        x0 = guess
+    elif cf == "indeterminate":
+        return _NAN, _NAN, Status.SINGULAR, 0, _NAN, None
+    else:
+        x0 = cf[:2]
+    return _newton(r, c2, s2, x0[0], x0[1], _sign(mode), tol, max_iter, hist)
+
+
+def _rates(r, t2, j, predictor):
+    """dx/dtheta2 and d2x/dtheta2^2 at unit crank speed, from the Jacobian."""
+    if predictor == "previous":
+        return (0.0, 0.0), (0.0, 0.0)
+    r2 = r[1]
+    s2, c2 = math.sin(t2), math.cos(t2)
+    v = _cramer(j, r2 * s2, -(r2 * c2))
+    if v is None:
+        return (0.0, 0.0), (0.0, 0.0)
+    if predictor == "tangent":
+        return v, (0.0, 0.0)
+    j00, j01, j10, j11 = j
+    w3s, w4s = v[0] * v[0], v[1] * v[1]
+    a = _cramer(j, r2 * c2 + j10 * w3s + j11 * w4s, r2 * s2 - j00 * w3s - j01 * w4s)
+    return v, (a if a is not None else (0.0, 0.0))
+
+
+def _velocity(r, t2, t3, t4, w2):
+    j, _ = _jac(r, t3, t4)
+    r2 = r[1]
+    s2, c2 = math.sin(t2), math.cos(t2)
+    b0, b1 = r2 * s2 * w2, -(r2 * c2) * w2
+    if not all(math.isfinite(v) for v in (*j, b0, b1)) or abs(_sin34(r, j)) < SINGULAR_THRESHOLD:
+        return _NAN, _NAN
+    out = _cramer(j, b0, b1)
+    return out if out is not None else (_NAN, _NAN)
+
+
+def _acceleration(r, t2, t3, t4, w2, w3, w4, a2):
+    _, r2, r3, r4 = r
+    s2, c2 = math.sin(t2), math.cos(t2)
+    j, (s3, c3, s4, c4) = _jac(r, t3, t4)
+    w2s, w3s, w4s = w2 * w2, w3 * w3, w4 * w4
+    b1 = r2 * s2 * a2 + r2 * c2 * w2s + r3 * c3 * w3s - r4 * c4 * w4s
+    b2 = -(r2 * c2) * a2 + r2 * s2 * w2s + r3 * s3 * w3s - r4 * s4 * w4s
+    if not all(math.isfinite(v) for v in (*j, b1, b2)) or abs(_sin34(r, j)) < SINGULAR_THRESHOLD:
+        return _NAN, _NAN
+    out = _cramer(j, b1, b2)
+    return out if out is not None else (_NAN, _NAN)
+
+
+def sweep(
+    fb,
+    theta2=None,
+    *,
+    mode="open",
+    guess=None,
+    tol=1e-9,
+    max_iter=100,
+    predictor="quadratic",
+    omega2=None,
+    alpha2=None,
+):
+    """Reference of :meth:`planarkin.FourBar.sweep`: the same continuation, predictors
+    and closed-form fallback, one point at a time in Python."""
+    r = _lengths(fb)
+    t2s = as_theta2_1d(theta2)
+    mode = check_mode(mode)
+    tol, max_iter = check_options(tol, max_iter)
+    predictor = check_predictor(predictor)
+    g = check_guess(guess)
+    sign = _sign(mode)
+    n = len(t2s)
+    t3o, t4o, reso = np.empty(n), np.empty(n), np.empty(n)
+    sto, nito = np.empty(n, dtype=np.int8), np.empty(n, dtype=np.uint32)
+    w3o = w4o = a3o = a4o = None
+    if omega2 is not None:
+        omega2 = as_float("omega2", omega2)
+        w3o, w4o = np.full(n, _NAN), np.full(n, _NAN)
+        if alpha2 is not None:
+            alpha2 = as_float("alpha2", alpha2)
+            a3o, a4o = np.full(n, _NAN), np.full(n, _NAN)
+    prev = None
+    for i, t2 in enumerate(t2s.tolist()):
+        if prev is not None:
+            pt2, (x3, x4), (v3, v4), (a3, a4) = prev
+            h = wrap(t2 - pt2)
+            if predictor == "previous":
+                start = (x3, x4)
+            elif predictor == "tangent":
+                start = (x3 + v3 * h, x4 + v4 * h)
+            else:
+                hh = 0.5 * h * h
+                start = (x3 + v3 * h + a3 * hh, x4 + v4 * h + a4 * hh)
+        else:
+            start = g if i == 0 else None
+        t3, t4, st, nit, res, j = _sweep_point(r, t2, mode, sign, start, tol, max_iter)
+        t3o[i], t4o[i], sto[i], nito[i], reso[i] = t3, t4, st, nit, res
+        if st == Status.CONVERGED:
+            if w3o is not None:
+                w3, w4 = _velocity(r, t2, t3, t4, omega2)
+                w3o[i], w4o[i] = w3, w4
+                if a3o is not None:
+                    a3o[i], a4o[i] = _acceleration(r, t2, t3, t4, omega2, w3, w4, alpha2)
+            v, a = _rates(r, t2, j, predictor)
+            prev = (t2, (t3, t4), v, a)
+        else:
+            prev = None
+    return Sweep(
+        r, mode, t2s, t3o, t4o, sto, nito, reso,
+        omega2=omega2, omega3=w3o, omega4=w4o,
+        alpha2=alpha2 if a3o is not None else None, alpha3=a3o, alpha4=a4o,
+    )  # fmt: skip
+
+
+def _sweep_point(r, t2, mode, sign, start, tol, max_iter):
+    if start is None or not math.isfinite(t2):
+        return _point(r, t2, mode, None, tol, max_iter, None)
+    s2, c2 = math.sin(t2), math.cos(t2)
+    cf = _closed(r, c2, s2, sign)
+    if cf == "not-assemblable":
+        return _NAN, _NAN, Status.NOT_ASSEMBLABLE, 0, _NAN, None
+    first = _newton(r, c2, s2, start[0], start[1], sign, tol, max_iter, None)
+    if first[2] == Status.CONVERGED:
+        return first
+    if cf == "indeterminate":
+        return _NAN, _NAN, Status.SINGULAR, first[3], _NAN, None
+    second = _newton(r, c2, s2, cf[0], cf[1], sign, tol, max_iter, None)
+    return (*second[:3], second[3] + first[3], *second[4:])
+
+
+def closed_form(fb, theta2, mode="open"):
+    """Reference of :meth:`planarkin.FourBar.closed_form`: (theta3, theta4), NaN where
+    the linkage cannot assemble or the position is indeterminate."""
+    r = _lengths(fb)
+    mode = check_mode(mode)
+    t2 = np.asarray(theta2, dtype=np.float64)
+    sign = _sign(mode)
+    t3 = np.full(t2.shape, _NAN)
+    t4 = np.full(t2.shape, _NAN)
+    for idx, a in np.ndenumerate(t2):
+        if not math.isfinite(a):
+            continue
+        cf = _closed(r, math.cos(a), math.sin(a), sign)
+        if isinstance(cf, tuple):
+            t3[idx], t4[idx] = cf[0], cf[1]
+    if t2.ndim == 0:
+        return float(t3), float(t4)
+    return t3, t4
+
+
+def closed_form_vectorized(r1, r2, r3, r4, theta2, mode="open"):
+    """The closed form as a NumPy user would vectorize it (broadcasts over lengths and
+    angles). Used by benchmarks as the fastest plain-NumPy way; NaN where not assemblable."""
+    c2, s2 = np.cos(theta2), np.sin(theta2)
+    ux = r1 - r2 * c2
+    uy = -(r2 * s2)
+    d = np.sqrt(ux * ux + uy * uy)
+    with np.errstate(invalid="ignore"):
+        two_dh = np.sqrt((r3 + r4 + d) * (d + r3 - r4) * (d - r3 + r4) * (r3 + r4 - d))
+    k = (r3 - r4) * (r3 + r4)
+    phi = np.arctan2(uy, ux)
+    sign = _sign(check_mode(mode))
+    t3 = phi + sign * np.arctan2(two_dh, k + d * d)
+    t4 = phi + sign * np.arctan2(two_dh, k - d * d)
+    # wrap to (-pi, pi]
+    t3 = np.pi - np.mod(np.pi - t3, TAU)
+    t4 = np.pi - np.mod(np.pi - t4, TAU)
+    return t3, t4
+
+
+def velocity(fb, theta2, theta3, theta4, omega2):
+    """Reference of :meth:`planarkin.FourBar.velocity` for scalars."""
+    return _velocity(_lengths(fb), float(theta2), float(theta3), float(theta4), float(omega2))
+
+
+def acceleration(fb, theta2, theta3, theta4, omega2, alpha2=0.0):
+    """Reference of :meth:`planarkin.FourBar.acceleration` for scalars."""
+    r = _lengths(fb)
+    t2, t3, t4, w2 = float(theta2), float(theta3), float(theta4), float(omega2)
+    w3, w4 = _velocity(r, t2, t3, t4, w2)
+    if math.isnan(w3):
+        return _NAN, _NAN
+    return _acceleration(r, t2, t3, t4, w2, w3, w4, float(alpha2))
