@@ -172,6 +172,45 @@ class Grashof:
 
 
 @dataclass(frozen=True, eq=False)
+class Limits:
+    """Limit positions on one assembly mode, from the closed form (radians)."""
+
+    mode: str
+    #: Crank angles in (-pi, pi], sorted, where det J = 0 and the crank stops.
+    #: Empty when the crank turns fully.
+    toggles: np.ndarray
+    #: Every crank angle where det J = 0: the toggles, plus the change points a fully
+    #: turning crank passes through (where the two modes meet).
+    dead_points: np.ndarray
+    #: Assemblable crank-angle intervals (start, end), counter-clockwise, start in
+    #: [-pi, pi]; end may exceed pi when an interval contains theta2 = pi.
+    intervals: tuple[tuple[float, float], ...]
+    #: The crank turns a full revolution.
+    full_rotation: bool
+    #: Smallest rocker angle on this mode (wrapped), and the crank angle where it occurs;
+    #: None when the output turns fully (or never assembles).
+    rocker_min: float | None
+    rocker_min_theta2: float | None
+    rocker_max: float | None
+    rocker_max_theta2: float | None
+
+    @property
+    def rocker_swing(self) -> float | None:
+        """Rocker swing angle (counter-clockwise from min to max)."""
+        if self.rocker_min is None or self.rocker_max is None:
+            return None
+        return (self.rocker_max - self.rocker_min) % TAU
+
+    def assemblable(self, theta2: object) -> np.ndarray:
+        """Boolean mask: crank angles inside an assemblable interval."""
+        t = np.asarray(theta2, dtype=np.float64)
+        inside = np.zeros(t.shape, dtype=bool)
+        for a, b in self.intervals:
+            inside |= a + np.mod(t - a, TAU) <= b
+        return inside
+
+
+@dataclass(frozen=True, eq=False)
 class BatchSweep:
     """Sweeps of M linkages over N crank angles: (M, N) arrays."""
 

@@ -9,6 +9,7 @@ from . import _core
 from ._types import (
     BatchSweep,
     Grashof,
+    Limits,
     Solution,
     Status,
     Sweep,
@@ -78,6 +79,18 @@ class FourBar:
         """Grashof condition and Barker class. S + L = P + Q is decided exactly on the
         binary values of the lengths (error-free sums, no tolerance)."""
         return Grashof(*self._core.grashof())
+
+    def limits(self, mode: str = "open") -> Limits:
+        """Limit positions on ``mode`` from the closed form: toggles (where a crank that
+        cannot turn fully stops), all dead points, the assemblable crank-angle intervals
+        and the rocker's extreme angles."""
+        mode = check_mode(mode)
+        toggles, dead, intervals, full, rocker = self._core.limits(mode)
+        (t2min, t4min), (t2max, t4max) = rocker if rocker else ((None, None), (None, None))
+        return Limits(
+            mode, np.array(toggles), np.array(dead), tuple(intervals), full,
+            t4min, t2min, t4max, t2max,
+        )  # fmt: skip
 
     def solve(
         self,

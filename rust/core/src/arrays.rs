@@ -87,7 +87,9 @@ pub fn acceleration_into(
     status: &mut [i8],
 ) -> Result<(), Error> {
     let n = theta2.len();
-    for (name, len) in [("theta3", theta3.len()), ("theta4", theta4.len()), ("omega2", omega2.len()), ("alpha2", alpha2.len())] {
+    for (name, len) in
+        [("theta3", theta3.len()), ("theta4", theta4.len()), ("omega2", omega2.len()), ("alpha2", alpha2.len())]
+    {
         same_len(name, len, n)?;
     }
     for i in 0..n {

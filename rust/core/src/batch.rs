@@ -4,9 +4,9 @@
 
 use rayon::prelude::*;
 
+use crate::arrays::closed_form_into;
 use crate::error::{positive_finite, Error};
 use crate::fourbar::{FourBar, Mode};
-use crate::arrays::closed_form_into;
 use crate::sweep::{sweep_unchecked, SweepOptions, SweepOut};
 
 /// (M, N) row-major outputs of a batch sweep.
@@ -20,7 +20,7 @@ pub struct BatchOut<'a> {
 
 /// Validates an (M, 4) row-major array of lengths; errors name the entry, e.g. `links[3, 1]`.
 pub fn validate_links(links: &[f64]) -> Result<Vec<FourBar>, Error> {
-    if links.len() % 4 != 0 {
+    if !links.len().is_multiple_of(4) {
         return Err(Error::invalid("links", "must have shape (M, 4)", format!("{} values", links.len())));
     }
     links
@@ -136,7 +136,8 @@ mod tests {
         let opts = SweepOptions { mode: Mode::Open, newton: NewtonOptions::default(), predictor: Predictor::Tangent };
         let run = |threads| {
             let mn = links.len() * n;
-            let (mut a, mut b, mut s, mut k, mut r) = (vec![0.0; mn], vec![0.0; mn], vec![0i8; mn], vec![0u32; mn], vec![0.0; mn]);
+            let (mut a, mut b, mut s, mut k, mut r) =
+                (vec![0.0; mn], vec![0.0; mn], vec![0i8; mn], vec![0u32; mn], vec![0.0; mn]);
             let out = BatchOut { theta3: &mut a, theta4: &mut b, status: &mut s, nit: &mut k, residual: &mut r };
             sweep_batch(&links, &t2, &opts, out, threads).unwrap();
             (a, s, k)
@@ -147,7 +148,8 @@ mod tests {
         assert_eq!(k1, k2);
         assert!(a1.iter().zip(&a2).all(|(x, y)| x.to_bits() == y.to_bits()));
         for (m, fb) in links.iter().enumerate() {
-            let (mut a, mut b, mut s, mut k, mut r) = (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
+            let (mut a, mut b, mut s, mut k, mut r) =
+                (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
             let out = SweepOut { theta3: &mut a, theta4: &mut b, status: &mut s, nit: &mut k, residual: &mut r };
             sweep_into(fb, &t2, None, &opts, out, None).unwrap();
             assert_eq!(&s1[m * n..(m + 1) * n], &s[..]);

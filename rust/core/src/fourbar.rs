@@ -225,7 +225,14 @@ impl FourBar {
         self.velocity_with(&j, theta2.sin(), theta2.cos(), omega2, singular)
     }
 
-    pub(crate) fn velocity_with(&self, j: &Matrix2<f64>, s2: f64, c2: f64, omega2: f64, singular: f64) -> ([f64; 2], Status) {
+    pub(crate) fn velocity_with(
+        &self,
+        j: &Matrix2<f64>,
+        s2: f64,
+        c2: f64,
+        omega2: f64,
+        singular: f64,
+    ) -> ([f64; 2], Status) {
         let r2 = self.r[1];
         self.solve_linear(j, Vector2::new(r2 * s2 * omega2, -(r2 * c2) * omega2), singular)
     }

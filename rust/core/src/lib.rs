@@ -9,6 +9,7 @@ pub mod batch;
 pub mod error;
 pub mod fourbar;
 pub mod grashof;
+pub mod limits;
 pub mod newton;
 pub mod status;
 pub mod sweep;

@@ -27,11 +27,9 @@ impl Predictor {
             "previous" => Ok(Predictor::Previous),
             "tangent" => Ok(Predictor::Tangent),
             "quadratic" => Ok(Predictor::Quadratic),
-            other => Err(Error::invalid(
-                "predictor",
-                "must be 'previous', 'tangent' or 'quadratic'",
-                format!("{other:?}"),
-            )),
+            other => {
+                Err(Error::invalid("predictor", "must be 'previous', 'tangent' or 'quadratic'", format!("{other:?}")))
+            }
         }
     }
 }
@@ -204,19 +202,17 @@ fn predictor_rates(fb: &FourBar, t2: f64, j: &Matrix2<f64>, p: Predictor) -> (Ve
         return (v, zero);
     }
     let (w3s, w4s) = (v[0] * v[0], v[1] * v[1]);
-    let b = Vector2::new(
-        r2 * c2 + j[(1, 0)] * w3s + j[(1, 1)] * w4s,
-        r2 * s2 - j[(0, 0)] * w3s - j[(0, 1)] * w4s,
-    );
+    let b = Vector2::new(r2 * c2 + j[(1, 0)] * w3s + j[(1, 1)] * w4s, r2 * s2 - j[(0, 0)] * w3s - j[(0, 1)] * w4s);
     (v, cramer(j, &b).unwrap_or(zero))
 }
 
 fn fill_motion(fb: &FourBar, t2: f64, p: &Point, converged: bool, i: usize, m: &mut MotionOut<'_>, singular: f64) {
     let (w, a) = if converged {
         let (w, _) = fb.velocity(t2, p.theta3, p.theta4, m.omega2, singular);
-        let a = m.alpha.as_ref().map(|(alpha2, _, _)| {
-            fb.acceleration(t2, p.theta3, p.theta4, m.omega2, w[0], w[1], *alpha2, singular).0
-        });
+        let a = m
+            .alpha
+            .as_ref()
+            .map(|(alpha2, _, _)| fb.acceleration(t2, p.theta3, p.theta4, m.omega2, w[0], w[1], *alpha2, singular).0);
         (w, a)
     } else {
         ([f64::NAN; 2], Some([f64::NAN; 2]))
@@ -229,6 +225,37 @@ fn fill_motion(fb: &FourBar, t2: f64, p: &Point, converged: bool, i: usize, m: &
     }
 }
 
+/// Owned results of one sweep, for Rust callers (the bindings fill their own buffers).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Sweep {
+    pub theta3: Vec<f64>,
+    pub theta4: Vec<f64>,
+    pub status: Vec<i8>,
+    pub nit: Vec<u32>,
+    pub residual: Vec<f64>,
+}
+
+/// Sweeps `theta2` into a freshly allocated [`Sweep`].
+pub fn sweep(fb: &FourBar, theta2: &[f64], guess: Option<[f64; 2]>, opts: &SweepOptions) -> Sweep {
+    let n = theta2.len();
+    let mut s = Sweep {
+        theta3: vec![0.0; n],
+        theta4: vec![0.0; n],
+        status: vec![0; n],
+        nit: vec![0; n],
+        residual: vec![0.0; n],
+    };
+    let out = SweepOut {
+        theta3: &mut s.theta3,
+        theta4: &mut s.theta4,
+        status: &mut s.status,
+        nit: &mut s.nit,
+        residual: &mut s.residual,
+    };
+    sweep_unchecked(fb, theta2, guess, opts, out, None);
+    s
+}
+
 /// Default sweep angles: 0..=2 pi in `n - 1` equal steps (361 points: 1 degree apart).
 pub fn default_angles(n: usize) -> Vec<f64> {
     let step = std::f64::consts::TAU / (n.max(2) - 1) as f64;
@@ -239,12 +266,8 @@ pub fn default_angles(n: usize) -> Vec<f64> {
 mod tests {
     use super::*;
 
-    fn run(fb: &FourBar, t2: &[f64], opts: &SweepOptions) -> (Vec<f64>, Vec<f64>, Vec<i8>, Vec<u32>, Vec<f64>) {
-        let n = t2.len();
-        let (mut a, mut b, mut s, mut k, mut r) = (vec![0.0; n], vec![0.0; n], vec![0; n], vec![0; n], vec![0.0; n]);
-        let out = SweepOut { theta3: &mut a, theta4: &mut b, status: &mut s, nit: &mut k, residual: &mut r };
-        sweep_into(fb, t2, None, opts, out, None).unwrap();
-        (a, b, s, k, r)
+    fn run(fb: &FourBar, t2: &[f64], opts: &SweepOptions) -> Sweep {
+        sweep(fb, t2, None, opts)
     }
 
     fn opts(mode: Mode, predictor: Predictor) -> SweepOptions {
@@ -259,7 +282,7 @@ mod tests {
         let t2 = default_angles(361);
         for mode in [Mode::Open, Mode::Crossed] {
             for p in [Predictor::Previous, Predictor::Tangent, Predictor::Quadratic] {
-                let (a, b, s, _, r) = run(&fb, &t2, &opts(mode, p));
+                let Sweep { theta3: a, theta4: b, status: s, residual: r, .. } = run(&fb, &t2, &opts(mode, p));
                 assert!(s.iter().all(|&c| c == 0));
                 for i in 0..t2.len() {
                     let Assembly::Closed { theta3, theta4, sin34 } = fb.closed_form(t2[i], mode) else { panic!() };
@@ -278,7 +301,7 @@ mod tests {
     fn tangent_predictor_needs_fewer_iterations() {
         let fb = FourBar::new(6.0, 2.0, 5.0, 5.0).unwrap();
         let t2 = default_angles(361);
-        let total = |p| run(&fb, &t2, &opts(Mode::Open, p)).3.iter().sum::<u32>();
+        let total = |p| run(&fb, &t2, &opts(Mode::Open, p)).nit.iter().sum::<u32>();
         let (prev, tan) = (total(Predictor::Previous), total(Predictor::Tangent));
         assert!(tan < prev, "tangent {tan} vs previous {prev}");
     }
@@ -287,7 +310,7 @@ mod tests {
     fn non_grashof_sweep_flags_unreachable_angles_and_carries_on() {
         let fb = FourBar::new(2.0, 5.0, 2.5, 2.0).unwrap(); // crank cannot turn fully
         let t2 = default_angles(361);
-        let (_, _, s, k, _) = run(&fb, &t2, &opts(Mode::Open, Predictor::Tangent));
+        let Sweep { status: s, nit: k, .. } = run(&fb, &t2, &opts(Mode::Open, Predictor::Tangent));
         let na = Status::NotAssemblable.code();
         assert!(s.contains(&na) && s.contains(&0));
         for i in 0..t2.len() {

@@ -45,6 +45,7 @@ type SweepArrays<'py> = (
     Option<(Arr1<'py, f64>, Arr1<'py, f64>)>,
     Option<(Arr1<'py, f64>, Arr1<'py, f64>)>,
 );
+type LimitsOut = (Vec<f64>, Vec<f64>, Vec<(f64, f64)>, bool, Option<((f64, f64), (f64, f64))>);
 type Triple<'py, T> = (Arr1<'py, T>, Arr1<'py, T>, Arr1<'py, i8>);
 
 #[pymethods]
@@ -63,6 +64,7 @@ impl PyFourBar {
 
     /// Newton-Raphson at one crank angle: (theta3, theta4, status, nit, residual, history).
     #[pyo3(signature = (theta2, mode, guess, tol, max_iter, history))]
+    #[allow(clippy::too_many_arguments)]
     fn solve<'py>(
         &self,
         py: Python<'py>,
@@ -99,11 +101,18 @@ impl PyFourBar {
         let t2 = slice("theta2", &theta2)?;
         let n = t2.len();
         let fb = self.inner;
-        let (mut t3, mut t4, mut st, mut nit, mut res) = (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
+        let (mut t3, mut t4, mut st, mut nit, mut res) =
+            (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
         let mut w = omega2.map(|_| (vec![0.0; n], vec![0.0; n]));
         let mut a = alpha2.filter(|_| omega2.is_some()).map(|_| (vec![0.0; n], vec![0.0; n]));
         py.detach(|| {
-            let out = sweep::SweepOut { theta3: &mut t3, theta4: &mut t4, status: &mut st, nit: &mut nit, residual: &mut res };
+            let out = sweep::SweepOut {
+                theta3: &mut t3,
+                theta4: &mut t4,
+                status: &mut st,
+                nit: &mut nit,
+                residual: &mut res,
+            };
             let motion = match (omega2, w.as_mut()) {
                 (Some(omega2), Some((w3, w4))) => Some(sweep::MotionOut {
                     omega2,
@@ -117,17 +126,32 @@ impl PyFourBar {
         })
         .map_err(err)?;
         let pair = |p: Option<(Vec<f64>, Vec<f64>)>| p.map(|(x, y)| (x.into_pyarray(py), y.into_pyarray(py)));
-        Ok((t3.into_pyarray(py), t4.into_pyarray(py), st.into_pyarray(py), nit.into_pyarray(py), res.into_pyarray(py), pair(w), pair(a)))
+        Ok((
+            t3.into_pyarray(py),
+            t4.into_pyarray(py),
+            st.into_pyarray(py),
+            nit.into_pyarray(py),
+            res.into_pyarray(py),
+            pair(w),
+            pair(a),
+        ))
     }
 
     /// Closed form of `mode`: (theta3, theta4, status).
-    fn closed_form<'py>(&self, py: Python<'py>, theta2: PyReadonlyArray1<'py, f64>, mode: &str) -> PyResult<Triple<'py, f64>> {
+    fn closed_form<'py>(
+        &self,
+        py: Python<'py>,
+        theta2: PyReadonlyArray1<'py, f64>,
+        mode: &str,
+    ) -> PyResult<Triple<'py, f64>> {
         let mode = Mode::parse(mode).map_err(err)?;
         let t2 = slice("theta2", &theta2)?;
         let n = t2.len();
         let (mut t3, mut t4, mut st) = (vec![0.0; n], vec![0.0; n], vec![0i8; n]);
         let fb = self.inner;
-        py.detach(|| arrays::closed_form_into(&fb, t2, mode, core::newton::SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st));
+        py.detach(|| {
+            arrays::closed_form_into(&fb, t2, mode, core::newton::SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st)
+        });
         Ok((t3.into_pyarray(py), t4.into_pyarray(py), st.into_pyarray(py)))
     }
 
@@ -140,12 +164,19 @@ impl PyFourBar {
         theta4: PyReadonlyArray1<'py, f64>,
         omega2: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Triple<'py, f64>> {
-        let (t2, t3, t4, w2) = (slice("theta2", &theta2)?, slice("theta3", &theta3)?, slice("theta4", &theta4)?, slice("omega2", &omega2)?);
+        let (t2, t3, t4, w2) = (
+            slice("theta2", &theta2)?,
+            slice("theta3", &theta3)?,
+            slice("theta4", &theta4)?,
+            slice("omega2", &omega2)?,
+        );
         let n = t2.len();
         let (mut w3, mut w4, mut st) = (vec![0.0; n], vec![0.0; n], vec![0i8; n]);
         let fb = self.inner;
-        py.detach(|| arrays::velocity_into(&fb, t2, t3, t4, w2, core::newton::SINGULAR_THRESHOLD, &mut w3, &mut w4, &mut st))
-            .map_err(err)?;
+        py.detach(|| {
+            arrays::velocity_into(&fb, t2, t3, t4, w2, core::newton::SINGULAR_THRESHOLD, &mut w3, &mut w4, &mut st)
+        })
+        .map_err(err)?;
         Ok((w3.into_pyarray(py), w4.into_pyarray(py), st.into_pyarray(py)))
     }
 
@@ -166,7 +197,18 @@ impl PyFourBar {
         let (mut a3, mut a4, mut st) = (vec![0.0; n], vec![0.0; n], vec![0i8; n]);
         let fb = self.inner;
         py.detach(|| {
-            arrays::acceleration_into(&fb, t2, t3, t4, w2, a2, core::newton::SINGULAR_THRESHOLD, &mut a3, &mut a4, &mut st)
+            arrays::acceleration_into(
+                &fb,
+                t2,
+                t3,
+                t4,
+                w2,
+                a2,
+                core::newton::SINGULAR_THRESHOLD,
+                &mut a3,
+                &mut a4,
+                &mut st,
+            )
         })
         .map_err(err)?;
         Ok((a3.into_pyarray(py), a4.into_pyarray(py), st.into_pyarray(py)))
@@ -187,6 +229,14 @@ impl PyFourBar {
         let fb = self.inner;
         py.detach(|| arrays::coupler_into(&fb, t2, t3, p, delta, &mut x, &mut y)).map_err(err)?;
         Ok((x.into_pyarray(py), y.into_pyarray(py)))
+    }
+
+    /// (toggles, dead_points, intervals, full_rotation, rocker) with rocker =
+    /// ((theta2_min, theta4_min), (theta2_max, theta4_max)) or None.
+    fn limits(&self, mode: &str) -> PyResult<LimitsOut> {
+        let l = self.inner.limits(Mode::parse(mode).map_err(err)?);
+        let rocker = l.rocker.map(|(a, b)| ((a.theta2, a.theta4), (b.theta2, b.theta4)));
+        Ok((l.toggles, l.dead_points, l.intervals.iter().map(|&[a, b]| (a, b)).collect(), l.full_rotation, rocker))
     }
 
     /// (class, barker code, kind, description, s, l, p, q)
@@ -249,9 +299,11 @@ fn sweep_batch<'py>(
     let t2 = slice("theta2", &theta2)?;
     let (m, n) = (fbs.len(), t2.len());
     let mn = m * n;
-    let (mut t3, mut t4, mut st, mut nit, mut res) = (vec![0.0; mn], vec![0.0; mn], vec![0i8; mn], vec![0u32; mn], vec![0.0; mn]);
+    let (mut t3, mut t4, mut st, mut nit, mut res) =
+        (vec![0.0; mn], vec![0.0; mn], vec![0i8; mn], vec![0u32; mn], vec![0.0; mn]);
     py.detach(|| {
-        let out = batch::BatchOut { theta3: &mut t3, theta4: &mut t4, status: &mut st, nit: &mut nit, residual: &mut res };
+        let out =
+            batch::BatchOut { theta3: &mut t3, theta4: &mut t4, status: &mut st, nit: &mut nit, residual: &mut res };
         batch::sweep_batch(&fbs, t2, &opts, out, threads)
     })
     .map_err(err)?;
