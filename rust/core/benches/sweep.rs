@@ -1,1 +1,129 @@
-fn main(){}
+//! Criterion benchmarks of the core alone (no Python): the seed sweep (r = 6, 2, 5, 5,
+//! 361 crank angles) with each predictor, the closed form over the same angles, one
+//! Newton solve, and a small batch. `benches/report.py` compares the seed-sweep time with
+//! the same sweep called from Python to measure the Python-side overhead.
+//!
+//! Run: `cargo bench -p planarkin-core --bench sweep` (add `-- --quick` for a short run).
+
+use std::hint::black_box;
+
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
+use planarkin_core::arrays::closed_form_into;
+use planarkin_core::batch::{closed_form_batch, sweep_batch, validate_links, BatchOut};
+use planarkin_core::sweep::{default_angles, sweep_into, SweepOut};
+use planarkin_core::{FourBar, Mode, NewtonOptions, Predictor, SweepOptions};
+
+const N: usize = 361;
+
+fn opts(predictor: Predictor) -> SweepOptions {
+    SweepOptions { mode: Mode::Open, newton: NewtonOptions::default(), predictor }
+}
+
+/// Output buffers of one sweep, allocated once outside the timed loop.
+struct Bufs {
+    t3: Vec<f64>,
+    t4: Vec<f64>,
+    st: Vec<i8>,
+    nit: Vec<u32>,
+    res: Vec<f64>,
+}
+
+impl Bufs {
+    fn new(n: usize) -> Self {
+        Bufs { t3: vec![0.0; n], t4: vec![0.0; n], st: vec![0; n], nit: vec![0; n], res: vec![0.0; n] }
+    }
+
+    fn out(&mut self) -> SweepOut<'_> {
+        SweepOut {
+            theta3: &mut self.t3,
+            theta4: &mut self.t4,
+            status: &mut self.st,
+            nit: &mut self.nit,
+            residual: &mut self.res,
+        }
+    }
+}
+
+fn seed_sweep(c: &mut Criterion) {
+    let fb = FourBar::new(6.0, 2.0, 5.0, 5.0).unwrap();
+    let t2 = default_angles(N);
+    let mut g = c.benchmark_group("seed_sweep_361");
+    g.throughput(Throughput::Elements(N as u64));
+    for (name, p) in
+        [("quadratic", Predictor::Quadratic), ("tangent", Predictor::Tangent), ("previous", Predictor::Previous)]
+    {
+        let o = opts(p);
+        let mut b = Bufs::new(N);
+        g.bench_function(name, |bch| {
+            bch.iter(|| sweep_into(black_box(&fb), black_box(&t2), None, &o, b.out(), None).unwrap())
+        });
+    }
+    // What the binding does on each call: allocate the five outputs, then sweep.
+    let o = opts(Predictor::Quadratic);
+    g.bench_function("quadratic_alloc", |bch| {
+        bch.iter(|| {
+            let mut b = Bufs::new(N);
+            sweep_into(black_box(&fb), black_box(&t2), None, &o, b.out(), None).unwrap();
+            b
+        })
+    });
+    let (mut t3, mut t4, mut st) = (vec![0.0; N], vec![0.0; N], vec![0i8; N]);
+    g.bench_function("closed_form", |bch| {
+        bch.iter(|| closed_form_into(black_box(&fb), black_box(&t2), Mode::Open, 1e-7, &mut t3, &mut t4, &mut st))
+    });
+    g.finish();
+}
+
+fn single_solve(c: &mut Criterion) {
+    let fb = FourBar::new(6.0, 2.0, 5.0, 5.0).unwrap();
+    let o = NewtonOptions::default();
+    let mut g = c.benchmark_group("solve_1");
+    g.bench_function("closed_form_start", |b| b.iter(|| fb.solve(black_box(0.3), Mode::Open, None, &o, None)));
+    g.finish();
+}
+
+/// Deterministic crank-rocker-ish lengths (no RNG crate needed): a linear congruential walk.
+fn links(m: usize) -> Vec<f64> {
+    let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut next = || {
+        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..m).flat_map(|_| [5.0 + next(), 1.0 + next(), 4.0 + 2.0 * next(), 4.0 + 2.0 * next()]).collect()
+}
+
+fn batch(c: &mut Criterion) {
+    let t2 = default_angles(N);
+    let m = 1000;
+    let fbs = validate_links(&links(m)).unwrap();
+    let mut g = c.benchmark_group("batch_1000x361");
+    g.throughput(Throughput::Elements((m * N) as u64));
+    g.sample_size(20);
+    let o = opts(Predictor::Quadratic);
+    for threads in [1usize, 2] {
+        g.bench_function(format!("sweep_threads_{threads}"), |bch| {
+            bch.iter_batched_ref(
+                || Bufs::new(m * N),
+                |b| {
+                    let out = BatchOut {
+                        theta3: &mut b.t3,
+                        theta4: &mut b.t4,
+                        status: &mut b.st,
+                        nit: &mut b.nit,
+                        residual: &mut b.res,
+                    };
+                    sweep_batch(&fbs, &t2, &o, out, Some(threads)).unwrap()
+                },
+                BatchSize::LargeInput,
+            )
+        });
+    }
+    let (mut t3, mut t4, mut st) = (vec![0.0; m * N], vec![0.0; m * N], vec![0i8; m * N]);
+    g.bench_function("closed_form_threads_1", |bch| {
+        bch.iter(|| closed_form_batch(&fbs, &t2, Mode::Open, 1e-7, &mut t3, &mut t4, &mut st, Some(1)).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, seed_sweep, single_solve, batch);
+criterion_main!(benches);

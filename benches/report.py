@@ -1,0 +1,583 @@
+"""Runs every benchmark on this machine and writes BENCHMARKS.md.
+
+    python benches/report.py run      # criterion + pytest-benchmark + tradeoff, then render
+    python benches/report.py render   # re-render BENCHMARKS.md from benches/results/
+
+``run`` takes about 4 minutes on 2 cores. It runs, in this order and in one session:
+``cargo bench -p planarkin-core --bench sweep`` (the core alone, criterion),
+``pytest benches/ --benchmark-enable --benchmark-json=...`` (everything from Python,
+including the peak-RSS subprocesses), and ``planarkin.tradeoff.tradeoff()`` with its
+defaults. Raw results go to ``benches/results/``; the hand-written analysis in
+``benches/analysis.md`` is appended to the generated tables.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as dt
+import glob
+import json
+import os
+import platform
+import shlex
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+RESULTS = os.path.join(HERE, "results")
+OUT = os.path.join(ROOT, "BENCHMARKS.md")
+
+CARGO_CMD = [
+    "cargo",
+    "bench",
+    "-p",
+    "planarkin-core",
+    "--bench",
+    "sweep",
+    "--",
+    "--warm-up-time",
+    "1",
+    "--measurement-time",
+    "3",
+]
+PYTEST_CMD = [
+    sys.executable,
+    "-m",
+    "pytest",
+    "benches/",
+    "--benchmark-enable",
+    "--benchmark-min-rounds=5",
+    "--benchmark-json=benches/results/pytest.json",
+    "-p",
+    "no:cacheprovider",
+    "-q",
+]
+
+
+# --- running ----------------------------------------------------------------------------
+
+
+def _sh(cmd: list[str], **kw) -> str:
+    return subprocess.run(cmd, check=True, text=True, capture_output=True, cwd=ROOT, **kw).stdout
+
+
+def _try(cmd: list[str]) -> str:
+    try:
+        return _sh(cmd).strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "n/a"
+
+
+def _version(mod: str) -> str:
+    try:
+        m = __import__(mod)
+        return getattr(m, "__version__", "?")
+    except ImportError:
+        return "not installed"
+
+
+def machine() -> dict:
+    lscpu = _try(["lscpu"])
+    model = next(
+        (ln.split(":", 1)[1].strip() for ln in lscpu.splitlines() if ln.startswith("Model name")),
+        platform.processor(),
+    )
+    mem = "n/a"
+    try:
+        with open("/proc/meminfo") as f:
+            kb = int(f.readline().split()[1])
+        mem = f"{kb / 2**20:.0f} GiB"
+    except OSError:
+        pass
+    import planarkin as pk
+
+    return {
+        "cpu": model,
+        "cores": os.cpu_count(),
+        "memory": mem,
+        "os": f"{platform.system()} {platform.release()}",
+        "python": platform.python_version(),
+        "numpy": _version("numpy"),
+        "planarkin": f"{pk.__version__} ({pk.BUILD_PROFILE} build)",
+        "rustc": _try(["rustc", "-V"]),
+        "pylinkage": _version("pylinkage"),
+        "numba": _version("numba"),
+        "mpmath": _version("mpmath"),
+        "pytest-benchmark": _version("pytest_benchmark"),
+        "git": _try(["git", "rev-parse", "--short", "HEAD"])
+        + (
+            " (uncommitted changes)"
+            if _try(["git", "status", "--porcelain", "--", "rust", "python"])
+            else ""
+        ),
+        "date": dt.datetime.now().astimezone().isoformat(timespec="minutes"),
+    }
+
+
+def _loadavg() -> str:
+    try:
+        return " ".join(f"{x:.2f}" for x in os.getloadavg())
+    except OSError:
+        return "n/a"
+
+
+def extension_freshness() -> str:
+    """Whether the installed extension is newer than every Rust source: criterion builds
+    from the sources, Python loads the extension, and the two must be the same code."""
+    import planarkin._core as core
+
+    so = os.path.getmtime(core.__file__)
+    srcs = [
+        p
+        for pat in ("rust/**/*.rs", "rust/**/Cargo.toml", "Cargo.toml", "Cargo.lock")
+        for p in glob.glob(os.path.join(ROOT, pat), recursive=True)
+        if os.sep + "benches" + os.sep not in p
+    ]
+    newer = [os.path.relpath(p, ROOT) for p in srcs if os.path.getmtime(p) > so]
+    if newer:
+        return "STALE: sources newer than the extension: " + ", ".join(sorted(newer))
+    return "extension built after the last Rust source change"
+
+
+def run_criterion(quick: bool = False) -> dict:
+    subprocess.run(CARGO_CMD + (["--quick"] if quick else []), check=True, cwd=ROOT)
+    meta = json.loads(_sh(["cargo", "metadata", "--format-version", "1", "--no-deps"]))
+    base = os.path.join(meta["target_directory"], "criterion")
+    out = {}
+    for bj in glob.glob(os.path.join(base, "**", "new", "benchmark.json"), recursive=True):
+        with open(bj) as f:
+            b = json.load(f)
+        with open(os.path.join(os.path.dirname(bj), "estimates.json")) as f:
+            e = json.load(f)
+        tp = (b.get("throughput") or {}).get("Elements")
+        out[b["full_id"]] = {"median_ns": e["median"]["point_estimate"], "elements": tp}
+    return out
+
+
+def run_all(quick: bool = False) -> None:
+    """``quick``: a smoke run (criterion --quick, one round each, a 10 000-row memory
+    batch, a small tradeoff) to debug the pipeline; its numbers are not for publishing."""
+    os.makedirs(RESULTS, exist_ok=True)
+    info = machine()
+    info["load_before"] = _loadavg()
+    info["extension"] = extension_freshness()
+    if info["extension"].startswith("STALE"):
+        print(f"warning: {info['extension']} (rebuild with maturin develop -r)", file=sys.stderr)
+    if quick:
+        info["quick"] = "yes: smoke run, not for publishing"
+    print("== criterion:", " ".join(CARGO_CMD), flush=True)
+    crit = run_criterion(quick)
+    with open(os.path.join(RESULTS, "criterion.json"), "w") as f:
+        json.dump(crit, f, indent=1, sort_keys=True)
+    print("== pytest-benchmark:", " ".join(PYTEST_CMD[2:]), flush=True)
+    # nothing benchmarked uses BLAS; keep OpenBLAS's idle threads off the two cores
+    cmd, env = PYTEST_CMD, {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    if quick:
+        cmd = [*PYTEST_CMD, "--benchmark-min-rounds=1", "--benchmark-max-time=0.05"]
+        env["PLANARKIN_BENCH_MEMORY_M"] = "10000"
+    subprocess.run(cmd, check=True, cwd=ROOT, env=env)
+    print("== tradeoff", flush=True)
+    from planarkin.tradeoff import tradeoff
+
+    res = tradeoff(n_random=15, truth_links=4, repeat=1) if quick else tradeoff()
+    res.plot(os.path.join(RESULTS, "tradeoff.png"))
+    with open(os.path.join(RESULTS, "tradeoff.json"), "w") as f:
+        json.dump(res.to_dict(), f, indent=1)
+    info["load_after"] = _loadavg()
+    with open(os.path.join(RESULTS, "machine.json"), "w") as f:
+        json.dump(info, f, indent=1)
+    render()
+
+
+# --- rendering --------------------------------------------------------------------------
+
+
+def _load(name: str):
+    with open(os.path.join(RESULTS, name)) as f:
+        return json.load(f)
+
+
+def _t(seconds: float) -> str:
+    """A duration with a unit that keeps three significant digits."""
+    for unit, scale in (("s", 1.0), ("ms", 1e-3), ("µs", 1e-6), ("ns", 1e-9)):
+        if seconds >= scale or unit == "ns":
+            return f"{seconds / scale:.3g} {unit}"
+    return str(seconds)
+
+
+def _ratio(x: float) -> str:
+    return f"{x:.2f}x" if x < 10 else f"{x:.0f}x" if x < 1000 else f"{x:.2g}x"
+
+
+class Bench:
+    """Lookups into the pytest-benchmark JSON by (impl, extra_info filters)."""
+
+    def __init__(self, data: dict):
+        self.rows = data["benchmarks"]
+        self.groups: dict[str, list[dict]] = {}
+        for b in self.rows:
+            self.groups.setdefault(b["group"], []).append(b)
+
+    def get(self, impl: str, **filt) -> dict | None:
+        for b in self.rows:
+            ei = b.get("extra_info", {})
+            if ei.get("impl") == impl and all(ei.get(k) == v for k, v in filt.items()):
+                return b
+        return None
+
+    def median(self, impl: str, **filt) -> float | None:
+        b = self.get(impl, **filt)
+        return b["stats"]["median"] if b else None
+
+
+def _info_cell(ei: dict) -> str:
+    parts = []
+    if "nit_mean" in ei:
+        parts.append(f"{ei['nit_mean']:.2f} it/pt")
+    if "max_error" in ei:
+        parts.append(f"err {ei['max_error']:.1e}")
+    return ", ".join(parts)
+
+
+def _group_table(rows: list[dict], base: dict | None, points: int | None) -> list[str]:
+    head = "| implementation | median | per point | vs planarkin | notes |"
+    if base is None:
+        head = "| implementation | median | per point | notes |"
+    lines = [head, "|---|---:|---:|" + ("---:|" if base else "") + "---|"]
+    for b in sorted(rows, key=lambda b: b["stats"]["median"]):
+        ei = b.get("extra_info", {})
+        med = b["stats"]["median"]
+        pts = ei.get("points") or points or (ei.get("m", 1) * 361)
+        name = ei.get("label", b["name"])
+        if b is base:
+            name = f"**{name}**"
+        cells = [name, _t(med), f"{med / pts * 1e9:.0f} ns"]
+        if base:
+            cells.append(_ratio(med / base["stats"]["median"]))
+        cells.append(_info_cell(ei))
+        lines.append("| " + " | ".join(cells) + " |")
+    return lines
+
+
+def _verdict(ok: bool | None) -> str:
+    return "n/a" if ok is None else ("**met**" if ok else "**missed**")
+
+
+def targets(bench: Bench, crit: dict, trade: dict) -> list[tuple[str, str, str, str]]:
+    """(target, measured, ratio, verdict) for each target in the issue."""
+    out = []
+
+    def add(name, measured, ratio, ok):
+        out.append((name, measured, ratio, _verdict(ok)))
+
+    pk_sweep = bench.median("pk_sweep_quadratic")
+    seed_np = bench.median("np_closed_form", m=None)  # the seed group's row has no "m"
+    if pk_sweep and seed_np:
+        r = pk_sweep / seed_np
+        add(
+            "seed sweep from Python vs NumPy vectorized closed form (ratio <= 1.0)",
+            f"{_t(pk_sweep)} vs {_t(seed_np)}",
+            f"{r:.2f}",
+            r <= 1.0,
+        )
+    pl = bench.median("pylinkage")
+    if pk_sweep and pl:
+        r = pl / pk_sweep
+        add(
+            "seed sweep >= 3x faster than pylinkage + numba",
+            f"{_t(pk_sweep)} vs {_t(pl)}",
+            f"{r:.2f}x faster",
+            r >= 3.0,
+        )
+    elif pk_sweep:
+        add("seed sweep >= 3x faster than pylinkage + numba", "pylinkage not installed", "-", None)
+    rust = crit.get("seed_sweep_361/quadratic_alloc", {}).get("median_ns")
+    if pk_sweep and rust:
+        frac = 1 - rust * 1e-9 / pk_sweep
+        add(
+            "Python-side overhead < 25% of the seed sweep (vs criterion: the same sweep, "
+            "allocating its outputs, in Rust)",
+            f"{_t(pk_sweep)} Python vs {_t(rust * 1e-9)} Rust",
+            f"{frac:.0%}",
+            frac < 0.25,
+        )
+    b = bench.get("pk_sweep_tangent")
+    if b:
+        nit = b["extra_info"]["nit_mean"]
+        add(
+            "mean iterations per point, tol 1e-9, tangent predictor <= 1.6 (seed sweep)",
+            f"{nit:.2f}",
+            "-",
+            nit <= 1.6,
+        )
+    tr_row = next(
+        (r for r in trade.get("rows", []) if r["method"] == "tangent" and r["tol"] == 1e-9), None
+    )
+    if tr_row:
+        add(
+            "(same, over the seed + random crank-rockers of the tradeoff run)",
+            f"{tr_row['nit_mean']:.2f}",
+            "-",
+            tr_row["nit_mean"] <= 1.6,
+        )
+    m = 10_000
+    t1 = bench.median("pk_batch_t1", m=m)
+    npcf = bench.median("np_closed_form", m=m)
+    if t1 and npcf:
+        r = npcf / t1
+        add(
+            f"batch {m} x 361, Newton on 1 thread: throughput >= NumPy closed form",
+            f"{_t(t1)} vs {_t(npcf)}",
+            f"{r:.2f}x",
+            r >= 1.0,
+        )
+    cf1 = bench.median("pk_cf_batch_t1", m=m)
+    cfa = bench.median("pk_cf_batch_tall", m=m)
+    if cf1 and npcf:
+        r = npcf / cf1
+        add(
+            f"closed-form batch {m} x 361 >= 3x NumPy closed form (1 thread)",
+            f"{_t(cf1)} vs {_t(npcf)}",
+            f"{r:.2f}x",
+            r >= 3.0,
+        )
+    if cfa and npcf:
+        r = npcf / cfa
+        add(
+            f"(same, closed-form batch on all {os.cpu_count()} threads)",
+            f"{_t(cfa)} vs {_t(npcf)}",
+            f"{r:.2f}x",
+            r >= 3.0,
+        )
+    ta = bench.median("pk_batch_tall", m=m)
+    if t1 and ta:
+        r = t1 / ta
+        add(
+            f"batch {m} x 361 Newton: all threads >= 1.8x one thread",
+            f"{_t(ta)} vs {_t(t1)}",
+            f"{r:.2f}x",
+            r >= 1.8,
+        )
+    mem = bench.get("mem_sweep")
+    if mem:
+        ei = mem["extra_info"]
+        over = ei["overhead_bytes"]
+        add(
+            f"peak RSS of a {ei['m']} x {ei['n']} sweep_batch <= outputs + small constant (32 MiB)",
+            f"{ei['delta_bytes'] / 2**20:.0f} MiB for "
+            f"{ei['output_bytes'] / 2**20:.0f} MiB of output",
+            f"+{over / 2**20:.1f} MiB",
+            over <= 32 * 2**20,
+        )
+    return out
+
+
+def render() -> None:
+    info = _load("machine.json")
+    bench = Bench(_load("pytest.json"))
+    crit = _load("criterion.json")
+    trade = _load("tradeoff.json") if os.path.exists(os.path.join(RESULTS, "tradeoff.json")) else {}
+    L: list[str] = []
+    L += [
+        "# planarkin benchmarks",
+        "",
+        "Generated by `python benches/report.py run` (do not edit by hand; the analysis "
+        "at the end comes from `benches/analysis.md`). All numbers below come from one run "
+        "on one machine; ratios compare medians from that run.",
+        "",
+    ]
+
+    L += ["## Targets", "", "| target | measured | ratio | verdict |", "|---|---|---|---|"]
+    for t in targets(bench, crit, trade):
+        L.append("| " + " | ".join(t) + " |")
+
+    L += ["", "## Machine and command", ""]
+    for k in (
+        "quick",
+        "cpu",
+        "cores",
+        "memory",
+        "os",
+        "python",
+        "numpy",
+        "planarkin",
+        "rustc",
+        "pylinkage",
+        "numba",
+        "mpmath",
+        "pytest-benchmark",
+        "git",
+        "extension",
+        "date",
+        "load_before",
+        "load_after",
+    ):
+        if k in info:
+            L.append(f"- {k.replace('_', ' ')}: {info[k]}")
+    L += [
+        "",
+        "Commands (run by `python benches/report.py run`, in this order):",
+        "",
+        "```",
+        " ".join(shlex.quote(c) for c in CARGO_CMD),
+        " ".join(shlex.quote(c) for c in ["python", *PYTEST_CMD[1:]]),
+        "python -c 'from planarkin.tradeoff import tradeoff; tradeoff()'  # = planarkin tradeoff",
+        "# environment: OPENBLAS_NUM_THREADS=1 for pytest (no benchmark uses BLAS)",
+        "```",
+        "",
+        "Times are medians. *per point* divides by the crank angles solved (M x N). "
+        "*vs planarkin* is median / median of the bold row (above 1: slower than planarkin). "
+        "*it/pt* is the mean number of Newton steps per point; *err* the largest angle "
+        "difference (rad) from planarkin's closed form, checked outside the timed call.",
+        "",
+    ]
+
+    order = [
+        ("seed sweep", "pk_sweep_quadratic", None),
+        ("seed sweep: Python layers", "layers_api", None),
+        ("batch: M=1 ", "pk_batch_t1", None),
+        ("batch: M=100 ", "pk_batch_t1", None),
+        ("batch: M=10000 ", "pk_batch_t1", None),
+        ("growth with N", None, None),
+        ("growth with M", None, None),
+        ("overhead", "ovh_solve", 1),
+    ]
+    done = set()
+    for prefix, base_impl, points in order:
+        for g, rows in bench.groups.items():
+            if not g.startswith(prefix) or g in done:
+                continue
+            done.add(g)
+            base = next((b for b in rows if b["extra_info"].get("impl") == base_impl), None)
+            L += [f"## {g}", ""]
+            L += _group_table(rows, base, points)
+            if prefix == "seed sweep: Python layers":
+                L += _layers_note(bench, crit)
+            if prefix.startswith("growth"):
+                L += _growth_note(rows)
+            L.append("")
+
+    L += [
+        "## Rust core alone (criterion)",
+        "",
+        "| benchmark | median | per element |",
+        "|---|---:|---:|",
+    ]
+    for k in sorted(crit):
+        v = crit[k]
+        per = f"{v['median_ns'] / v['elements']:.0f} ns" if v.get("elements") else ""
+        L.append(f"| {k} | {_t(v['median_ns'] * 1e-9)} | {per} |")
+    L.append("")
+
+    mem = [b for b in bench.rows if b["extra_info"].get("impl", "").startswith("mem_")]
+    if mem:
+        L += [
+            f"## Peak memory of one {mem[0]['extra_info']['m']} x 361 batch",
+            "",
+            "Each call measured in a fresh process (`benches/memory.py`): peak RSS "
+            "(`getrusage` maxrss) after the call minus the peak after importing and building "
+            "the inputs, compared with the bytes of the arrays the call returns.",
+            "",
+            "| call | time | peak RSS increase | output arrays | beyond the output |",
+            "|---|---:|---:|---:|---:|",
+        ]
+        for b in mem:
+            e = b["extra_info"]
+            L.append(
+                f"| {e['label']} | {e['seconds']:.2f} s | {e['delta_bytes'] / 2**20:.0f} MiB | "
+                f"{e['output_bytes'] / 2**20:.0f} MiB | {e['overhead_bytes'] / 2**20:+.1f} MiB |"
+            )
+        L.append("")
+
+    if trade:
+        L += [
+            "## Speed/accuracy trade (`planarkin tradeoff`)",
+            "",
+            trade["summary"] + ".",
+            "",
+            _tradeoff_md(trade),
+            "",
+            "*Pareto*: `all` = no row is both faster and more accurate; `N` = the same among "
+            "the Newton rows only.",
+            "",
+            "![speed vs accuracy](benches/results/tradeoff.png)",
+            "",
+        ]
+
+    analysis = os.path.join(HERE, "analysis.md")
+    if os.path.exists(analysis):
+        with open(analysis, encoding="utf-8") as f:
+            L += [f.read().rstrip(), ""]
+    with open(OUT, "w", encoding="utf-8") as f:
+        f.write("\n".join(L))
+    print(f"wrote {OUT}")
+
+
+def _layers_note(bench: Bench, crit: dict) -> list[str]:
+    api = bench.median("layers_api")
+    binding = bench.median("layers_binding")
+    one = bench.median("layers_binding_1pt")
+    rust = crit.get("seed_sweep_361/quadratic_alloc", {}).get("median_ns")
+    rust0 = crit.get("seed_sweep_361/quadratic", {}).get("median_ns")
+    if not (api and binding and rust):
+        return []
+    r = rust * 1e-9
+    return [
+        "",
+        f"Rust alone (criterion, same sweep, allocating its outputs): {_t(r)}"
+        + (f" ({_t(rust0 * 1e-9)} into preallocated buffers)" if rust0 else "")
+        + f". Binding cost {_t(binding - r)} ({(binding - r) / api:.0%} of the API call), "
+        f"Python API layer {_t(api - binding)} ({(api - binding) / api:.0%}); a 1-angle "
+        f"binding call costs {_t(one)}.",
+    ]
+
+
+def _growth_note(rows: list[dict]) -> list[str]:
+    per = sorted(
+        (b["extra_info"]["points"], b["stats"]["median"] / b["extra_info"]["points"]) for b in rows
+    )
+    if len(per) < 2:
+        return []
+    lo, hi = min(p for _, p in per), max(p for _, p in per)
+    return [
+        "",
+        f"Time per point from {per[0][0]} to {per[-1][0]} points: "
+        + ", ".join(f"{p * 1e9:.0f} ns" for _, p in per)
+        + f" (max/min {hi / lo:.2f}: linear growth when close to 1).",
+    ]
+
+
+def _tradeoff_md(trade: dict) -> str:
+    head = (
+        "| method | tol | iter/pt | iter/pt (seed) | ns/pt | max error (rad) | seed max error "
+        "| median error | failed | Pareto |"
+    )
+    lines = [head, "|---|---:|---:|---:|---:|---:|---:|---:|---:|:---:|"]
+    for r in trade["rows"]:
+        par = "/".join(x for x, on in (("all", r["pareto"]), ("N", r["pareto_newton"])) if on)
+        tol = "-" if r["tol"] is None else f"{r['tol']:.0e}"
+        lines.append(
+            f"| {r['label']} | {tol} | {r['nit_mean']:.2f} | {r['nit_seed']:.2f} | "
+            f"{r['ns_per_point']:.0f} | {r['err_max']:.1e} | {r['err_seed']:.1e} | "
+            f"{r['err_median']:.1e} | {r['failed']} | {par} |"
+        )
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    p.add_argument("what", choices=("run", "render"))
+    p.add_argument("--quick", action="store_true", help="smoke run to debug the pipeline")
+    a = p.parse_args(argv)
+    if a.what == "run":
+        run_all(a.quick)
+    else:
+        render()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
