@@ -259,7 +259,7 @@ def as_angles(name: str, value: object) -> np.ndarray:
         raise ValueError(f"{name} must be an array of real numbers") from None
     if arr.dtype.kind not in "biuf":
         raise ValueError(f"{name} must be an array of real numbers, got dtype {arr.dtype}")
-    return np.ascontiguousarray(arr, dtype=np.float64)
+    return np.asarray(arr, dtype=np.float64, order="C")  # keeps 0-d: scalars stay scalars
 
 
 def as_theta2_1d(value: object | None) -> np.ndarray:

@@ -41,6 +41,8 @@ def wrap(a: float) -> float:
     """Wraps to (-pi, pi]; angles already there are returned unchanged."""
     if -math.pi < a <= math.pi:
         return a
+    if not math.isfinite(a):
+        return _NAN
     r = math.fmod(a + math.pi, TAU)
     if r < 0.0:
         r += TAU
@@ -49,11 +51,18 @@ def wrap(a: float) -> float:
 
 
 def _closed(r: tuple, c2: float, s2: float, sign: float):
-    """(theta3, theta4, sin34) or the strings 'not-assemblable' / 'indeterminate'."""
+    """(theta3, theta4, sin34) or the strings 'not-assemblable' / 'indeterminate'.
+
+    Circle intersection: B at distance r3 from A and r4 from O4. 2 d h (h the height of B
+    over the line A-O4) from Heron's formula in factored form; the directions A->B and
+    O4->B are u = O4 - A turned by the angles at A and O4, whose (cos, sin) are
+    proportional to (k + d^2, 2dh) and (k - d^2, 2dh), k = r3^2 - r4^2.
+    """
     r1, r2, r3, r4 = r
     ux = r1 - r2 * c2
     uy = -(r2 * s2)
-    d = math.sqrt(ux * ux + uy * uy)
+    d2 = ux * ux + uy * uy
+    d = math.sqrt(d2)
     if d == 0.0:
         return "indeterminate" if r3 == r4 else "not-assemblable"
     q1 = d + r3 - r4
@@ -63,21 +72,63 @@ def _closed(r: tuple, c2: float, s2: float, sign: float):
         return "not-assemblable"
     two_dh = math.sqrt((r3 + r4 + d) * q1 * q2 * q3)
     k = (r3 - r4) * (r3 + r4)
-    phi = math.atan2(uy, ux)
-    g3 = math.atan2(two_dh, k + d * d)
-    g4 = math.atan2(two_dh, k - d * d)
-    return wrap(phi + sign * g3), wrap(phi + sign * g4), sign * two_dh / (2.0 * r3 * r4)
+    h = sign * two_dh
+    ca, cb = k + d2, k - d2
+    t3 = math.atan2(uy * ca + ux * h + 0.0, ux * ca - uy * h)
+    t4 = math.atan2(uy * cb + ux * h + 0.0, ux * cb - uy * h)
+    return t3, t4, h / (2.0 * (r3 * r4))
 
 
 def _sign(mode: str) -> float:
     return 1.0 if mode == "open" else -1.0
 
 
-def _jac(r: tuple, t3: float, t4: float):
+def _jac_of(r: tuple, s3: float, c3: float, s4: float, c4: float) -> tuple:
     _, _, r3, r4 = r
-    s3, c3 = math.sin(t3), math.cos(t3)
-    s4, c4 = math.sin(t4), math.cos(t4)
-    return (-r3 * s3, r4 * s4, r3 * c3, -r4 * c4), (s3, c3, s4, c4)
+    return (-r3 * s3, r4 * s4, r3 * c3, -r4 * c4)
+
+
+def _sin(x: float) -> float:
+    """math.sin, but NaN for an infinite argument (as libm and the kernel give)."""
+    return math.sin(x) if math.isfinite(x) else _NAN
+
+
+def _cos(x: float) -> float:
+    return math.cos(x) if math.isfinite(x) else _NAN
+
+
+def _jac(r: tuple, t3: float, t4: float):
+    s3, c3 = _sin(t3), _cos(t3)
+    s4, c4 = _sin(t4), _cos(t4)
+    return _jac_of(r, s3, c3, s4, c4), (s3, c3, s4, c4)
+
+
+#: Largest angle change updated by angle addition instead of libm (2^-7), as in the kernel.
+INCREMENT_MAX = 0.0078125
+_SIN_C = (-1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0)
+_COS_C = (-0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0)
+
+
+def rotate(s: float, c: float, dx: float) -> tuple[float, float]:
+    """sin(x + dx), cos(x + dx) from sin x, cos x for |dx| <= 2^-7 (Taylor, degree 7/8)."""
+    x2 = dx * dx
+    sd = dx + dx * x2 * (_SIN_C[0] + x2 * (_SIN_C[1] + x2 * _SIN_C[2]))
+    cm = x2 * (_COS_C[0] + x2 * (_COS_C[1] + x2 * (_COS_C[2] + x2 * _COS_C[3])))
+    return s + (s * cm + c * sd), c + (c * cm - s * sd)
+
+
+def _trig(x3: float, x4: float, cache: list) -> tuple:
+    """sin/cos of the iterate: by angle addition from the loop's last evaluation when both
+    angles moved less than 2^-7, else from libm; the cache is one per crank angle."""
+    last = cache[0]
+    if last is not None and abs(x3 - last[0]) < INCREMENT_MAX and abs(x4 - last[1]) < INCREMENT_MAX:
+        s3, c3 = rotate(last[2], last[3], x3 - last[0])
+        s4, c4 = rotate(last[4], last[5], x4 - last[1])
+    else:
+        s3, c3 = _sin(x3), _cos(x3)
+        s4, c4 = _sin(x4), _cos(x4)
+    cache[0] = (x3, x4, s3, c3, s4, c4)
+    return s3, c3, s4, c4
 
 
 def _cramer(j: tuple, b0: float, b1: float):
@@ -93,13 +144,15 @@ def _sin34(r: tuple, j: tuple) -> float:
     return -(j00 * j11 - j01 * j10) / (r[2] * r[3])
 
 
-def _newton(r, c2, s2, x3, x4, sign, tol, max_iter, hist):
+def _newton(r, c2, s2, x3, x4, sign, tol, max_iter, hist, cache):
     """Newton-Raphson from (x3, x4); returns (t3, t4, status, nit, residual, jacobian)."""
     r1, r2, r3, r4 = r
     scale = max(r1, r2, r3, r4)
     nit = 0
+    last_small_step = math.inf
     while True:
-        j, (s3, c3, s4, c4) = _jac(r, x3, x4)
+        s3, c3, s4, c4 = _trig(x3, x4, cache)
+        j = _jac_of(r, s3, c3, s4, c4)
         f1 = r2 * c2 + r3 * c3 - r4 * c4 - r1
         f2 = r2 * s2 + r3 * s3 - r4 * s4
         residual = max(0.0, abs(f1), abs(f2)) / scale
@@ -108,20 +161,22 @@ def _newton(r, c2, s2, x3, x4, sign, tol, max_iter, hist):
             hist.append(residual if finite else _NAN)
         if not finite:
             return _NAN, _NAN, Status.NON_FINITE, nit, _NAN, j
-        cond = abs(_sin34(r, j))
-        if residual < tol:
-            if cond < SINGULAR_THRESHOLD:
-                return _NAN, _NAN, Status.SINGULAR, nit, residual, j
-            if _sin34(r, j) * sign < 0.0:
-                return _NAN, _NAN, Status.BRANCH_JUMP, nit, residual, j
-            return wrap(x3), wrap(x4), Status.CONVERGED, nit, residual, j
-        if nit >= max_iter:
-            return _NAN, _NAN, Status.MAX_ITERATIONS, nit, residual, j
-        if cond < SINGULAR_THRESHOLD:
+        if abs(_sin34(r, j)) < SINGULAR_THRESHOLD:
             return _NAN, _NAN, Status.SINGULAR, nit, residual, j
         step = _cramer(j, -f1, -f2)
         if step is None:
             return _NAN, _NAN, Status.SINGULAR, nit, residual, j
+        if residual < tol:
+            size = max(abs(step[0]), abs(step[1]))
+            if size < tol:
+                if _sin34(r, j) * sign < 0.0:
+                    return _NAN, _NAN, Status.BRANCH_JUMP, nit, residual, j
+                return wrap(x3), wrap(x4), Status.CONVERGED, nit, residual, j
+            if size > 0.5 * last_small_step:
+                return _NAN, _NAN, Status.SINGULAR, nit, residual, j
+            last_small_step = size
+        if nit >= max_iter:
+            return _NAN, _NAN, Status.MAX_ITERATIONS, nit, residual, j
         x3 = x3 + step[0]
         x4 = x4 + step[1]
         nit += 1
@@ -141,7 +196,7 @@ def solve(fb, theta2, *, mode="open", guess=None, tol=1e-9, max_iter=100, histor
     return Solution(t2, t3, t4, st == Status.CONVERGED, st, nit, res, h)
 
 
-def _point(r, t2, mode, guess, tol, max_iter, hist):
+def _point(r, t2, mode, guess, tol, max_iter, hist, cache=None):
     if not math.isfinite(t2):
         return _NAN, _NAN, Status.NON_FINITE, 0, _NAN, None
     s2, c2 = math.sin(t2), math.cos(t2)
@@ -154,7 +209,7 @@ def _point(r, t2, mode, guess, tol, max_iter, hist):
         return _NAN, _NAN, Status.SINGULAR, 0, _NAN, None
     else:
         x0 = cf[:2]
-    return _newton(r, c2, s2, x0[0], x0[1], _sign(mode), tol, max_iter, hist)
+    return _newton(r, c2, s2, x0[0], x0[1], _sign(mode), tol, max_iter, hist, cache or [None])
 
 
 def _rates(r, t2, j, predictor):
@@ -223,6 +278,8 @@ def sweep(
     t3o, t4o, reso = np.empty(n), np.empty(n), np.empty(n)
     sto, nito = np.empty(n, dtype=np.int8), np.empty(n, dtype=np.uint32)
     w3o = w4o = a3o = a4o = None
+    if alpha2 is not None and omega2 is None:
+        raise ValueError("alpha2 needs omega2: accelerations depend on the crank speed")
     if omega2 is not None:
         omega2 = as_float("omega2", omega2)
         w3o, w4o = np.full(n, _NAN), np.full(n, _NAN)
@@ -269,12 +326,13 @@ def _sweep_point(r, t2, mode, sign, start, tol, max_iter):
     cf = _closed(r, c2, s2, sign)
     if cf == "not-assemblable":
         return _NAN, _NAN, Status.NOT_ASSEMBLABLE, 0, _NAN, None
-    first = _newton(r, c2, s2, start[0], start[1], sign, tol, max_iter, None)
+    cache = [None]  # both attempts at this crank angle share the loop's trig cache
+    first = _newton(r, c2, s2, start[0], start[1], sign, tol, max_iter, None, cache)
     if first[2] == Status.CONVERGED:
         return first
     if cf == "indeterminate":
         return _NAN, _NAN, Status.SINGULAR, first[3], _NAN, None
-    second = _newton(r, c2, s2, cf[0], cf[1], sign, tol, max_iter, None)
+    second = _newton(r, c2, s2, cf[0], cf[1], sign, tol, max_iter, None, cache)
     return (*second[:3], second[3] + first[3], *second[4:])
 
 

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use crate::arrays::closed_form_into;
 use crate::error::{positive_finite, Error};
 use crate::fourbar::{FourBar, Mode};
-use crate::sweep::{sweep_unchecked, SweepOptions, SweepOut};
+use crate::sweep::{sin_cos, sweep_unchecked, SweepOptions, SweepOut};
 
 /// (M, N) row-major outputs of a batch sweep.
 pub struct BatchOut<'a> {
@@ -76,6 +76,7 @@ pub fn sweep_batch(
     if n == 0 {
         return Ok(());
     }
+    let trig = sin_cos(theta2);
     with_threads(threads, || {
         out.theta3
             .par_chunks_mut(n)
@@ -86,7 +87,7 @@ pub fn sweep_batch(
             .zip(links.par_iter())
             .for_each(|(((((theta3, theta4), status), nit), residual), fb)| {
                 let row = SweepOut { theta3, theta4, status, nit, residual };
-                sweep_unchecked(fb, theta2, None, opts, row, None);
+                sweep_unchecked(fb, theta2, &trig, None, opts, row, None);
             })
     })
 }

@@ -2,6 +2,8 @@
 //! the closed form of both assembly modes, and velocity/acceleration from the same
 //! Jacobian. Ground O2 = (0, 0) to O4 = (r1, 0); angles in radians, counter-clockwise.
 
+use std::cell::Cell;
+
 use nalgebra::{Matrix2, Vector2};
 
 use crate::error::{positive_finite, Error};
@@ -47,6 +49,40 @@ pub enum Assembly {
     NotAssemblable,
     /// Crank pin A on O4 with r3 = r4: every coupler angle closes the loop.
     Indeterminate,
+}
+
+/// The result of the assemblability check at one crank angle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Geometry {
+    Triangle(Triangle),
+    NotAssemblable,
+    Indeterminate,
+}
+
+/// Triangle A-B-O4: u = O4 - A, d2 = |u|^2, 2 d h, k = r3^2 - r4^2 (factored).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Triangle {
+    ux: f64,
+    uy: f64,
+    d2: f64,
+    two_dh: f64,
+    k: f64,
+    r3r4: f64,
+}
+
+impl Triangle {
+    /// Angles of `mode`: AB and O4B are u turned by the angles at A and at O4, whose
+    /// (cos, sin) are proportional to (k + d^2, 2dh) and (k - d^2, 2dh); two atan2 of the
+    /// turned vectors, already in (-pi, pi] (`+ 0.0` turns atan2(-0, x < 0) = -pi into pi).
+    #[inline]
+    pub(crate) fn assembly(&self, mode: Mode) -> Assembly {
+        let Triangle { ux, uy, d2, two_dh, k, r3r4 } = *self;
+        let h = mode.sign() * two_dh;
+        let (ca, cb) = (k + d2, k - d2);
+        let theta3 = (uy * ca + ux * h + 0.0).atan2(ux * ca - uy * h);
+        let theta4 = (uy * cb + ux * h + 0.0).atan2(ux * cb - uy * h);
+        Assembly::Closed { theta3, theta4, sin34: h / (2.0 * r3r4) }
+    }
 }
 
 /// One solved point.
@@ -106,7 +142,12 @@ impl FourBar {
     /// The loop equations at crank angle `theta2`, as a Newton system in (theta3, theta4).
     pub fn at(&self, theta2: f64) -> Loop<'_> {
         let (s2, c2) = theta2.sin_cos();
-        Loop { fb: self, c2, s2 }
+        self.at_sin_cos(s2, c2)
+    }
+
+    /// [`FourBar::at`] from sin and cos of the crank angle (shared across a batch).
+    pub fn at_sin_cos(&self, s2: f64, c2: f64) -> Loop<'_> {
+        Loop { fb: self, c2, s2, last: Cell::new(None) }
     }
 
     /// Closed form (circle intersection) for `mode` at `theta2`.
@@ -115,34 +156,37 @@ impl FourBar {
         self.closed_form_cs(c2, s2, mode)
     }
 
-    /// Closed form from cos/sin of the crank angle. B lies at distance r3 from A and r4
-    /// from O4; with d = |A O4| the angles at A and O4 come from atan2 of exact
-    /// factorizations, so nothing cancels near a toggle and power-of-two scaling is exact.
+    /// Closed form from cos/sin of the crank angle.
     pub(crate) fn closed_form_cs(&self, c2: f64, s2: f64, mode: Mode) -> Assembly {
+        match self.geometry(c2, s2) {
+            Geometry::Triangle(t) => t.assembly(mode),
+            Geometry::NotAssemblable => Assembly::NotAssemblable,
+            Geometry::Indeterminate => Assembly::Indeterminate,
+        }
+    }
+
+    /// The triangle A-B-O4 at a crank angle, or why there is none: one square root for
+    /// d = |A O4| and one for the height of B, no trigonometry. B lies at distance r3
+    /// from A and r4 from O4; 2 d h comes from Heron's formula in exactly factored form,
+    /// so nothing cancels near a toggle and power-of-two scaling is exact.
+    #[inline]
+    pub(crate) fn geometry(&self, c2: f64, s2: f64) -> Geometry {
         let [r1, r2, r3, r4] = self.r;
         let ux = r1 - r2 * c2; // O4 - A
         let uy = -(r2 * s2);
-        let d = (ux * ux + uy * uy).sqrt(); // not hypot: CPython's math.hypot differs from libm's
+        let d2 = ux * ux + uy * uy;
+        let d = d2.sqrt(); // not hypot: CPython's math.hypot differs from libm's
         if d == 0.0 {
-            return if r3 == r4 { Assembly::Indeterminate } else { Assembly::NotAssemblable };
+            return if r3 == r4 { Geometry::Indeterminate } else { Geometry::NotAssemblable };
         }
         let q1 = d + r3 - r4;
         let q2 = d - r3 + r4;
         let q3 = r3 + r4 - d;
         if !(q1 >= 0.0 && q2 >= 0.0 && q3 >= 0.0) {
-            return Assembly::NotAssemblable;
+            return Geometry::NotAssemblable;
         }
-        let two_dh = ((r3 + r4 + d) * q1 * q2 * q3).sqrt(); // 2 d h, h = height of B over line A-O4
-        let k = (r3 - r4) * (r3 + r4);
-        let phi = uy.atan2(ux);
-        let g3 = two_dh.atan2(k + d * d); // angle at A between AO4 and AB
-        let g4 = two_dh.atan2(k - d * d); // angle of O4B from the direction AO4
-        let sign = mode.sign();
-        Assembly::Closed {
-            theta3: wrap_angle(phi + sign * g3),
-            theta4: wrap_angle(phi + sign * g4),
-            sin34: sign * two_dh / (2.0 * r3 * r4),
-        }
+        let two_dh = ((r3 + r4 + d) * q1 * q2 * q3).sqrt();
+        Geometry::Triangle(Triangle { ux, uy, d2, two_dh, k: (r3 - r4) * (r3 + r4), r3r4: r3 * r4 })
     }
 
     /// Solves one crank angle by Newton-Raphson from `guess` (default: the closed form of
@@ -172,14 +216,29 @@ impl FourBar {
         if !theta2.is_finite() {
             return (Point::failed(Status::NonFinite, 0, f64::NAN), nan);
         }
-        let sys = self.at(theta2);
-        let start = match (self.closed_form_cs(sys.c2, sys.s2, mode), guess) {
-            (Assembly::NotAssemblable, _) => return (Point::failed(Status::NotAssemblable, 0, f64::NAN), nan),
+        self.solve_on(&self.at(theta2), mode, guess, opts, history)
+    }
+
+    /// [`FourBar::solve_point`] on a loop already set up at a finite crank angle.
+    pub(crate) fn solve_on(
+        &self,
+        sys: &Loop<'_>,
+        mode: Mode,
+        guess: Option<[f64; 2]>,
+        opts: &NewtonOptions,
+        history: Option<&mut Vec<f64>>,
+    ) -> (Point, Matrix2<f64>) {
+        let nan = Matrix2::repeat(f64::NAN);
+        let start = match (self.geometry(sys.c2, sys.s2), guess) {
+            (Geometry::NotAssemblable, _) => return (Point::failed(Status::NotAssemblable, 0, f64::NAN), nan),
             (_, Some(g)) => Vector2::from(g),
-            (Assembly::Closed { theta3, theta4, .. }, None) => Vector2::new(theta3, theta4),
-            (Assembly::Indeterminate, None) => return (Point::failed(Status::Singular, 0, f64::NAN), nan),
+            (Geometry::Triangle(t), None) => match t.assembly(mode) {
+                Assembly::Closed { theta3, theta4, .. } => Vector2::new(theta3, theta4),
+                _ => unreachable!("a triangle always closes"),
+            },
+            (Geometry::Indeterminate, None) => return (Point::failed(Status::Singular, 0, f64::NAN), nan),
         };
-        self.solve_from(&sys, start, mode, opts, history)
+        self.solve_from(sys, start, mode, opts, history)
     }
 
     /// Newton from `start` on the loop `sys`, then the mode check.
@@ -321,11 +380,35 @@ pub(crate) fn cramer(j: &Matrix2<f64>, b: &Vector2<f64>) -> Option<Vector2<f64>>
 }
 
 /// The four-bar loop at a fixed crank angle: f1, f2 in the unknowns (theta3, theta4).
-#[derive(Clone, Copy, Debug)]
+///
+/// It remembers the sines and cosines of its last evaluation: a Newton step that moves
+/// both angles by less than [`INCREMENT_MAX`] updates them by angle addition instead of
+/// calling libm (the increment is the exact difference of the stored angles, so no error
+/// accumulates beyond an ulp per step). This halves the trigonometry of a sweep.
+#[derive(Clone, Debug)]
 pub struct Loop<'a> {
     fb: &'a FourBar,
     pub(crate) c2: f64,
     pub(crate) s2: f64,
+    last: Cell<Option<(Vector2<f64>, [f64; 4])>>,
+}
+
+/// Largest angle change (rad) updated by angle addition rather than libm: 2^-7.
+pub const INCREMENT_MAX: f64 = 0.0078125;
+
+/// Taylor coefficients of sin dx - dx (odd powers 3..7) and cos dx - 1 (even powers 2..8).
+const SIN_C: [f64; 3] = [-1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0];
+const COS_C: [f64; 4] = [-0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0];
+
+/// sin(x + dx), cos(x + dx) from s = sin x, c = cos x for |dx| <= 2^-7: Taylor series of
+/// sin dx and cos dx - 1 to degrees 7 and 8 (truncation below 1e-22), added as
+/// corrections so nothing rounds against 1.
+#[inline]
+pub fn rotate(s: f64, c: f64, dx: f64) -> (f64, f64) {
+    let x2 = dx * dx;
+    let sd = dx + dx * x2 * (SIN_C[0] + x2 * (SIN_C[1] + x2 * SIN_C[2]));
+    let cm = x2 * (COS_C[0] + x2 * (COS_C[1] + x2 * (COS_C[2] + x2 * COS_C[3])));
+    (s + (s * cm + c * sd), c + (c * cm - s * sd))
 }
 
 impl Loop<'_> {
@@ -339,8 +422,21 @@ impl System<2> for Loop<'_> {
     #[inline]
     fn eval(&self, x: &Vector2<f64>) -> (Vector2<f64>, Matrix2<f64>) {
         let [r1, r2, r3, r4] = self.fb.r;
-        let (s3, c3) = x[0].sin_cos();
-        let (s4, c4) = x[1].sin_cos();
+        let [s3, c3, s4, c4] = match self.last.get() {
+            Some((p, [s3, c3, s4, c4]))
+                if (x[0] - p[0]).abs() < INCREMENT_MAX && (x[1] - p[1]).abs() < INCREMENT_MAX =>
+            {
+                let (s3, c3) = rotate(s3, c3, x[0] - p[0]);
+                let (s4, c4) = rotate(s4, c4, x[1] - p[1]);
+                [s3, c3, s4, c4]
+            }
+            _ => {
+                let (s3, c3) = x[0].sin_cos();
+                let (s4, c4) = x[1].sin_cos();
+                [s3, c3, s4, c4]
+            }
+        };
+        self.last.set(Some((*x, [s3, c3, s4, c4])));
         let f1 = r2 * self.c2 + r3 * c3 - r4 * c4 - r1;
         let f2 = r2 * self.s2 + r3 * s3 - r4 * s4;
         let j = Matrix2::new(-r3 * s3, r4 * s4, r3 * c3, -r4 * c4);

@@ -121,9 +121,16 @@ pub struct Outcome<const N: usize> {
     pub jacobian: SMatrix<f64, N, N>,
 }
 
-/// Newton-Raphson from `x0`. Residual norms per iteration are appended to `history`
-/// only when one is passed. A converged point whose conditioning is below the singular
-/// threshold is reported `Singular`: there the answer cannot be trusted to tolerance.
+/// Newton-Raphson from `x0`.
+///
+/// Converged when the dimensionless residual is below `tol` *and* the Newton correction
+/// that would follow, max|J^-1 F|, is below `tol` too: the unknowns are angles, so the
+/// correction estimates the error of the answer in radians, and a small residual at a
+/// badly conditioned point is not taken for an accurate one. Once the residual is below
+/// `tol`, a correction that stops shrinking (it falls by less than half) means rounding
+/// alone keeps it above `tol` there: the point is reported `Singular`, as is any iterate
+/// whose conditioning is below `opts.singular`. Residual norms per iteration are
+/// appended to `history` only when one is passed.
 pub fn solve<S: System<N>, const N: usize>(
     sys: &S,
     x0: SVector<f64, N>,
@@ -133,6 +140,7 @@ pub fn solve<S: System<N>, const N: usize>(
     let scale = sys.scale();
     let mut x = x0;
     let mut nit = 0;
+    let mut last_small_step = f64::INFINITY;
     loop {
         let (f, j) = sys.eval(&x);
         let mut residual = 0.0_f64;
@@ -144,24 +152,28 @@ pub fn solve<S: System<N>, const N: usize>(
         if let Some(h) = history.as_deref_mut() {
             h.push(if finite { residual } else { f64::NAN });
         }
-        let done = |status| Outcome { x, status, nit, residual, jacobian: j };
         if !finite {
             return Outcome { x, status: Status::NonFinite, nit, residual: f64::NAN, jacobian: j };
         }
-        let cond = sys.conditioning(&j);
+        let done = |status| Outcome { x, status, nit, residual, jacobian: j };
+        if sys.conditioning(&j) < opts.singular {
+            return done(Status::Singular);
+        }
+        let Some(dx) = sys.step(&j, &f) else { return done(Status::Singular) };
         if residual < opts.tol {
-            return done(if cond < opts.singular { Status::Singular } else { Status::Converged });
+            let step = dx.amax();
+            if step < opts.tol {
+                return done(Status::Converged);
+            }
+            if step > 0.5 * last_small_step {
+                return done(Status::Singular);
+            }
+            last_small_step = step;
         }
         if nit >= opts.max_iter {
             return done(Status::MaxIterations);
         }
-        if cond < opts.singular {
-            return done(Status::Singular);
-        }
-        match sys.step(&j, &f) {
-            Some(dx) => x += dx,
-            None => return done(Status::Singular),
-        }
+        x += dx;
         nit += 1;
     }
 }

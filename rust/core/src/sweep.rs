@@ -5,7 +5,7 @@
 use nalgebra::{Matrix2, Vector2};
 
 use crate::error::Error;
-use crate::fourbar::{cramer, Assembly, FourBar, Mode, Point};
+use crate::fourbar::{cramer, Assembly, FourBar, Geometry, Loop, Mode, Point};
 use crate::newton::NewtonOptions;
 use crate::{wrap_angle, Status};
 
@@ -121,14 +121,20 @@ pub fn sweep_into(
             check_len("alpha4", a4.len(), n)?;
         }
     }
-    sweep_unchecked(fb, theta2, guess, opts, out, motion);
+    sweep_unchecked(fb, theta2, &sin_cos(theta2), guess, opts, out, motion);
     Ok(())
+}
+
+/// (sin, cos) of every crank angle: computed once, shared by every linkage of a batch.
+pub fn sin_cos(theta2: &[f64]) -> Vec<(f64, f64)> {
+    theta2.iter().map(|t| t.sin_cos()).collect()
 }
 
 /// [`sweep_into`] for slices known to have the right lengths (the batch kernel).
 pub(crate) fn sweep_unchecked(
     fb: &FourBar,
     theta2: &[f64],
+    trig: &[(f64, f64)],
     guess: Option<[f64; 2]>,
     opts: &SweepOptions,
     out: SweepOut<'_>,
@@ -141,7 +147,14 @@ pub(crate) fn sweep_unchecked(
             None if i == 0 => guess.map(Vector2::from),
             None => None,
         };
-        let (point, j) = sweep_point(fb, t2, start, opts);
+        let (point, j) = if t2.is_finite() {
+            let (s2, c2) = trig[i];
+            let sys = fb.at_sin_cos(s2, c2);
+            let (point, j) = sweep_point(fb, &sys, start, opts);
+            (point, Some((j, (sys.s2, sys.c2))))
+        } else {
+            (Point::failed(Status::NonFinite, 0, f64::NAN), None)
+        };
         out.theta3[i] = point.theta3;
         out.theta4[i] = point.theta4;
         out.status[i] = point.status.code();
@@ -151,35 +164,42 @@ pub(crate) fn sweep_unchecked(
         if let Some(m) = motion.as_mut() {
             fill_motion(fb, t2, &point, converged, i, m, opts.newton.singular);
         }
-        prev = converged.then(|| {
-            let x = Vector2::new(point.theta3, point.theta4);
-            let (v, a) = predictor_rates(fb, t2, &j, opts.predictor);
-            Prev { theta2: t2, x, v, a }
-        });
+        prev = match (converged, j) {
+            (true, Some((j, sc))) => {
+                let (v, a) = predictor_rates(fb, sc, &j, opts.predictor);
+                Some(Prev { theta2: t2, x: Vector2::new(point.theta3, point.theta4), v, a })
+            }
+            _ => None,
+        };
     }
 }
 
 /// Solves one sweep point: continuation from `start` first, then, if that fails in any
 /// way, the closed form of the mode as the starting guess. `nit` counts both attempts.
-fn sweep_point(fb: &FourBar, t2: f64, start: Option<Vector2<f64>>, opts: &SweepOptions) -> (Point, Matrix2<f64>) {
+fn sweep_point(
+    fb: &FourBar,
+    sys: &Loop<'_>,
+    start: Option<Vector2<f64>>,
+    opts: &SweepOptions,
+) -> (Point, Matrix2<f64>) {
     let Some(x0) = start else {
-        return fb.solve_point(t2, opts.mode, None, &opts.newton, None);
+        return fb.solve_on(sys, opts.mode, None, &opts.newton, None);
     };
-    if !t2.is_finite() {
-        return fb.solve_point(t2, opts.mode, None, &opts.newton, None);
-    }
-    let sys = fb.at(t2);
-    let cf = fb.closed_form_cs(sys.c2, sys.s2, opts.mode);
-    if cf == Assembly::NotAssemblable {
-        return (Point::failed(Status::NotAssemblable, 0, f64::NAN), Matrix2::repeat(f64::NAN));
-    }
-    let (first, j) = fb.solve_from(&sys, x0, opts.mode, &opts.newton, None);
+    let tri = match fb.geometry(sys.c2, sys.s2) {
+        Geometry::NotAssemblable => {
+            return (Point::failed(Status::NotAssemblable, 0, f64::NAN), Matrix2::repeat(f64::NAN))
+        }
+        Geometry::Indeterminate => None,
+        Geometry::Triangle(t) => Some(t),
+    };
+    let (first, j) = fb.solve_from(sys, x0, opts.mode, &opts.newton, None);
     if first.status == Status::Converged {
         return (first, j);
     }
-    let (mut second, j) = match cf {
-        Assembly::Closed { theta3, theta4, .. } => {
-            fb.solve_from(&sys, Vector2::new(theta3, theta4), opts.mode, &opts.newton, None)
+    // the closed form of the mode is computed only now, when continuation failed
+    let (mut second, j) = match tri.map(|t| t.assembly(opts.mode)) {
+        Some(Assembly::Closed { theta3, theta4, .. }) => {
+            fb.solve_from(sys, Vector2::new(theta3, theta4), opts.mode, &opts.newton, None)
         }
         _ => (Point::failed(Status::Singular, 0, f64::NAN), Matrix2::repeat(f64::NAN)),
     };
@@ -190,13 +210,12 @@ fn sweep_point(fb: &FourBar, t2: f64, start: Option<Vector2<f64>>, opts: &SweepO
 /// dx/dtheta2 and d2x/dtheta2^2 at unit crank speed, as far as the predictor needs them.
 /// Both reuse the Jacobian at the solution (r3 c3 = J10, r3 s3 = -J00, r4 c4 = -J11,
 /// r4 s4 = J01), so a prediction costs no trigonometry.
-fn predictor_rates(fb: &FourBar, t2: f64, j: &Matrix2<f64>, p: Predictor) -> (Vector2<f64>, Vector2<f64>) {
+fn predictor_rates(fb: &FourBar, (s2, c2): (f64, f64), j: &Matrix2<f64>, p: Predictor) -> (Vector2<f64>, Vector2<f64>) {
     let zero = Vector2::zeros();
     if p == Predictor::Previous {
         return (zero, zero);
     }
     let r2 = fb.lengths()[1];
-    let (s2, c2) = t2.sin_cos();
     let Some(v) = cramer(j, &Vector2::new(r2 * s2, -(r2 * c2))) else { return (zero, zero) };
     if p == Predictor::Tangent {
         return (v, zero);
@@ -252,7 +271,7 @@ pub fn sweep(fb: &FourBar, theta2: &[f64], guess: Option<[f64; 2]>, opts: &Sweep
         nit: &mut s.nit,
         residual: &mut s.residual,
     };
-    sweep_unchecked(fb, theta2, guess, opts, out, None);
+    sweep_unchecked(fb, theta2, &sin_cos(theta2), guess, opts, out, None);
     s
 }
 
