@@ -1,0 +1,97 @@
+"""Where the time goes: runs one workload under ``valgrind --tool=callgrind`` and prints
+the instructions per solved point of the functions that matter (instruction counts do
+not depend on what else the machine is doing, unlike timings on a shared 2-core box).
+
+    python benches/profile.py seed          # fb.sweep() of the seed linkage, 361 angles
+    python benches/profile.py batch         # sweep_batch, 200 random linkages, 1 thread
+    python benches/profile.py closed_form   # closed_form_batch, 200 linkages, 1 thread
+    python benches/profile.py numpy_cf      # the NumPy vectorized closed form, same batch
+
+For cycles rather than instructions: ``perf record -g python benches/profile.py batch --run 20``
+then ``perf report --no-children``.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPS = 5
+M = 200
+
+
+def workload(kind: str, reps: int) -> int:
+    """Runs the workload ``reps`` times after one warm-up; returns the points timed."""
+    import numpy as np
+    import planarkin as pk
+    from planarkin.reference import closed_form_vectorized
+    from planarkin.tradeoff import random_crank_rockers
+
+    links = np.vstack([[6.0, 2.0, 5.0, 5.0], random_crank_rockers(M - 1, seed=2024)])
+    fb = pk.FourBar(6.0, 2.0, 5.0, 5.0)
+    cols = [links[:, k : k + 1] for k in range(4)]
+    calls = {
+        "seed": (lambda: fb.sweep(), 361),
+        "batch": (lambda: pk.sweep_batch(links, threads=1), M * 361),
+        "closed_form": (lambda: pk.closed_form_batch(links, threads=1), M * 361),
+        "numpy_cf": (lambda: closed_form_vectorized(*cols, pk.DEFAULT_THETA2), M * 361),
+    }
+    fn, points = calls[kind]
+    fn()
+    for _ in range(reps):
+        fn()
+    return points * reps
+
+
+def _profile(kind: str, reps: int, tmp: str) -> dict[str, int]:
+    """Instructions per function (exclusive) of a whole run of ``reps`` repetitions."""
+    out = os.path.join(tmp, f"cg.{reps}.out")
+    cmd = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}",
+           sys.executable, __file__, kind, "--run", str(reps)]  # fmt: skip
+    subprocess.run(cmd, capture_output=True, text=True, check=True)
+    ann = subprocess.run(["callgrind_annotate", "--inclusive=no", "--threshold=100", out],
+                         capture_output=True, text=True, check=True).stdout  # fmt: skip
+    fns: dict[str, int] = {}
+    for line in ann.splitlines():
+        m = re.match(r"\s*([\d,]+) \(\s*[\d.]+%\)\s+(.*)", line)
+        if m:
+            name = m.group(2).split(" [")[0]
+            name = name.split(":", 1)[1] if re.match(r"^[./?]", name) and ":" in name else name
+            fns[name] = fns.get(name, 0) + int(m.group(1).replace(",", ""))
+    return fns
+
+
+def callgrind(kind: str) -> None:
+    """Profiles 1 and 1 + REPS repetitions and prints the difference per point, so the
+    interpreter start-up, imports and warm-up cancel out."""
+    reps = REPS * (100 if kind == "seed" else 1)
+    with tempfile.TemporaryDirectory() as tmp:
+        base = _profile(kind, 1, tmp)
+        full = _profile(kind, 1 + reps, tmp)
+    per = {"seed": 361, "batch": M * 361, "closed_form": M * 361, "numpy_cf": M * 361}[kind]
+    points = per * reps
+    diff = {k: v - base.get(k, 0) for k, v in full.items()}
+    total = diff.pop("PROGRAM TOTALS", sum(diff.values()))
+    print(
+        f"{kind}: {total / points:.0f} instructions per point ({reps} repetitions of {per} points)"
+    )
+    print(f"{'Ir/point':>9}  {'share':>6}  function (exclusive)")
+    for name, ir in sorted(diff.items(), key=lambda kv: -kv[1]):
+        if ir / points < 1:
+            break
+        print(f"{ir / points:9.0f}  {100 * ir / total:5.1f}%  {name[:110]}")
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    if not args or args[0] not in ("seed", "batch", "closed_form", "numpy_cf"):
+        print(__doc__)
+        sys.exit(2)
+    if "--run" in args:
+        workload(args[0], int(args[args.index("--run") + 1]) if len(args) > 2 else REPS)
+    else:
+        callgrind(args[0])
