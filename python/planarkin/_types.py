@@ -30,14 +30,14 @@ PREDICTORS = ("previous", "tangent", "quadratic")
 class Status(IntEnum):
     """How one solve ended. Arrays of results carry these codes as ``int8``."""
 
-    #: The dimensionless residual fell below ``tol`` on the requested assembly mode.
+    #: Residual and next Newton correction below ``tol``, on the requested assembly mode.
     CONVERGED = 0
     #: ``max_iter`` Newton steps were taken without reaching ``tol``.
     MAX_ITERATIONS = -2
     #: The crank angle, a residual or an iterate was NaN or infinite.
     NON_FINITE = -3
-    #: |sin(theta4 - theta3)| below the singular threshold: a dead (toggle) or change
-    #: point, where the Jacobian is singular and the two assembly modes meet.
+    #: |sin(theta4 - theta3)| below the singular threshold (a dead or change point, where
+    #: the two modes meet), or so small that rounding keeps the Newton correction above tol.
     SINGULAR = -4
     #: The loop cannot close at this crank angle (known before any iteration).
     NOT_ASSEMBLABLE = -5

@@ -105,8 +105,10 @@ class FourBar:
         """Newton-Raphson at one crank angle.
 
         Starts from ``guess`` (theta3, theta4) or, by default, the closed form of
-        ``mode``. Converged when max(|f1|, |f2|) / longest link < ``tol``. A point that
-        converges on the other mode is BRANCH_JUMP; angles are NaN unless CONVERGED.
+        ``mode``. Converged when max(|f1|, |f2|) / longest link < ``tol`` and the next
+        Newton correction max|J^-1 F| (radians) < ``tol``; a point where rounding keeps that
+        correction above ``tol`` is SINGULAR. A point that converges on the other mode is
+        BRANCH_JUMP; angles are NaN unless CONVERGED.
         ``history=True`` records the residual at every iterate.
         """
         t2 = as_float("theta2", theta2)

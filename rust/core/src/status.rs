@@ -5,14 +5,15 @@
 #[repr(i8)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Status {
-    /// The dimensionless residual fell below `tol` on the requested assembly mode.
+    /// Residual and next Newton correction below `tol`, on the requested assembly mode.
     Converged = 0,
     /// `max_iter` Newton steps were taken without reaching `tol`.
     MaxIterations = -2,
     /// The crank angle, a residual or an iterate was NaN or infinite.
     NonFinite = -3,
-    /// |sin(theta4 - theta3)| fell below the singular threshold: a dead (toggle) or
-    /// change point, where the Jacobian is singular and the two assembly modes meet.
+    /// |sin(theta4 - theta3)| fell below the singular threshold (a dead or change point,
+    /// where the two modes meet), or is so small that rounding keeps the Newton correction
+    /// above `tol`.
     Singular = -4,
     /// The loop cannot close at this crank angle (known from the geometry, before any iteration).
     NotAssemblable = -5,
