@@ -51,7 +51,7 @@ class Status(IntEnum):
 
 
 _MESSAGES = {
-    Status.CONVERGED: "converged: residual below tolerance on the requested mode",
+    Status.CONVERGED: "converged: residual and Newton correction below tolerance on the requested mode",
     Status.MAX_ITERATIONS: "maximum number of iterations reached without convergence",
     Status.NON_FINITE: "a non-finite value (NaN or infinity) was met",
     Status.SINGULAR: "singular: dead (toggle) or change point, the two modes meet",

@@ -47,7 +47,7 @@ impl Status {
     /// A one-line human-readable message.
     pub fn message(self) -> &'static str {
         match self {
-            Status::Converged => "converged: residual below tolerance on the requested mode",
+            Status::Converged => "converged: residual and Newton correction below tolerance on the requested mode",
             Status::MaxIterations => "maximum number of iterations reached without convergence",
             Status::NonFinite => "a non-finite value (NaN or infinity) was met",
             Status::Singular => "singular: dead (toggle) or change point, the two modes meet",
