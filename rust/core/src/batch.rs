@@ -2,6 +2,8 @@
 //! each row written straight into caller-owned (M, N) row-major output slices, with no
 //! allocation per linkage.
 
+use std::sync::{Arc, Mutex};
+
 use rayon::prelude::*;
 
 use crate::arrays::closed_form_into;
@@ -35,18 +37,29 @@ pub fn validate_links(links: &[f64]) -> Result<Vec<FourBar>, Error> {
         .collect()
 }
 
+/// Pools by thread count, built once: starting threads costs more than a small batch.
+static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
+
+fn pool(threads: usize) -> Result<Arc<rayon::ThreadPool>, Error> {
+    let mut pools = POOLS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, p)) = pools.iter().find(|(t, _)| *t == threads) {
+        return Ok(p.clone());
+    }
+    let p = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::invalid("threads", "could not start a thread pool", e))?;
+    let p = Arc::new(p);
+    pools.push((threads, p.clone()));
+    Ok(p)
+}
+
 /// Runs `f` on a pool of `threads` threads (None: rayon's global pool, all cores).
 pub fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> Result<T, Error> {
     match threads {
         None => Ok(f()),
         Some(0) => Err(Error::invalid("threads", "must be >= 1 or None", 0)),
-        Some(t) => {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(t)
-                .build()
-                .map_err(|e| Error::invalid("threads", "could not start a thread pool", e))?;
-            Ok(pool.install(f))
-        }
+        Some(t) => Ok(pool(t)?.install(f)),
     }
 }
 
