@@ -233,6 +233,8 @@ class BatchSweep:
 
 def as_float(name: str, value: object) -> float:
     """A real scalar, or ValueError naming the parameter."""
+    if type(value) is float or type(value) is int:  # the common case, without NumPy calls
+        return float(value)
     try:
         if isinstance(value, (str, bytes, complex)) or np.iscomplexobj(value):
             raise TypeError
