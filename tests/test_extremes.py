@@ -348,15 +348,9 @@ def test_sweep_into_toggle_within_1e9(predictor, mode):
 APPROACH = [
     (5.0, 3.0, 4.0, 3.0),
     (4.0, 3.0, 2.0, 3.5),
-    pytest.param(
-        (7.0, 4.0, 2.5, 3.0),
-        marks=pytest.mark.xfail(
-            strict=True,
-            reason="BUG (same as test_near_toggle_never_silently_wrong): 1e-14 rad from "
-            "the toggle at 0.9014 rad, open, solve() is CONVERGED but 1.32e-9 rad off "
-            "(|sin(t4-t3)| = 2.4e-7, just above the 1e-7 threshold)",
-        ),
-    ),
+    # 1e-14 rad from its toggle at 0.9014 rad this was CONVERGED 1.32e-9 rad off while the
+    # singular threshold ignored min(r3, r4) / L
+    (7.0, 4.0, 2.5, 3.0),
 ]
 
 
@@ -365,10 +359,7 @@ def test_approach_toggle_decades(r):
     """Distances 1e-3 .. 1e-15 rad from each toggle: every point within 1e-9 rad of the
     truth or flagged (SINGULAR; NOT_ASSEMBLABLE only where rounding the crank angle's
     cosine can cross the limit, |sin(t4 - t3)| < 1e-7). Down to 1e-11 rad everything
-    converges. Measured on these linkages: CONVERGED down to 1e-13 rad everywhere and to
-    1e-14 rad at three of the four toggles (|sin(t4-t3)| ~ 1.5e-7 .. 2.4e-7, errors 1.6e-10,
-    6.3e-10, and 1.3e-9 for (7, 4, 2.5, 3): xfail), SINGULAR from 1e-14 rad at the fourth
-    (|sin| 1.0e-7) and at 1e-15 rad everywhere (|sin| ~ 3e-8 .. 8e-8)."""
+    converges."""
     fb = pk.FourBar(*r)
     switch = []
     for tg in mp_toggles(r):
@@ -393,13 +384,8 @@ def test_approach_toggle_decades(r):
     assert all(f is not None for f in switch)  # a dead point is flagged at last
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="BUG: near a toggle (|sin(t4-t3)| just above SINGULAR_THRESHOLD = 1e-7) points "
-    "are CONVERGED but 1e-9..2e-8 rad off the exact solution at the same crank angle "
-    "(error ~ few ulp * L / (r_other |sin|)); the threshold does not scale with L/r_other "
-    "and is too small for the ~1e-9 rad resolution DESIGN.md claims",
-)
+# Both were CONVERGED 1.5e-9 and 1.3e-8 rad off while the singular threshold was a plain
+# |sin(t4 - t3)| < 1e-7; the conditioning now carries min(r3, r4) / L.
 @pytest.mark.parametrize(
     "r, t2, mode",
     [
@@ -426,8 +412,7 @@ def test_near_toggle_never_silently_wrong(r, t2, mode):
 def test_near_toggle_random_approach_is_flagged_or_right():
     """Random linkages approached at random distances 1e-15.5 .. 1e-12.5 rad from a toggle:
     never a status other than CONVERGED / SINGULAR / NOT_ASSEMBLABLE-within-rounding, and
-    every CONVERGED point within its residual bound *plus* the conditioning of the data
-    (a few ulp * L / (r_other |sin|)). See the xfail above for the 1e-9 rad claim."""
+    every CONVERGED point within 1e-9 rad of the truth (the README's claim)."""
     rng = np.random.default_rng(34)
     for r, tg in _toggle_cases(rng, 25):
         fb = pk.FourBar(*r)
@@ -439,13 +424,8 @@ def test_near_toggle_random_approach_is_flagged_or_right():
                 tr = mp_solve(r, t, mode)
                 s = fb.solve(t, mode=mode)
                 if s.status == S.CONVERGED:
-                    big = max(r)
-                    for got, want, other in (
-                        (s.theta3, tr.theta3, r[2]),
-                        (s.theta4, tr.theta4, r[3]),
-                    ):
-                        cond = 16 * 2.2e-16 * big / (other * abs(float(tr.sin34)))
-                        assert angdiff(got, want) < cond + 1e-12
+                    assert angdiff(s.theta3, tr.theta3) < 1e-9
+                    assert angdiff(s.theta4, tr.theta4) < 1e-9
                 else:
                     assert s.status in (S.SINGULAR, S.NOT_ASSEMBLABLE)
                     assert not resolvable(r, tr.sin34, 1e-9)

@@ -5,9 +5,8 @@ import math
 
 import mpmath as mp
 import numpy as np
-import pytest
-
 import planarkin as pk
+import pytest
 from planarkin.reference import closed_form_vectorized
 
 mp.mp.dps = 50
@@ -48,7 +47,10 @@ def test_seed_turns_fully_with_the_rocker_range_of_the_closed_form():
     assert math.degrees(lim.rocker_min) == pytest.approx(101.54, abs=5e-3)
     assert math.degrees(lim.rocker_max) == pytest.approx(150.07, abs=5e-3)
     # extremes are maxima of the mpmath theta4(theta2): check stationarity and value
-    for t2, t4 in ((lim.rocker_min_theta2, lim.rocker_min), (lim.rocker_max_theta2, lim.rocker_max)):
+    for t2, t4 in (
+        (lim.rocker_min_theta2, lim.rocker_min),
+        (lim.rocker_max_theta2, lim.rocker_max),
+    ):
         assert float(mp_theta4(SEED, mp.mpf(t2), "open")) == pytest.approx(t4, abs=1e-12)
         slope = mp.diff(lambda t: mp_theta4(SEED, t, "open"), mp.mpf(t2))
         assert abs(slope) < 1e-7

@@ -62,7 +62,7 @@ def check_point(r, t2, mode, t3, t4, status, residual, tol):
         if status == S.NOT_ASSEMBLABLE:
             # mpmath agrees, or the angle is within rounding of a toggle
             assert tr is None or abs(float(tr.sin34)) < 1e-7 or near_toggle(r, t2, 1e-12)
-        elif status in (S.SINGULAR, S.MAX_ITERATIONS):
+        elif status in (S.SINGULAR, S.MAX_ITERATIONS, S.PRECISION_LOSS):
             # only where double precision cannot comfortably resolve tol rad (a dead point,
             # or a tol near the rounding floor there), or within rounding of a toggle
             assert tr is None or not resolvable(r, tr.sin34, tol) or near_toggle(r, t2, 1e-9)

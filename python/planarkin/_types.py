@@ -19,9 +19,10 @@ TAU = 2.0 * math.pi
 DEFAULT_THETA2 = np.arange(361) * (TAU / 360)
 DEFAULT_THETA2.setflags(write=False)
 
-#: A converged point whose |sin(theta4 - theta3)| is below this is reported SINGULAR:
-#: there an angle cannot be resolved to ~1e-9 rad from double-precision data.
-SINGULAR_THRESHOLD = 1e-7
+#: A position whose conditioning |sin(theta4 - theta3)| min(r3, r4) / L is below this is
+#: SINGULAR: rounding moves the angles by about c eps / conditioning (c measured up to
+#: 1.75 near toggles), so above it every converged angle is within 1e-9 rad.
+SINGULAR_THRESHOLD = 1e-6
 
 MODES = ("open", "crossed")
 PREDICTORS = ("previous", "tangent", "quadratic")
@@ -36,13 +37,16 @@ class Status(IntEnum):
     MAX_ITERATIONS = -2
     #: The crank angle, a residual or an iterate was NaN or infinite.
     NON_FINITE = -3
-    #: |sin(theta4 - theta3)| below the singular threshold (a dead or change point, where
-    #: the two modes meet), or so small that rounding keeps the Newton correction above tol.
+    #: Conditioning |sin(theta4 - theta3)| min(r3, r4) / L below the singular threshold:
+    #: a dead (toggle) or change point, where the two assembly modes meet.
     SINGULAR = -4
     #: The loop cannot close at this crank angle (known before any iteration).
     NOT_ASSEMBLABLE = -5
     #: Newton converged, but on the other assembly mode than the one requested.
     BRANCH_JUMP = -6
+    #: The residual is below ``tol`` but rounding keeps the Newton correction above it:
+    #: ``tol`` asks for more than double precision resolves at this point.
+    PRECISION_LOSS = -7
 
     @property
     def message(self) -> str:
@@ -51,12 +55,15 @@ class Status(IntEnum):
 
 
 _MESSAGES = {
-    Status.CONVERGED: "converged: residual and Newton correction below tolerance on the requested mode",
+    Status.CONVERGED: (
+        "converged: residual and Newton correction below tolerance on the requested mode"
+    ),
     Status.MAX_ITERATIONS: "maximum number of iterations reached without convergence",
     Status.NON_FINITE: "a non-finite value (NaN or infinity) was met",
     Status.SINGULAR: "singular: dead (toggle) or change point, the two modes meet",
     Status.NOT_ASSEMBLABLE: "not assemblable: the loop cannot close at this crank angle",
     Status.BRANCH_JUMP: "converged on the other assembly mode than the one requested",
+    Status.PRECISION_LOSS: "tolerance below what double precision resolves at this point",
 }
 
 
@@ -302,5 +309,7 @@ def check_guess(guess: object) -> tuple[float, float] | None:
 
 def check_predictor(predictor: object) -> str:
     if predictor not in PREDICTORS:
-        raise ValueError(f"predictor must be 'previous', 'tangent' or 'quadratic', got {predictor!r}")
+        raise ValueError(
+            f"predictor must be 'previous', 'tangent' or 'quadratic', got {predictor!r}"
+        )
     return predictor  # type: ignore[return-value]

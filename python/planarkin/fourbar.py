@@ -53,7 +53,9 @@ class FourBar:
     __slots__ = ("_core",)
 
     def __init__(self, r1: float, r2: float, r3: float, r4: float) -> None:
-        r = [as_float(n, v) for n, v in zip(("r1", "r2", "r3", "r4"), (r1, r2, r3, r4), strict=True)]
+        r = [
+            as_float(n, v) for n, v in zip(("r1", "r2", "r3", "r4"), (r1, r2, r3, r4), strict=True)
+        ]
         self._core = _core.FourBar(*r)
 
     @property

@@ -131,6 +131,11 @@ def _trig(x3: float, x4: float, cache: list) -> tuple:
     return s3, c3, s4, c4
 
 
+def _conditioning(r: tuple, sin34: float) -> float:
+    """|sin(theta4 - theta3)| min(r3, r4) / L, as the kernel measures it."""
+    return abs(sin34) * (min(r[2], r[3]) / max(r))
+
+
 def _cramer(j: tuple, b0: float, b1: float):
     j00, j01, j10, j11 = j
     d = j00 * j11 - j01 * j10
@@ -161,7 +166,7 @@ def _newton(r, c2, s2, x3, x4, sign, tol, max_iter, hist, cache):
             hist.append(residual if finite else _NAN)
         if not finite:
             return _NAN, _NAN, Status.NON_FINITE, nit, _NAN, j
-        if abs(_sin34(r, j)) < SINGULAR_THRESHOLD:
+        if _conditioning(r, _sin34(r, j)) < SINGULAR_THRESHOLD:
             return _NAN, _NAN, Status.SINGULAR, nit, residual, j
         step = _cramer(j, -f1, -f2)
         if step is None:
@@ -173,7 +178,7 @@ def _newton(r, c2, s2, x3, x4, sign, tol, max_iter, hist, cache):
                     return _NAN, _NAN, Status.BRANCH_JUMP, nit, residual, j
                 return wrap(x3), wrap(x4), Status.CONVERGED, nit, residual, j
             if size > 0.5 * last_small_step:
-                return _NAN, _NAN, Status.SINGULAR, nit, residual, j
+                return _NAN, _NAN, Status.PRECISION_LOSS, nit, residual, j
             last_small_step = size
         if nit >= max_iter:
             return _NAN, _NAN, Status.MAX_ITERATIONS, nit, residual, j
@@ -234,7 +239,10 @@ def _velocity(r, t2, t3, t4, w2):
     r2 = r[1]
     s2, c2 = math.sin(t2), math.cos(t2)
     b0, b1 = r2 * s2 * w2, -(r2 * c2) * w2
-    if not all(math.isfinite(v) for v in (*j, b0, b1)) or abs(_sin34(r, j)) < SINGULAR_THRESHOLD:
+    if (
+        not all(math.isfinite(v) for v in (*j, b0, b1))
+        or _conditioning(r, _sin34(r, j)) < SINGULAR_THRESHOLD
+    ):
         return _NAN, _NAN
     out = _cramer(j, b0, b1)
     return out if out is not None else (_NAN, _NAN)
@@ -247,7 +255,10 @@ def _acceleration(r, t2, t3, t4, w2, w3, w4, a2):
     w2s, w3s, w4s = w2 * w2, w3 * w3, w4 * w4
     b1 = r2 * s2 * a2 + r2 * c2 * w2s + r3 * c3 * w3s - r4 * c4 * w4s
     b2 = -(r2 * c2) * a2 + r2 * s2 * w2s + r3 * s3 * w3s - r4 * s4 * w4s
-    if not all(math.isfinite(v) for v in (*j, b1, b2)) or abs(_sin34(r, j)) < SINGULAR_THRESHOLD:
+    if (
+        not all(math.isfinite(v) for v in (*j, b1, b2))
+        or _conditioning(r, _sin34(r, j)) < SINGULAR_THRESHOLD
+    ):
         return _NAN, _NAN
     out = _cramer(j, b1, b2)
     return out if out is not None else (_NAN, _NAN)

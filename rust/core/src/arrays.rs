@@ -32,7 +32,7 @@ pub fn closed_form_into(
         } else {
             match fb.closed_form(t2, mode) {
                 Assembly::Closed { theta3, theta4, sin34 } => {
-                    let st = if sin34.abs() < singular { Status::Singular } else { Status::Converged };
+                    let st = if fb.conditioning(sin34) < singular { Status::Singular } else { Status::Converged };
                     (theta3, theta4, st)
                 }
                 Assembly::NotAssemblable => (f64::NAN, f64::NAN, Status::NotAssemblable),

@@ -111,6 +111,8 @@ impl Point {
 pub struct FourBar {
     r: [f64; 4],
     longest: f64,
+    /// min(r3, r4) / longest: turns |sin(theta4 - theta3)| into the conditioning measure.
+    cond_scale: f64,
 }
 
 impl FourBar {
@@ -126,7 +128,8 @@ impl FourBar {
 
     /// For lengths already validated (batches validate once up front).
     pub(crate) fn new_unchecked(r: [f64; 4]) -> Self {
-        FourBar { r, longest: r[0].max(r[1]).max(r[2]).max(r[3]) }
+        let longest = r[0].max(r[1]).max(r[2]).max(r[3]);
+        FourBar { r, longest, cond_scale: r[2].min(r[3]) / longest }
     }
 
     /// The lengths [r1, r2, r3, r4].
@@ -321,13 +324,21 @@ impl FourBar {
         self.solve_linear(&j, Vector2::new(b1, b2), singular)
     }
 
-    /// Solves J x = b by Cramer's rule, refusing when |sin(theta4 - theta3)| < singular.
+    /// Dimensionless conditioning of a position with branch indicator `sin34`:
+    /// |sin(theta4 - theta3)| min(r3, r4) / L. Rounding of the loop residual (~eps L)
+    /// moves the angles by about eps / conditioning.
+    #[inline]
+    pub fn conditioning(&self, sin34: f64) -> f64 {
+        sin34.abs() * self.cond_scale
+    }
+
+    /// Solves J x = b by Cramer's rule, refusing when the conditioning is below `singular`.
     fn solve_linear(&self, j: &Matrix2<f64>, b: Vector2<f64>, singular: f64) -> ([f64; 2], Status) {
         let ok = j.iter().chain(b.iter()).all(|v| v.is_finite());
         if !ok {
             return ([f64::NAN; 2], Status::NonFinite);
         }
-        if self.sin34_of(j).abs() < singular {
+        if self.conditioning(self.sin34_of(j)) < singular {
             return ([f64::NAN; 2], Status::Singular);
         }
         match cramer(j, &b) {
@@ -448,10 +459,11 @@ impl System<2> for Loop<'_> {
         self.fb.longest
     }
 
-    /// |sin(theta4 - theta3)| = |det J| / (r3 r4): the Hadamard ratio, without square roots.
+    /// |sin(theta4 - theta3)| min(r3, r4) / L: the Hadamard ratio |det J| / (r3 r4) times
+    /// the ratio that turns residual rounding into angle error.
     #[inline]
     fn conditioning(&self, j: &Matrix2<f64>) -> f64 {
-        self.sin34(j).abs()
+        self.fb.conditioning(self.sin34(j))
     }
 
     #[inline]

@@ -11,25 +11,28 @@ pub enum Status {
     MaxIterations = -2,
     /// The crank angle, a residual or an iterate was NaN or infinite.
     NonFinite = -3,
-    /// |sin(theta4 - theta3)| fell below the singular threshold (a dead or change point,
-    /// where the two modes meet), or is so small that rounding keeps the Newton correction
-    /// above `tol`.
+    /// The conditioning |sin(theta4 - theta3)| min(r3, r4) / L fell below the singular
+    /// threshold: a dead (toggle) or change point, where the two assembly modes meet.
     Singular = -4,
     /// The loop cannot close at this crank angle (known from the geometry, before any iteration).
     NotAssemblable = -5,
     /// Newton converged, but on the other assembly mode than the one requested.
     BranchJump = -6,
+    /// The residual is below `tol` but rounding keeps the Newton correction above it: `tol`
+    /// asks for more than double precision resolves at this conditioning.
+    PrecisionLoss = -7,
 }
 
 impl Status {
     /// All statuses, in code order from 0 down.
-    pub const ALL: [Status; 6] = [
+    pub const ALL: [Status; 7] = [
         Status::Converged,
         Status::MaxIterations,
         Status::NonFinite,
         Status::Singular,
         Status::NotAssemblable,
         Status::BranchJump,
+        Status::PrecisionLoss,
     ];
 
     /// The `i8` code stored in status arrays.
@@ -53,6 +56,7 @@ impl Status {
             Status::Singular => "singular: dead (toggle) or change point, the two modes meet",
             Status::NotAssemblable => "not assemblable: the loop cannot close at this crank angle",
             Status::BranchJump => "converged on the other assembly mode than the one requested",
+            Status::PrecisionLoss => "tolerance below what double precision resolves at this point",
         }
     }
 }
