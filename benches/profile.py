@@ -52,7 +52,8 @@ def _profile(kind: str, reps: int, tmp: str) -> dict[str, int]:
     out = os.path.join(tmp, f"cg.{reps}.out")
     cmd = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}",
            sys.executable, __file__, kind, "--run", str(reps)]  # fmt: skip
-    subprocess.run(cmd, capture_output=True, text=True, check=True)
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}  # idle BLAS threads spin otherwise
+    subprocess.run(cmd, capture_output=True, text=True, check=True, env=env)
     ann = subprocess.run(["callgrind_annotate", "--inclusive=no", "--threshold=100", out],
                          capture_output=True, text=True, check=True).stdout  # fmt: skip
     fns: dict[str, int] = {}

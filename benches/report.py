@@ -155,6 +155,18 @@ def run_criterion(quick: bool = False) -> dict:
     return out
 
 
+def compact_pytest_json() -> None:
+    """Drops the raw per-round samples (tens of MB) from the pytest-benchmark JSON; the
+    statistics stay."""
+    path = os.path.join(RESULTS, "pytest.json")
+    with open(path) as f:
+        data = json.load(f)
+    for b in data["benchmarks"]:
+        b["stats"].pop("data", None)
+    with open(path, "w") as f:
+        json.dump(data, f, indent=1)
+
+
 def run_all(quick: bool = False) -> None:
     """``quick``: a smoke run (criterion --quick, one round each, a 10 000-row memory
     batch, a small tradeoff) to debug the pipeline; its numbers are not for publishing."""
@@ -177,6 +189,7 @@ def run_all(quick: bool = False) -> None:
         cmd = [*PYTEST_CMD, "--benchmark-min-rounds=1", "--benchmark-max-time=0.05"]
         env["PLANARKIN_BENCH_MEMORY_M"] = "10000"
     subprocess.run(cmd, check=True, cwd=ROOT, env=env)
+    compact_pytest_json()
     print("== tradeoff", flush=True)
     from planarkin.tradeoff import tradeoff
 
@@ -475,9 +488,12 @@ def render() -> None:
         L += [
             f"## Peak memory of one {mem[0]['extra_info']['m']} x 361 batch",
             "",
-            "Each call measured in a fresh process (`benches/memory.py`): peak RSS "
-            "(`getrusage` maxrss) after the call minus the peak after importing and building "
-            "the inputs, compared with the bytes of the arrays the call returns.",
+            "Each call measured in a fresh process (`benches/memory.py`): the peak RSS "
+            "(Linux VmHWM) after the call minus the RSS after importing, building the inputs "
+            "and a small warm-up call (where the peak mark is reset), compared with the bytes "
+            "of the arrays the call returns. (`getrusage` maxrss is not used on Linux: a "
+            "child inherits its parent's maxrss across fork and exec, so under pytest it "
+            "starts at the size of the pytest process.)",
             "",
             "| call | time | peak RSS increase | output arrays | beyond the output |",
             "|---|---:|---:|---:|---:|",
