@@ -261,5 +261,4 @@ def closed_form_batch(
     th = None if threads is None else as_int("threads", threads)
     if th is not None and th < 1:
         raise ValueError(f"threads must be >= 1 or None, got {th}")
-    t3, t4, _ = _core.closed_form_batch(arr, t2, mode, th)
-    return t3, t4
+    return _core.closed_form_batch(arr, t2, mode, th)

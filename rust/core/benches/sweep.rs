@@ -10,6 +10,7 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use planarkin_core::arrays::closed_form_into;
 use planarkin_core::batch::{closed_form_batch, sweep_batch, validate_links, BatchOut};
+use planarkin_core::newton::SINGULAR_THRESHOLD;
 use planarkin_core::sweep::{default_angles, sweep_into, SweepOut};
 use planarkin_core::{FourBar, Mode, NewtonOptions, Predictor, SweepOptions};
 
@@ -69,7 +70,9 @@ fn seed_sweep(c: &mut Criterion) {
     });
     let (mut t3, mut t4, mut st) = (vec![0.0; N], vec![0.0; N], vec![0i8; N]);
     g.bench_function("closed_form", |bch| {
-        bch.iter(|| closed_form_into(black_box(&fb), black_box(&t2), Mode::Open, 1e-7, &mut t3, &mut t4, &mut st))
+        bch.iter(|| {
+            closed_form_into(black_box(&fb), black_box(&t2), Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st)
+        })
     });
     g.finish();
 }
@@ -118,9 +121,11 @@ fn batch(c: &mut Criterion) {
             )
         });
     }
-    let (mut t3, mut t4, mut st) = (vec![0.0; m * N], vec![0.0; m * N], vec![0i8; m * N]);
+    let (mut t3, mut t4) = (vec![0.0; m * N], vec![0.0; m * N]);
     g.bench_function("closed_form_threads_1", |bch| {
-        bch.iter(|| closed_form_batch(&fbs, &t2, Mode::Open, 1e-7, &mut t3, &mut t4, &mut st, Some(1)).unwrap())
+        bch.iter(|| {
+            closed_form_batch(&fbs, &t2, Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, None, Some(1)).unwrap()
+        })
     });
     g.finish();
 }

@@ -15,8 +15,8 @@ fn same_len(name: &str, got: usize, n: usize) -> Result<(), Error> {
 }
 
 /// Closed form of `mode` at each crank angle, with a status: Converged, NotAssemblable,
-/// Singular (|sin(theta4 - theta3)| below `singular`, or indeterminate), NonFinite.
-/// Angles are NaN only where no solution exists or it is indeterminate.
+/// Singular (conditioning below `singular`, or indeterminate), NonFinite. Angles are NaN
+/// only where no solution exists or it is indeterminate.
 pub fn closed_form_into(
     fb: &FourBar,
     theta2: &[f64],
@@ -26,11 +26,28 @@ pub fn closed_form_into(
     theta4: &mut [f64],
     status: &mut [i8],
 ) {
-    for (i, &t2) in theta2.iter().enumerate() {
+    let trig: Vec<(f64, f64)> = theta2.iter().map(|t| t.sin_cos()).collect();
+    closed_form_trig(fb, theta2, &trig, mode, singular, theta3, theta4, Some(status));
+}
+
+/// [`closed_form_into`] from precomputed (sin, cos) of the crank angles (shared across a
+/// batch); the status is written only when a slice is given.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn closed_form_trig(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    mode: Mode,
+    singular: f64,
+    theta3: &mut [f64],
+    theta4: &mut [f64],
+    mut status: Option<&mut [i8]>,
+) {
+    for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
         let (t3, t4, st) = if !t2.is_finite() {
             (f64::NAN, f64::NAN, Status::NonFinite)
         } else {
-            match fb.closed_form(t2, mode) {
+            match fb.closed_form_cs(c2, s2, mode) {
                 Assembly::Closed { theta3, theta4, sin34 } => {
                     let st = if fb.conditioning(sin34) < singular { Status::Singular } else { Status::Converged };
                     (theta3, theta4, st)
@@ -41,7 +58,9 @@ pub fn closed_form_into(
         };
         theta3[i] = t3;
         theta4[i] = t4;
-        status[i] = st.code();
+        if let Some(s) = status.as_deref_mut() {
+            s[i] = st.code();
+        }
     }
 }
 

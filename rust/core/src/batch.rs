@@ -6,7 +6,7 @@ use std::sync::{Arc, Mutex};
 
 use rayon::prelude::*;
 
-use crate::arrays::closed_form_into;
+use crate::arrays::closed_form_trig;
 use crate::error::{positive_finite, Error};
 use crate::fourbar::{FourBar, Mode};
 use crate::sweep::{sin_cos, sweep_unchecked, SweepOptions, SweepOut};
@@ -30,7 +30,9 @@ pub fn validate_links(links: &[f64]) -> Result<Vec<FourBar>, Error> {
         .enumerate()
         .map(|(i, r)| {
             for (k, &v) in r.iter().enumerate() {
-                positive_finite(format!("links[{i}, {k}]"), v)?;
+                if !(v.is_finite() && v > 0.0) {
+                    positive_finite(format!("links[{i}, {k}]"), v)?; // the name is built only on error
+                }
             }
             Ok(FourBar::new_unchecked([r[0], r[1], r[2], r[3]]))
         })
@@ -105,7 +107,8 @@ pub fn sweep_batch(
     })
 }
 
-/// Closed form of `mode` for every linkage at the same crank angles.
+/// Closed form of `mode` for every linkage at the same crank angles. The status array is
+/// optional: callers that only want the angles skip its memory.
 #[allow(clippy::too_many_arguments)]
 pub fn closed_form_batch(
     links: &[FourBar],
@@ -114,24 +117,26 @@ pub fn closed_form_batch(
     singular: f64,
     theta3: &mut [f64],
     theta4: &mut [f64],
-    status: &mut [i8],
+    status: Option<&mut [i8]>,
     threads: Option<usize>,
 ) -> Result<(), Error> {
     let n = theta2.len();
     let mn = links.len() * n;
     check("theta3", theta3.len(), mn)?;
     check("theta4", theta4.len(), mn)?;
-    check("status", status.len(), mn)?;
+    if let Some(s) = &status {
+        check("status", s.len(), mn)?;
+    }
     if n == 0 {
         return Ok(());
     }
-    with_threads(threads, || {
-        theta3
-            .par_chunks_mut(n)
-            .zip(theta4.par_chunks_mut(n))
+    let trig = sin_cos(theta2);
+    let rows = theta3.par_chunks_mut(n).zip(theta4.par_chunks_mut(n)).zip(links.par_iter());
+    with_threads(threads, || match status {
+        Some(status) => rows
             .zip(status.par_chunks_mut(n))
-            .zip(links.par_iter())
-            .for_each(|(((t3, t4), st), fb)| closed_form_into(fb, theta2, mode, singular, t3, t4, st))
+            .for_each(|(((t3, t4), fb), st)| closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, Some(st))),
+        None => rows.for_each(|((t3, t4), fb)| closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, None)),
     })
 }
 

@@ -310,7 +310,7 @@ fn sweep_batch<'py>(
     Ok((grid(py, m, n, t3), grid(py, m, n, t4), grid(py, m, n, st), grid(py, m, n, nit), grid(py, m, n, res)))
 }
 
-/// Closed form for M linkages at N crank angles in parallel: (M, N) arrays.
+/// Closed form for M linkages at N crank angles in parallel: (theta3, theta4) (M, N) arrays.
 #[pyfunction]
 #[pyo3(signature = (links, theta2, mode, threads))]
 fn closed_form_batch<'py>(
@@ -319,17 +319,17 @@ fn closed_form_batch<'py>(
     theta2: PyReadonlyArray1<'py, f64>,
     mode: &str,
     threads: Option<usize>,
-) -> PyResult<(Arr2<'py, f64>, Arr2<'py, f64>, Arr2<'py, i8>)> {
+) -> PyResult<(Arr2<'py, f64>, Arr2<'py, f64>)> {
     let mode = Mode::parse(mode).map_err(err)?;
     let fbs = links_of(&links)?;
     let t2 = slice("theta2", &theta2)?;
     let (m, n) = (fbs.len(), t2.len());
-    let (mut t3, mut t4, mut st) = (vec![0.0; m * n], vec![0.0; m * n], vec![0i8; m * n]);
+    let (mut t3, mut t4) = (vec![0.0; m * n], vec![0.0; m * n]);
     py.detach(|| {
-        batch::closed_form_batch(&fbs, t2, mode, core::newton::SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st, threads)
+        batch::closed_form_batch(&fbs, t2, mode, core::newton::SINGULAR_THRESHOLD, &mut t3, &mut t4, None, threads)
     })
     .map_err(err)?;
-    Ok((grid(py, m, n, t3), grid(py, m, n, t4), grid(py, m, n, st)))
+    Ok((grid(py, m, n, t3), grid(py, m, n, t4)))
 }
 
 /// The extension module.
