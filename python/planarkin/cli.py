@@ -108,7 +108,8 @@ def _linkage_options() -> argparse.ArgumentParser:
         "--tol",
         type=float,
         default=1e-9,
-        help="Newton tolerance on max(|f1|, |f2|) / longest link (default: %(default)s)",
+        help="Newton tolerance on max(|f1|, |f2|) / longest link and on the next Newton "
+        "correction in rad (default: %(default)s)",
     )
     g.add_argument(
         "--max-iter",
