@@ -41,6 +41,18 @@ def test_planarkin_sweep(benchmark, seed_fb, predictor):
     )
 
 
+def test_planarkin_sweep_closed_form_method(benchmark, seed_fb):
+    s = benchmark(seed_fb.sweep, method="closed-form")
+    assert s.summary().converged == 361
+    record(
+        benchmark,
+        "pk_sweep_closed_form",
+        "planarkin fb.sweep(method='closed-form') (Sweep with statuses)",
+        nit_mean=0.0,
+        max_error=_check(s.theta3, s.theta4, 1e-15),
+    )
+
+
 def test_planarkin_closed_form(benchmark, seed_fb):
     t3, t4 = benchmark(seed_fb.closed_form, THETA2)
     record(
@@ -129,7 +141,7 @@ def test_layers_api(benchmark, seed_fb):
 @pytest.mark.benchmark(group="seed sweep: Python layers")
 def test_layers_binding(benchmark, seed_fb):
     core = seed_fb._core
-    benchmark(core.sweep, THETA2, "open", None, 1e-9, 100, "quadratic", None, None)
+    benchmark(core.sweep, THETA2, "open", None, 1e-9, 100, "quadratic", "newton", None, None)
     record(benchmark, "layers_binding", "fb._core.sweep(...) (the pyo3 binding alone)")
 
 
@@ -137,7 +149,7 @@ def test_layers_binding(benchmark, seed_fb):
 def test_layers_binding_one_point(benchmark, seed_fb):
     core = seed_fb._core
     t2 = THETA2[:1].copy()
-    benchmark(core.sweep, t2, "open", None, 1e-9, 100, "quadratic", None, None)
+    benchmark(core.sweep, t2, "open", None, 1e-9, 100, "quadratic", "newton", None, None)
     record(benchmark, "layers_binding_1pt", "fb._core.sweep(...) on 1 angle (fixed call cost)")
 
 

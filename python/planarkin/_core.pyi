@@ -44,6 +44,7 @@ class FourBar:
         tol: float,
         max_iter: int,
         predictor: str,
+        method: str,
         omega2: float | None,
         alpha2: float | None,
     ) -> tuple[
@@ -84,6 +85,7 @@ def sweep_batch(
     tol: float,
     max_iter: int,
     predictor: str,
+    method: str,
     threads: int | None,
 ) -> tuple[
     npt.NDArray[np.float64],

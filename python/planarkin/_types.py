@@ -26,6 +26,7 @@ SINGULAR_THRESHOLD = 1e-6
 
 MODES = ("open", "crossed")
 PREDICTORS = ("previous", "tangent", "quadratic")
+METHODS = ("newton", "closed-form")
 
 
 class Status(IntEnum):
@@ -129,6 +130,8 @@ class Sweep:
     alpha2: float | None = None
     alpha3: np.ndarray | None = None
     alpha4: np.ndarray | None = None
+    #: "newton" or "closed-form" (no iterations; residual not computed, NaN).
+    method: str = "newton"
 
     @property
     def success(self) -> np.ndarray:
@@ -229,6 +232,7 @@ class BatchSweep:
     status: np.ndarray
     nit: np.ndarray
     residual: np.ndarray
+    method: str = "newton"
 
     @property
     def success(self) -> np.ndarray:
@@ -305,6 +309,12 @@ def check_guess(guess: object) -> tuple[float, float] | None:
     except (TypeError, ValueError):
         raise ValueError(f"guess must be a pair (theta3, theta4), got {guess!r}") from None
     return as_float("guess[0]", a), as_float("guess[1]", b)
+
+
+def check_method(method: object) -> str:
+    if method not in METHODS:
+        raise ValueError(f"method must be 'newton' or 'closed-form', got {method!r}")
+    return method  # type: ignore[return-value]
 
 
 def check_predictor(predictor: object) -> str:

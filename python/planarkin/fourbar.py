@@ -18,6 +18,7 @@ from ._types import (
     as_int,
     as_theta2_1d,
     check_guess,
+    check_method,
     check_mode,
     check_options,
     check_predictor,
@@ -130,6 +131,7 @@ class FourBar:
         tol: float = 1e-9,
         max_iter: int = 100,
         predictor: str = "quadratic",
+        method: str = "newton",
         omega2: float | None = None,
         alpha2: float | None = None,
     ) -> Sweep:
@@ -142,21 +144,29 @@ class FourBar:
         point whose continuation fails, starts from the closed form of ``mode``, so a
         sweep never follows the other assembly mode. ``omega2`` fills omega3/omega4,
         and ``alpha2`` (with omega2) alpha3/alpha4.
+
+        ``method="closed-form"`` solves every point by the four-bar's closed form instead:
+        the same statuses and velocities, no iterations (``nit`` 0, ``residual`` NaN: not
+        computed); faster, but only the four-bar has one.
         """
         t2 = as_theta2_1d(theta2)
         mode = check_mode(mode)
         tol, max_iter = check_options(tol, max_iter)
         predictor = check_predictor(predictor)
+        method = check_method(method)
         g = check_guess(guess)
         w2 = None if omega2 is None else as_float("omega2", omega2)
         a2 = None if alpha2 is None else as_float("alpha2", alpha2)
         if a2 is not None and w2 is None:
             raise ValueError("alpha2 needs omega2: accelerations depend on the crank speed")
-        t3, t4, st, nit, res, w, a = self._core.sweep(t2, mode, g, tol, max_iter, predictor, w2, a2)
+        t3, t4, st, nit, res, w, a = self._core.sweep(
+            t2, mode, g, tol, max_iter, predictor, method, w2, a2
+        )
         return Sweep(
             self.lengths, mode, t2, t3, t4, st, nit, res,
             omega2=w2, omega3=w[0] if w else None, omega4=w[1] if w else None,
             alpha2=a2, alpha3=a[0] if a else None, alpha4=a[1] if a else None,
+            method=method,
         )  # fmt: skip
 
     def closed_form(self, theta2: object, mode: str = "open") -> tuple:
@@ -218,6 +228,13 @@ class FourBar:
         return _shaped(shape, _core.transmission(t3, t4)[1])[0]
 
 
+def _threads(threads: object) -> int | None:
+    th = None if threads is None else as_int("threads", threads)
+    if th is not None and th < 1:
+        raise ValueError(f"threads must be >= 1 or None, got {th}")
+    return th
+
+
 def _links(links: object) -> np.ndarray:
     arr = as_angles("links", links)
     if arr.ndim != 2 or arr.shape[1] != 4:
@@ -233,21 +250,21 @@ def sweep_batch(
     tol: float = 1e-9,
     max_iter: int = 100,
     predictor: str = "quadratic",
+    method: str = "newton",
     threads: int | None = None,
 ) -> BatchSweep:
     """Sweeps M linkages (an (M, 4) array of r1, r2, r3, r4) over N crank angles, in
     parallel over linkages with the GIL released. Returns (M, N) arrays. ``threads=None``
-    uses all cores."""
+    uses all cores; ``method="closed-form"`` as in :meth:`FourBar.sweep`."""
     arr = _links(links)
     t2 = as_theta2_1d(theta2)
     mode = check_mode(mode)
     tol, max_iter = check_options(tol, max_iter)
     predictor = check_predictor(predictor)
-    th = None if threads is None else as_int("threads", threads)
-    if th is not None and th < 1:
-        raise ValueError(f"threads must be >= 1 or None, got {th}")
-    t3, t4, st, nit, res = _core.sweep_batch(arr, t2, mode, tol, max_iter, predictor, th)
-    return BatchSweep(arr, mode, t2, t3, t4, st, nit, res)
+    method = check_method(method)
+    th = _threads(threads)
+    t3, t4, st, nit, res = _core.sweep_batch(arr, t2, mode, tol, max_iter, predictor, method, th)
+    return BatchSweep(arr, mode, t2, t3, t4, st, nit, res, method)
 
 
 def closed_form_batch(
@@ -258,7 +275,4 @@ def closed_form_batch(
     arr = _links(links)
     t2 = as_theta2_1d(theta2)
     mode = check_mode(mode)
-    th = None if threads is None else as_int("threads", threads)
-    if th is not None and th < 1:
-        raise ValueError(f"threads must be >= 1 or None, got {th}")
-    return _core.closed_form_batch(arr, t2, mode, th)
+    return _core.closed_form_batch(arr, t2, mode, _threads(threads))

@@ -21,6 +21,7 @@ from ._types import (
     as_float,
     as_theta2_1d,
     check_guess,
+    check_method,
     check_mode,
     check_options,
     check_predictor,
@@ -273,16 +274,18 @@ def sweep(
     tol=1e-9,
     max_iter=100,
     predictor="quadratic",
+    method="newton",
     omega2=None,
     alpha2=None,
 ):
     """Reference of :meth:`planarkin.FourBar.sweep`: the same continuation, predictors
-    and closed-form fallback, one point at a time in Python."""
+    and closed-form fallback (or the closed form alone), one point at a time in Python."""
     r = _lengths(fb)
     t2s = as_theta2_1d(theta2)
     mode = check_mode(mode)
     tol, max_iter = check_options(tol, max_iter)
     predictor = check_predictor(predictor)
+    method = check_method(method)
     g = check_guess(guess)
     sign = _sign(mode)
     n = len(t2s)
@@ -299,6 +302,15 @@ def sweep(
             a3o, a4o = np.full(n, _NAN), np.full(n, _NAN)
     prev = None
     for i, t2 in enumerate(t2s.tolist()):
+        if method == "closed-form":
+            t3, t4, st = _closed_point(r, t2, sign)
+            t3o[i], t4o[i], sto[i], nito[i], reso[i] = t3, t4, st, 0, _NAN
+            if st == Status.CONVERGED and w3o is not None:
+                w3, w4 = _velocity(r, t2, t3, t4, omega2)
+                w3o[i], w4o[i] = w3, w4
+                if a3o is not None:
+                    a3o[i], a4o[i] = _acceleration(r, t2, t3, t4, omega2, w3, w4, alpha2)
+            continue
         if prev is not None:
             pt2, (x3, x4), (v3, v4), (a3, a4) = prev
             h = wrap(t2 - pt2)
@@ -326,8 +338,20 @@ def sweep(
     return Sweep(
         r, mode, t2s, t3o, t4o, sto, nito, reso,
         omega2=omega2, omega3=w3o, omega4=w4o,
-        alpha2=alpha2 if a3o is not None else None, alpha3=a3o, alpha4=a4o,
+        alpha2=alpha2 if a3o is not None else None, alpha3=a3o, alpha4=a4o, method=method,
     )  # fmt: skip
+
+
+def _closed_point(r, t2, sign):
+    """One point of a closed-form sweep: (theta3, theta4, status)."""
+    if not math.isfinite(t2):
+        return _NAN, _NAN, Status.NON_FINITE
+    cf = _closed(r, math.cos(t2), math.sin(t2), sign)
+    if cf == "not-assemblable":
+        return _NAN, _NAN, Status.NOT_ASSEMBLABLE
+    if cf == "indeterminate" or _conditioning(r, cf[2]) < SINGULAR_THRESHOLD:
+        return _NAN, _NAN, Status.SINGULAR
+    return cf[0], cf[1], Status.CONVERGED
 
 
 def _sweep_point(r, t2, mode, sign, start, tol, max_iter):

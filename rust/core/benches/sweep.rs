@@ -11,13 +11,13 @@ use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughpu
 use planarkin_core::arrays::closed_form_into;
 use planarkin_core::batch::{closed_form_batch, sweep_batch, validate_links, BatchOut};
 use planarkin_core::newton::SINGULAR_THRESHOLD;
-use planarkin_core::sweep::{default_angles, sweep_into, SweepOut};
+use planarkin_core::sweep::{default_angles, sweep_into, Method, SweepOut};
 use planarkin_core::{FourBar, Mode, NewtonOptions, Predictor, SweepOptions};
 
 const N: usize = 361;
 
 fn opts(predictor: Predictor) -> SweepOptions {
-    SweepOptions { mode: Mode::Open, newton: NewtonOptions::default(), predictor }
+    SweepOptions { mode: Mode::Open, newton: NewtonOptions::default(), predictor, method: Method::Newton }
 }
 
 /// Output buffers of one sweep, allocated once outside the timed loop.

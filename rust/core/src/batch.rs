@@ -152,7 +152,12 @@ mod tests {
         let links = validate_links(&raw).unwrap();
         let t2 = default_angles(361);
         let n = t2.len();
-        let opts = SweepOptions { mode: Mode::Open, newton: NewtonOptions::default(), predictor: Predictor::Tangent };
+        let opts = SweepOptions {
+            mode: Mode::Open,
+            newton: NewtonOptions::default(),
+            predictor: Predictor::Tangent,
+            method: crate::sweep::Method::Newton,
+        };
         let run = |threads| {
             let mn = links.len() * n;
             let (mut a, mut b, mut s, mut k, mut r) =

@@ -19,7 +19,7 @@ pub use fourbar::{Assembly, FourBar, Mode};
 pub use grashof::{Barker, Grashof, GrashofClass};
 pub use newton::{NewtonOptions, System};
 pub use status::Status;
-pub use sweep::{Predictor, SweepOptions};
+pub use sweep::{Method, Predictor, SweepOptions};
 
 use std::f64::consts::{PI, TAU};
 

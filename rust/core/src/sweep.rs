@@ -34,15 +34,39 @@ impl Predictor {
     }
 }
 
+/// How each point of a sweep is solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Newton-Raphson with continuation: the general solver (multi-loop linkages have no
+    /// closed form).
+    Newton,
+    /// The four-bar's closed form: no iterations, no residual computed (NaN), the same
+    /// statuses; fastest where it exists.
+    ClosedForm,
+}
+
+impl Method {
+    /// Parses "newton" / "closed-form".
+    pub fn parse(s: &str) -> Result<Self, Error> {
+        match s {
+            "newton" => Ok(Method::Newton),
+            "closed-form" => Ok(Method::ClosedForm),
+            other => Err(Error::invalid("method", "must be 'newton' or 'closed-form'", format!("{other:?}"))),
+        }
+    }
+}
+
 /// Everything a sweep needs besides the linkage and the angles.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SweepOptions {
     /// Assembly mode to solve at every point.
     pub mode: Mode,
-    /// Newton stopping criteria.
+    /// Newton stopping criteria (also the singular threshold of the closed form).
     pub newton: NewtonOptions,
-    /// First-guess predictor.
+    /// First-guess predictor (Newton only).
     pub predictor: Predictor,
+    /// Newton-Raphson or the closed form.
+    pub method: Method,
 }
 
 /// Output slices of one sweep, all of the length of the crank-angle array.
@@ -140,6 +164,9 @@ pub(crate) fn sweep_unchecked(
     out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
 ) {
+    if opts.method == Method::ClosedForm {
+        return closed_form_sweep(fb, theta2, trig, opts, out, motion);
+    }
     let mut prev: Option<Prev> = None;
     for (i, &t2) in theta2.iter().enumerate() {
         let start = match &prev {
@@ -171,6 +198,44 @@ pub(crate) fn sweep_unchecked(
             }
             _ => None,
         };
+    }
+}
+
+/// A sweep by the closed form: each point on its own, NaN angles unless `Converged`
+/// (`Singular` where the conditioning is below the threshold), `nit` 0, residual NaN.
+fn closed_form_sweep(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    mut motion: Option<MotionOut<'_>>,
+) {
+    for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
+        let status = if !t2.is_finite() {
+            Status::NonFinite
+        } else {
+            match fb.closed_form_cs(c2, s2, opts.mode) {
+                Assembly::Closed { theta3, theta4, sin34 } if fb.conditioning(sin34) >= opts.newton.singular => {
+                    out.theta3[i] = theta3;
+                    out.theta4[i] = theta4;
+                    Status::Converged
+                }
+                Assembly::NotAssemblable => Status::NotAssemblable,
+                _ => Status::Singular,
+            }
+        };
+        if status != Status::Converged {
+            out.theta3[i] = f64::NAN;
+            out.theta4[i] = f64::NAN;
+        }
+        out.status[i] = status.code();
+        out.nit[i] = 0;
+        out.residual[i] = f64::NAN;
+        if let Some(m) = motion.as_mut() {
+            let p = Point { theta3: out.theta3[i], theta4: out.theta4[i], status, nit: 0, residual: f64::NAN };
+            fill_motion(fb, t2, &p, status == Status::Converged, i, m, opts.newton.singular);
+        }
     }
 }
 
@@ -290,7 +355,7 @@ mod tests {
     }
 
     fn opts(mode: Mode, predictor: Predictor) -> SweepOptions {
-        SweepOptions { mode, newton: NewtonOptions::default(), predictor }
+        SweepOptions { mode, newton: NewtonOptions::default(), predictor, method: Method::Newton }
     }
 
     #[test]
@@ -314,6 +379,25 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn closed_form_method_gives_the_closed_form_with_statuses() {
+        let fb = FourBar::new(2.0, 5.0, 2.5, 2.0).unwrap(); // triple rocker: unreachable spans
+        let t2 = default_angles(361);
+        let o = SweepOptions { method: Method::ClosedForm, ..opts(Mode::Crossed, Predictor::Quadratic) };
+        let s = sweep(&fb, &t2, None, &o);
+        for (i, &t) in t2.iter().enumerate() {
+            match fb.closed_form(t, Mode::Crossed) {
+                Assembly::Closed { theta3, .. } => {
+                    assert_eq!(s.status[i], 0);
+                    assert_eq!(s.theta3[i].to_bits(), theta3.to_bits());
+                }
+                _ => assert_eq!(s.status[i], Status::NotAssemblable.code()),
+            }
+            assert!(s.nit[i] == 0 && s.residual[i].is_nan());
+        }
+        assert!(Method::parse("bogus").unwrap_err().to_string().starts_with("method "));
     }
 
     #[test]

@@ -5,7 +5,7 @@
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use planarkin_core as core;
-use planarkin_core::{arrays, batch, sweep, FourBar, Mode, NewtonOptions, Predictor, Status, SweepOptions};
+use planarkin_core::{arrays, batch, sweep, FourBar, Method, Mode, NewtonOptions, Predictor, Status, SweepOptions};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -21,11 +21,12 @@ fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]
     a.as_slice().map_err(|_| PyValueError::new_err(format!("{name} must be a contiguous 1-D float64 array")))
 }
 
-fn sweep_options(mode: &str, tol: f64, max_iter: i64, predictor: &str) -> PyResult<SweepOptions> {
+fn sweep_options(mode: &str, tol: f64, max_iter: i64, predictor: &str, method: &str) -> PyResult<SweepOptions> {
     Ok(SweepOptions {
         mode: Mode::parse(mode).map_err(err)?,
         newton: NewtonOptions::new(tol, max_iter).map_err(err)?,
         predictor: Predictor::parse(predictor).map_err(err)?,
+        method: Method::parse(method).map_err(err)?,
     })
 }
 
@@ -83,7 +84,7 @@ impl PyFourBar {
     }
 
     /// Continuation sweep: (theta3, theta4, status, nit, residual, (omega3, omega4)?, (alpha3, alpha4)?).
-    #[pyo3(signature = (theta2, mode, guess, tol, max_iter, predictor, omega2, alpha2))]
+    #[pyo3(signature = (theta2, mode, guess, tol, max_iter, predictor, method, omega2, alpha2))]
     #[allow(clippy::too_many_arguments)]
     fn sweep<'py>(
         &self,
@@ -94,10 +95,11 @@ impl PyFourBar {
         tol: f64,
         max_iter: i64,
         predictor: &str,
+        method: &str,
         omega2: Option<f64>,
         alpha2: Option<f64>,
     ) -> PyResult<SweepArrays<'py>> {
-        let opts = sweep_options(mode, tol, max_iter, predictor)?;
+        let opts = sweep_options(mode, tol, max_iter, predictor, method)?;
         let t2 = slice("theta2", &theta2)?;
         let n = t2.len();
         let fb = self.inner;
@@ -282,7 +284,7 @@ type BatchArrays<'py> = (Arr2<'py, f64>, Arr2<'py, f64>, Arr2<'py, i8>, Arr2<'py
 
 /// Sweeps M linkages over N crank angles in parallel: (M, N) arrays.
 #[pyfunction]
-#[pyo3(signature = (links, theta2, mode, tol, max_iter, predictor, threads))]
+#[pyo3(signature = (links, theta2, mode, tol, max_iter, predictor, method, threads))]
 #[allow(clippy::too_many_arguments)]
 fn sweep_batch<'py>(
     py: Python<'py>,
@@ -292,9 +294,10 @@ fn sweep_batch<'py>(
     tol: f64,
     max_iter: i64,
     predictor: &str,
+    method: &str,
     threads: Option<usize>,
 ) -> PyResult<BatchArrays<'py>> {
-    let opts = sweep_options(mode, tol, max_iter, predictor)?;
+    let opts = sweep_options(mode, tol, max_iter, predictor, method)?;
     let fbs = links_of(&links)?;
     let t2 = slice("theta2", &theta2)?;
     let (m, n) = (fbs.len(), t2.len());
