@@ -13,7 +13,8 @@ from conftest import SEED_LINKAGE
 from planarkin import reference as ref
 
 BAD_LENGTHS = [0, 0.0, -0.0, -1, -1e-300, math.nan, math.inf, -math.inf, np.float64("nan"),
-               "abc", "", None, 1j, 1 + 0j, np.complex128(2), [1.0, 2.0], object()]  # fmt: skip
+               "abc", "", None, 1j, 1 + 0j, np.complex128(2), [1.0, 2.0], object(),
+               True, np.bool_(False)]  # fmt: skip
 NAMES = ("r1", "r2", "r3", "r4")
 
 

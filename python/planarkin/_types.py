@@ -247,7 +247,7 @@ def as_float(name: str, value: object) -> float:
     if type(value) is float or type(value) is int:  # the common case, without NumPy calls
         return float(value)
     try:
-        if isinstance(value, (str, bytes, complex)) or np.iscomplexobj(value):
+        if isinstance(value, (str, bytes, complex, bool, np.bool_)) or np.iscomplexobj(value):
             raise TypeError
         return float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
