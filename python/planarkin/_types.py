@@ -10,6 +10,7 @@ import math
 import operator
 from dataclasses import dataclass, field
 from enum import IntEnum
+from typing import NamedTuple
 
 import numpy as np
 
@@ -309,6 +310,35 @@ def check_guess(guess: object) -> tuple[float, float] | None:
     except (TypeError, ValueError):
         raise ValueError(f"guess must be a pair (theta3, theta4), got {guess!r}") from None
     return as_float("guess[0]", a), as_float("guess[1]", b)
+
+
+class SweepArgs(NamedTuple):
+    """Validated sweep arguments, shared by the API, the batch and the reference."""
+
+    theta2: np.ndarray
+    mode: str
+    tol: float
+    max_iter: int
+    predictor: str
+    method: str
+
+
+def sweep_args(theta2, mode, tol, max_iter, predictor, method) -> SweepArgs:  # noqa: ANN001
+    """Validates the arguments every sweep takes (ValueError naming the parameter)."""
+    t, m = check_options(tol, max_iter)
+    return SweepArgs(
+        as_theta2_1d(theta2), check_mode(mode), t, m, check_predictor(predictor),
+        check_method(method),
+    )  # fmt: skip
+
+
+def motion_args(omega2: object, alpha2: object) -> tuple[float | None, float | None]:
+    """Crank speed and acceleration for a sweep's velocities/accelerations."""
+    if alpha2 is not None and omega2 is None:
+        raise ValueError("alpha2 needs omega2: accelerations depend on the crank speed")
+    w2 = None if omega2 is None else as_float("omega2", omega2)
+    a2 = None if alpha2 is None else as_float("alpha2", alpha2)
+    return w2, a2
 
 
 def check_method(method: object) -> str:

@@ -18,10 +18,10 @@ from ._types import (
     as_int,
     as_theta2_1d,
     check_guess,
-    check_method,
     check_mode,
     check_options,
-    check_predictor,
+    motion_args,
+    sweep_args,
 )
 
 
@@ -149,24 +149,17 @@ class FourBar:
         the same statuses and velocities, no iterations (``nit`` 0, ``residual`` NaN: not
         computed); faster, but only the four-bar has one.
         """
-        t2 = as_theta2_1d(theta2)
-        mode = check_mode(mode)
-        tol, max_iter = check_options(tol, max_iter)
-        predictor = check_predictor(predictor)
-        method = check_method(method)
+        a = sweep_args(theta2, mode, tol, max_iter, predictor, method)
         g = check_guess(guess)
-        w2 = None if omega2 is None else as_float("omega2", omega2)
-        a2 = None if alpha2 is None else as_float("alpha2", alpha2)
-        if a2 is not None and w2 is None:
-            raise ValueError("alpha2 needs omega2: accelerations depend on the crank speed")
-        t3, t4, st, nit, res, w, a = self._core.sweep(
-            t2, mode, g, tol, max_iter, predictor, method, w2, a2
+        w2, a2 = motion_args(omega2, alpha2)
+        t3, t4, st, nit, res, w, acc = self._core.sweep(
+            a.theta2, a.mode, g, a.tol, a.max_iter, a.predictor, a.method, w2, a2
         )
         return Sweep(
-            self.lengths, mode, t2, t3, t4, st, nit, res,
+            self.lengths, a.mode, a.theta2, t3, t4, st, nit, res,
             omega2=w2, omega3=w[0] if w else None, omega4=w[1] if w else None,
-            alpha2=a2, alpha3=a[0] if a else None, alpha4=a[1] if a else None,
-            method=method,
+            alpha2=a2, alpha3=acc[0] if acc else None, alpha4=acc[1] if acc else None,
+            method=a.method,
         )  # fmt: skip
 
     def closed_form(self, theta2: object, mode: str = "open") -> tuple:
@@ -257,14 +250,10 @@ def sweep_batch(
     parallel over linkages with the GIL released. Returns (M, N) arrays. ``threads=None``
     uses all cores; ``method="closed-form"`` as in :meth:`FourBar.sweep`."""
     arr = _links(links)
-    t2 = as_theta2_1d(theta2)
-    mode = check_mode(mode)
-    tol, max_iter = check_options(tol, max_iter)
-    predictor = check_predictor(predictor)
-    method = check_method(method)
+    a = sweep_args(theta2, mode, tol, max_iter, predictor, method)
     th = _threads(threads)
-    t3, t4, st, nit, res = _core.sweep_batch(arr, t2, mode, tol, max_iter, predictor, method, th)
-    return BatchSweep(arr, mode, t2, t3, t4, st, nit, res, method)
+    out = _core.sweep_batch(arr, a.theta2, a.mode, a.tol, a.max_iter, a.predictor, a.method, th)
+    return BatchSweep(arr, a.mode, a.theta2, *out, a.method)
 
 
 def closed_form_batch(

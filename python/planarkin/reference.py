@@ -19,12 +19,11 @@ from ._types import (
     Status,
     Sweep,
     as_float,
-    as_theta2_1d,
     check_guess,
-    check_method,
     check_mode,
     check_options,
-    check_predictor,
+    motion_args,
+    sweep_args,
 )
 
 _NAN = float("nan")
@@ -281,24 +280,19 @@ def sweep(
     """Reference of :meth:`planarkin.FourBar.sweep`: the same continuation, predictors
     and closed-form fallback (or the closed form alone), one point at a time in Python."""
     r = _lengths(fb)
-    t2s = as_theta2_1d(theta2)
-    mode = check_mode(mode)
-    tol, max_iter = check_options(tol, max_iter)
-    predictor = check_predictor(predictor)
-    method = check_method(method)
+    t2s, mode, tol, max_iter, predictor, method = sweep_args(
+        theta2, mode, tol, max_iter, predictor, method
+    )
     g = check_guess(guess)
+    omega2, alpha2 = motion_args(omega2, alpha2)
     sign = _sign(mode)
     n = len(t2s)
     t3o, t4o, reso = np.empty(n), np.empty(n), np.empty(n)
     sto, nito = np.empty(n, dtype=np.int8), np.empty(n, dtype=np.uint32)
     w3o = w4o = a3o = a4o = None
-    if alpha2 is not None and omega2 is None:
-        raise ValueError("alpha2 needs omega2: accelerations depend on the crank speed")
     if omega2 is not None:
-        omega2 = as_float("omega2", omega2)
         w3o, w4o = np.full(n, _NAN), np.full(n, _NAN)
         if alpha2 is not None:
-            alpha2 = as_float("alpha2", alpha2)
             a3o, a4o = np.full(n, _NAN), np.full(n, _NAN)
     prev = None
     for i, t2 in enumerate(t2s.tolist()):
