@@ -42,16 +42,16 @@ def test_rows_cover_every_method_and_tolerance(result):
     assert not any(r.pareto_newton for r in result.rows if r.tol is None)
 
 
-def test_errors_decrease_with_the_tolerance(result):
+def test_errors_are_bounded_by_the_tolerance(result):
+    """The last Newton correction (below tol) is applied to the returned angles, so the
+    error is quadratic in it: never more than ~tol, and at the rounding floor once tol is
+    small enough; iterations never fall as tol tightens."""
     for method in ("previous", "tangent", "quadratic"):
         rows = [r for r in result.rows if r.method == method]
-        errs = [r.err_max for r in rows]
-        assert all(b <= a for a, b in zip(errs, errs[1:], strict=False)), (method, errs)
-        assert errs[-1] < 1e-3 * errs[0], (method, errs)
         for r in rows:
-            # angle error ~ residual / (link ratio * |sin(theta4 - theta3)|): a few x tol
             assert r.err_max <= 100 * r.tol + 1e-14, (method, r.tol, r.err_max)
-        assert errs[-1] < 1e-11
+            if r.tol <= 1e-8:
+                assert r.err_max < 1e-14, (method, r.tol, r.err_max)
         nits = [r.nit_mean for r in rows]
         assert all(b >= a for a, b in zip(nits, nits[1:], strict=False)), (method, nits)
 

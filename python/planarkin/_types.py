@@ -82,7 +82,8 @@ class Solution:
     status: Status
     #: Newton steps taken.
     nit: int
-    #: Dimensionless residual max(|f1|, |f2|) / longest link at the last iterate.
+    #: Dimensionless residual max(|f1|, |f2|) / longest link at the last evaluation
+    #: (the returned angles add the last Newton correction to that iterate).
     residual: float
     #: Residual per iteration (length nit + 1) when asked for with ``history=True``.
     history: np.ndarray | None = field(default=None, compare=False)

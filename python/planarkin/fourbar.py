@@ -110,8 +110,10 @@ class FourBar:
         Starts from ``guess`` (theta3, theta4) or, by default, the closed form of
         ``mode``. Converged when max(|f1|, |f2|) / longest link < ``tol`` and the next
         Newton correction max|J^-1 F| (radians) < ``tol``; a point where rounding keeps that
-        correction above ``tol`` is SINGULAR. A point that converges on the other mode is
-        BRANCH_JUMP; angles are NaN unless CONVERGED.
+        correction above ``tol`` is PRECISION_LOSS. That last correction is applied to the
+        returned angles (error quadratic in it); ``nit`` and ``residual`` are those of the
+        last evaluation. A point that converges on the other mode is BRANCH_JUMP; angles
+        are NaN unless CONVERGED.
         ``history=True`` records the residual at every iterate.
         """
         t2 = as_float("theta2", theta2)

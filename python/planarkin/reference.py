@@ -176,7 +176,8 @@ def _newton(r, c2, s2, x3, x4, sign, tol, max_iter, hist, cache):
             if size < tol:
                 if _sin34(r, j) * sign < 0.0:
                     return _NAN, _NAN, Status.BRANCH_JUMP, nit, residual, j
-                return wrap(x3), wrap(x4), Status.CONVERGED, nit, residual, j
+                # the last correction is applied, without a further evaluation
+                return wrap(x3 + step[0]), wrap(x4 + step[1]), Status.CONVERGED, nit, residual, j
             if size > 0.5 * last_small_step:
                 return _NAN, _NAN, Status.PRECISION_LOSS, nit, residual, j
             last_small_step = size

@@ -126,8 +126,11 @@ pub struct Outcome<const N: usize> {
 ///
 /// Converged when the dimensionless residual is below `tol` *and* the Newton correction
 /// that would follow, max|J^-1 F|, is below `tol` too: the unknowns are angles, so the
-/// correction estimates the error of the answer in radians, and a small residual at a
-/// badly conditioned point is not taken for an accurate one. Once the residual is below
+/// correction estimates the error of the iterate in radians, and a small residual at a
+/// badly conditioned point is not taken for an accurate one. That last correction is
+/// applied to the returned `x` (as scipy's `newton` returns the stepped point), so its
+/// error is quadratic in the correction; `nit` and `residual` are those of the last
+/// evaluation, before it. Once the residual is below
 /// `tol`, a correction that stops shrinking (it falls by less than half) means rounding
 /// alone keeps it above `tol` there: `PrecisionLoss`. An iterate whose conditioning is
 /// below `opts.singular` is `Singular`. Residual norms per iteration are
@@ -164,7 +167,9 @@ pub fn solve<S: System<N>, const N: usize>(
         if residual < opts.tol {
             let step = dx.amax();
             if step < opts.tol {
-                return done(Status::Converged);
+                // The correction is already computed: apply it (no further evaluation), so
+                // the answer's error is quadratic in it rather than of its size.
+                return Outcome { x: x + dx, status: Status::Converged, nit, residual, jacobian: j };
             }
             if step > 0.5 * last_small_step {
                 return done(Status::PrecisionLoss);
