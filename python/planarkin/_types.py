@@ -10,9 +10,14 @@ import math
 import operator
 from dataclasses import dataclass, field
 from enum import IntEnum
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple, cast
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    from numpy.typing import ArrayLike
 
 TAU = 2.0 * math.pi
 
@@ -249,7 +254,9 @@ def as_float(name: str, value: object) -> float:
     if type(value) is float or type(value) is int:  # the common case, without NumPy calls
         return float(value)
     try:
-        if isinstance(value, (str, bytes, complex, bool, np.bool_)) or np.iscomplexobj(value):
+        if isinstance(value, (str, bytes, complex, bool, np.bool_)) or np.iscomplexobj(
+            cast("ArrayLike", value)  # any object at runtime; the stub wants ArrayLike
+        ):
             raise TypeError
         return float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
@@ -307,7 +314,7 @@ def check_guess(guess: object) -> tuple[float, float] | None:
     if guess is None:
         return None
     try:
-        a, b = guess  # type: ignore[misc]
+        a, b = cast("Iterable[object]", guess)  # not iterable or not a pair: caught below
     except (TypeError, ValueError):
         raise ValueError(f"guess must be a pair (theta3, theta4), got {guess!r}") from None
     return as_float("guess[0]", a), as_float("guess[1]", b)

@@ -82,8 +82,9 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"planarkin: error: {message} (see '{self.prog} --help')\n")
 
 
-def _linkage_options() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(add_help=False)
+def _linkage_options() -> _Parser:
+    # a _Parser like the subcommands it is a parent of (argparse only copies its arguments)
+    p = _Parser(add_help=False)
     g = p.add_argument_group("linkage and sweep")
     g.add_argument(
         "--links",
@@ -333,7 +334,7 @@ def analyze(fb: FourBar, sweep: Sweep, args: argparse.Namespace) -> Analysis:
     cf3, cf4 = (np.asarray(v) for v in fb.closed_form(t2, sweep.mode))
     dev = np.degrees(np.fmax(np.abs(_wrap(t3 - cf3)), np.abs(_wrap(t4 - cf4))))
     dev[~ok] = np.nan
-    mu = np.degrees(FourBar.transmission_angle(t3, t4))
+    mu = np.degrees(np.asarray(FourBar.transmission_angle(t3, t4)))
     p, delta = args.coupler[0], math.radians(args.coupler[1])
     px, py = (np.asarray(v) for v in fb.coupler_curve(sweep, p, delta))
     guess = NEWTON_GUESS_DEG[sweep.mode]
@@ -345,10 +346,12 @@ def analyze(fb: FourBar, sweep: Sweep, args: argparse.Namespace) -> Analysis:
         max_iter=args.max_iter,
         history=True,
     )
+    assert sol.history is not None  # asked for with history=True
     r1, r2, r3, r4 = fb.lengths
     rocker = None
     if limits.rocker_min is not None and limits.rocker_max is not None:
         lo = math.degrees(limits.rocker_min)
+        assert limits.rocker_swing is not None  # set whenever rocker_min and rocker_max are
         swing = math.degrees(limits.rocker_swing)
         rocker = {
             "min": lo,
@@ -358,7 +361,8 @@ def analyze(fb: FourBar, sweep: Sweep, args: argparse.Namespace) -> Analysis:
             "theta2_at_max": _frame(sweep, limits.rocker_max_theta2)[0],
         }
     closes = s.converged == s.points > 1 and math.isclose(abs(t2[-1] - t2[0]), math.tau)
-    theta3, theta4 = {}, {}
+    theta3: dict[str, object] = {}
+    theta4: dict[str, object] = {}
     for d, t in ((theta3, t3), (theta4, t4)):
         u = plot.unwrap_deg(t)
         d.update(_extremes(sweep, u))
@@ -471,7 +475,8 @@ def _figures(res: Analysis, args: argparse.Namespace) -> dict:
     """File name -> a function drawing that figure."""
     sweep, limits = res.sweep, res.limits
     p, delta = args.coupler[0], math.radians(args.coupler[1])
-    guess = tuple(math.radians(v) for v in NEWTON_GUESS_DEG[sweep.mode])
+    guess_deg = NEWTON_GUESS_DEG[sweep.mode]
+    guess = (math.radians(guess_deg[0]), math.radians(guess_deg[1]))
     builders = {
         "figure_a_position_analysis.png": lambda: plot.position(sweep, limits=limits),
         "figure_combined_positions.png": lambda: plot.positions_combined(sweep, limits=limits),

@@ -13,6 +13,7 @@ import html
 import math
 import re
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 from matplotlib import colormaps
@@ -43,7 +44,7 @@ __all__ = [
 ]
 
 _C3, _C4, _CP = "tab:blue", "tab:orange", "tab:purple"
-_SHADE = {"color": "0.6", "alpha": 0.25, "lw": 0}
+_SHADE: dict[str, Any] = {"color": "0.6", "alpha": 0.25, "lw": 0}
 
 
 # --- helpers shared with the CLI ------------------------------------------------------
@@ -245,7 +246,7 @@ def transmission(sweep: Sweep, *, limits: object = None, guideline_deg: float = 
     sin(theta4 - theta3) (> 0 open, < 0 crossed, 0 at a dead point)."""
     fig, (am, ab) = _figure(2, figsize=(8.0, 6.0))
     x = np.degrees(sweep.theta2)
-    mu = np.degrees(FourBar.transmission_angle(sweep.theta3, sweep.theta4))
+    mu = np.degrees(np.asarray(FourBar.transmission_angle(sweep.theta3, sweep.theta4)))
     am.plot(x, mu, color="tab:green", lw=1.8, label="transmission angle μ")
     am.axhline(guideline_deg, color="tab:red", ls="--", lw=1, label=f"{guideline_deg:g}° guideline")
     am.set_ylim(0, 92)
@@ -502,10 +503,15 @@ def animation_html(anim: FuncAnimation, *, fps: float = 12, title: str = "planar
 
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp, "anim.html")
-        anim.save(
-            str(path),
-            writer=HTMLWriter(fps=fps, embed_frames=True, default_mode="loop", embed_limit=1e6),
+        # matplotlib's stub types fps as int, but the writers take any positive number
+        # (Animation.save itself passes fps=1000.0 / interval); a float fps is kept as is.
+        writer = HTMLWriter(
+            fps=fps,  # type: ignore[arg-type]
+            embed_frames=True,
+            default_mode="loop",
+            embed_limit=1e6,
         )
+        anim.save(str(path), writer=writer)
         body = path.read_text(encoding="utf-8")
     body = re.sub(r"<link\b[^>]*\bhref=[\"']https?://[^>]*>", "", body)
     body = re.sub(

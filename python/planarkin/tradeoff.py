@@ -342,9 +342,9 @@ def tradeoff(
     from .fourbar import closed_form_batch, sweep_batch
 
     t_start = time.perf_counter()
-    for m in methods:
-        if m not in METHODS:
-            raise ValueError(f"methods: unknown method {m!r}; choose from {', '.join(METHODS)}")
+    for name in methods:
+        if name not in METHODS:
+            raise ValueError(f"methods: unknown method {name!r}; choose from {', '.join(METHODS)}")
     tols = tuple(float(t) for t in tols)
     if any(not (math.isfinite(t) and t > 0) for t in tols):
         raise ValueError(f"tols must be finite and > 0, got {tols}")
