@@ -212,6 +212,19 @@ def near_toggle(r, theta2, within=1e-12) -> bool:
 EPS = 2.220446049250313e-16
 
 
+#: The documented SINGULAR threshold on |sin(t4 - t3)| min(r3, r4) / L (README); kept
+#: here so the truth helpers import nothing from planarkin (test_properties checks it).
+DOCUMENTED_SINGULAR_THRESHOLD = 1e-6
+
+
+def below_singular_threshold(r, sin34, margin=1.01) -> bool:
+    """Whether the exact position's conditioning |sin(t4 - t3)| min(r3, r4) / L is below
+    the documented SINGULAR threshold (with a margin for the rounding of sin34 itself)."""
+    r = [float(x) for x in r]
+    cond = abs(float(sin34)) * min(r[2], r[3]) / max(r)
+    return cond < margin * DOCUMENTED_SINGULAR_THRESHOLD
+
+
 def resolvable(r, sin34, tol, margin=1000.0) -> bool:
     """Whether double precision can comfortably resolve the angles to ``tol`` rad at a
     point with this |sin(t4 - t3)|: margin * eps * L / (min(r3, r4) |sin|) < tol. Only at

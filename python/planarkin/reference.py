@@ -118,8 +118,9 @@ def rotate(s: float, c: float, dx: float) -> tuple[float, float]:
 
 
 def _trig(x3: float, x4: float, cache: list) -> tuple:
-    """sin/cos of the iterate: by angle addition from the loop's last evaluation when both
-    angles moved less than 2^-7, else from libm; the cache is one per crank angle."""
+    """sin/cos of the iterate: by angle addition from the loop's last libm evaluation when
+    both angles are within 2^-7 of it, else from libm (which then becomes the anchor);
+    rotations never chain. The cache is one per crank angle."""
     last = cache[0]
     if last is not None and abs(x3 - last[0]) < INCREMENT_MAX and abs(x4 - last[1]) < INCREMENT_MAX:
         s3, c3 = rotate(last[2], last[3], x3 - last[0])
@@ -127,7 +128,7 @@ def _trig(x3: float, x4: float, cache: list) -> tuple:
     else:
         s3, c3 = _sin(x3), _cos(x3)
         s4, c4 = _sin(x4), _cos(x4)
-    cache[0] = (x3, x4, s3, c3, s4, c4)
+        cache[0] = (x3, x4, s3, c3, s4, c4)  # only libm values anchor rotations
     return s3, c3, s4, c4
 
 
@@ -183,8 +184,8 @@ def _newton(r, c2, s2, x3, x4, sign, tol, max_iter, hist, cache):
             last_small_step = size
         if nit >= max_iter:
             return _NAN, _NAN, Status.MAX_ITERATIONS, nit, residual, j
-        x3 = x3 + step[0]
-        x4 = x4 + step[1]
+        x3 = wrap(x3 + step[0])  # angles stay in (-pi, pi]: large iterates lose bits
+        x4 = wrap(x4 + step[1])
         nit += 1
 
 

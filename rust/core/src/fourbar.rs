@@ -392,10 +392,11 @@ pub(crate) fn cramer(j: &Matrix2<f64>, b: &Vector2<f64>) -> Option<Vector2<f64>>
 
 /// The four-bar loop at a fixed crank angle: f1, f2 in the unknowns (theta3, theta4).
 ///
-/// It remembers the sines and cosines of its last evaluation: a Newton step that moves
-/// both angles by less than [`INCREMENT_MAX`] updates them by angle addition instead of
-/// calling libm (the increment is the exact difference of the stored angles, so no error
-/// accumulates beyond an ulp per step). This halves the trigonometry of a sweep.
+/// It remembers the sines and cosines of its last libm evaluation: an iterate within
+/// [`INCREMENT_MAX`] of it in both angles gets them by angle addition from there instead
+/// of calling libm. Rotations start only from libm values and never chain, so every
+/// evaluation is within about an ulp of libm however long the Newton path. This halves
+/// the trigonometry of a sweep.
 #[derive(Clone, Debug)]
 pub struct Loop<'a> {
     fb: &'a FourBar,
@@ -444,10 +445,11 @@ impl System<2> for Loop<'_> {
             _ => {
                 let (s3, c3) = x[0].sin_cos();
                 let (s4, c4) = x[1].sin_cos();
+                // only libm values anchor later rotations: rotations never chain
+                self.last.set(Some((*x, [s3, c3, s4, c4])));
                 [s3, c3, s4, c4]
             }
         };
-        self.last.set(Some((*x, [s3, c3, s4, c4])));
         let f1 = r2 * self.c2 + r3 * c3 - r4 * c4 - r1;
         let f2 = r2 * self.s2 + r3 * s3 - r4 * s4;
         let j = Matrix2::new(-r3 * s3, r4 * s4, r3 * c3, -r4 * c4);
@@ -469,6 +471,13 @@ impl System<2> for Loop<'_> {
     #[inline]
     fn step(&self, j: &Matrix2<f64>, f: &Vector2<f64>) -> Option<Vector2<f64>> {
         cramer(j, &-f)
+    }
+
+    /// Both unknowns are angles: keep them in (-pi, pi] (the identity when already there).
+    #[inline]
+    fn normalize(&self, x: &mut Vector2<f64>) {
+        x[0] = wrap_angle(x[0]);
+        x[1] = wrap_angle(x[1]);
     }
 }
 

@@ -34,6 +34,10 @@ pub trait System<const N: usize> {
         (det / norms).abs()
     }
 
+    /// Brings an iterate back to a canonical representative after a step (angles to
+    /// (-pi, pi]): an iterate that wanders to large angles loses bits it cannot regain.
+    fn normalize(&self, _x: &mut SVector<f64, N>) {}
+
     /// The Newton step: solves J dx = -F. `None` when J is exactly singular.
     fn step(&self, j: &SMatrix<f64, N, N>, f: &SVector<f64, N>) -> Option<SVector<f64, N>> {
         eliminate(*j, -f, &mut 1.0)
@@ -130,7 +134,7 @@ pub struct Outcome<const N: usize> {
 /// badly conditioned point is not taken for an accurate one. That last correction is
 /// applied to the returned `x` (as scipy's `newton` returns the stepped point), so its
 /// error is quadratic in the correction; `nit` and `residual` are those of the last
-/// evaluation, before it. Once the residual is below
+/// evaluation. Once the residual is below
 /// `tol`, a correction that stops shrinking (it falls by less than half) means rounding
 /// alone keeps it above `tol` there: `PrecisionLoss`. An iterate whose conditioning is
 /// below `opts.singular` is `Singular`. Residual norms per iteration are
@@ -180,6 +184,7 @@ pub fn solve<S: System<N>, const N: usize>(
             return done(Status::MaxIterations);
         }
         x += dx;
+        sys.normalize(&mut x);
         nit += 1;
     }
 }
