@@ -284,19 +284,8 @@ impl FourBar {
     /// J w = -dF/dtheta2 omega2. NaN with [`Status::Singular`] at a dead point.
     pub fn velocity(&self, theta2: f64, theta3: f64, theta4: f64, omega2: f64, singular: f64) -> ([f64; 2], Status) {
         let j = self.jacobian(theta3, theta4);
-        self.velocity_with(&j, theta2.sin(), theta2.cos(), omega2, singular)
-    }
-
-    pub(crate) fn velocity_with(
-        &self,
-        j: &Matrix2<f64>,
-        s2: f64,
-        c2: f64,
-        omega2: f64,
-        singular: f64,
-    ) -> ([f64; 2], Status) {
-        let r2 = self.r[1];
-        self.solve_linear(j, Vector2::new(r2 * s2 * omega2, -(r2 * c2) * omega2), singular)
+        let (r2, s2, c2) = (self.r[1], theta2.sin(), theta2.cos());
+        self.solve_linear(&j, Vector2::new(r2 * s2 * omega2, -(r2 * c2) * omega2), singular)
     }
 
     /// Angular accelerations (alpha3, alpha4), differentiating the loop twice: the same
