@@ -236,18 +236,21 @@ def _rates(r, t2, j, predictor):
     return v, (a if a is not None else (0.0, 0.0))
 
 
+def _solve_checked(r, j, b0, b1):
+    """J x = b by Cramer's rule; NaN for non-finite input or a singular position."""
+    if not all(math.isfinite(v) for v in (*j, b0, b1)):
+        return _NAN, _NAN
+    if _conditioning(r, _sin34(r, j)) < SINGULAR_THRESHOLD:
+        return _NAN, _NAN
+    out = _cramer(j, b0, b1)
+    return out if out is not None else (_NAN, _NAN)
+
+
 def _velocity(r, t2, t3, t4, w2):
     j, _ = _jac(r, t3, t4)
     r2 = r[1]
     s2, c2 = math.sin(t2), math.cos(t2)
-    b0, b1 = r2 * s2 * w2, -(r2 * c2) * w2
-    if (
-        not all(math.isfinite(v) for v in (*j, b0, b1))
-        or _conditioning(r, _sin34(r, j)) < SINGULAR_THRESHOLD
-    ):
-        return _NAN, _NAN
-    out = _cramer(j, b0, b1)
-    return out if out is not None else (_NAN, _NAN)
+    return _solve_checked(r, j, r2 * s2 * w2, -(r2 * c2) * w2)
 
 
 def _acceleration(r, t2, t3, t4, w2, w3, w4, a2):
@@ -257,13 +260,7 @@ def _acceleration(r, t2, t3, t4, w2, w3, w4, a2):
     w2s, w3s, w4s = w2 * w2, w3 * w3, w4 * w4
     b1 = r2 * s2 * a2 + r2 * c2 * w2s + r3 * c3 * w3s - r4 * c4 * w4s
     b2 = -(r2 * c2) * a2 + r2 * s2 * w2s + r3 * s3 * w3s - r4 * s4 * w4s
-    if (
-        not all(math.isfinite(v) for v in (*j, b1, b2))
-        or _conditioning(r, _sin34(r, j)) < SINGULAR_THRESHOLD
-    ):
-        return _NAN, _NAN
-    out = _cramer(j, b1, b2)
-    return out if out is not None else (_NAN, _NAN)
+    return _solve_checked(r, j, b1, b2)
 
 
 def sweep(

@@ -74,14 +74,15 @@ impl Triangle {
     /// Angles of `mode`: AB and O4B are u turned by the angles at A and at O4, whose
     /// (cos, sin) are proportional to (k + d^2, 2dh) and (k - d^2, 2dh); two atan2 of the
     /// turned vectors, already in (-pi, pi] (`+ 0.0` turns atan2(-0, x < 0) = -pi into pi).
+    /// Returns (theta3, theta4) and sin(theta4 - theta3).
     #[inline]
-    pub(crate) fn assembly(&self, mode: Mode) -> Assembly {
+    pub(crate) fn angles(&self, mode: Mode) -> (Vector2<f64>, f64) {
         let Triangle { ux, uy, d2, two_dh, k, r3r4 } = *self;
         let h = mode.sign() * two_dh;
         let (ca, cb) = (k + d2, k - d2);
         let theta3 = (uy * ca + ux * h + 0.0).atan2(ux * ca - uy * h);
         let theta4 = (uy * cb + ux * h + 0.0).atan2(ux * cb - uy * h);
-        Assembly::Closed { theta3, theta4, sin34: h / (2.0 * r3r4) }
+        (Vector2::new(theta3, theta4), h / (2.0 * r3r4))
     }
 }
 
@@ -103,6 +104,11 @@ pub struct Point {
 impl Point {
     pub(crate) fn failed(status: Status, nit: u32, residual: f64) -> Self {
         Point { theta3: f64::NAN, theta4: f64::NAN, status, nit, residual }
+    }
+
+    /// A point decided before any iteration, with no Jacobian to hand back.
+    pub(crate) fn unsolved(status: Status) -> (Self, Matrix2<f64>) {
+        (Point::failed(status, 0, f64::NAN), Matrix2::repeat(f64::NAN))
     }
 }
 
@@ -162,7 +168,10 @@ impl FourBar {
     /// Closed form from cos/sin of the crank angle.
     pub(crate) fn closed_form_cs(&self, c2: f64, s2: f64, mode: Mode) -> Assembly {
         match self.geometry(c2, s2) {
-            Geometry::Triangle(t) => t.assembly(mode),
+            Geometry::Triangle(t) => {
+                let (x, sin34) = t.angles(mode);
+                Assembly::Closed { theta3: x[0], theta4: x[1], sin34 }
+            }
             Geometry::NotAssemblable => Assembly::NotAssemblable,
             Geometry::Indeterminate => Assembly::Indeterminate,
         }
@@ -215,9 +224,8 @@ impl FourBar {
         opts: &NewtonOptions,
         history: Option<&mut Vec<f64>>,
     ) -> (Point, Matrix2<f64>) {
-        let nan = Matrix2::repeat(f64::NAN);
         if !theta2.is_finite() {
-            return (Point::failed(Status::NonFinite, 0, f64::NAN), nan);
+            return Point::unsolved(Status::NonFinite);
         }
         self.solve_on(&self.at(theta2), mode, guess, opts, history)
     }
@@ -231,15 +239,11 @@ impl FourBar {
         opts: &NewtonOptions,
         history: Option<&mut Vec<f64>>,
     ) -> (Point, Matrix2<f64>) {
-        let nan = Matrix2::repeat(f64::NAN);
         let start = match (self.geometry(sys.c2, sys.s2), guess) {
-            (Geometry::NotAssemblable, _) => return (Point::failed(Status::NotAssemblable, 0, f64::NAN), nan),
+            (Geometry::NotAssemblable, _) => return Point::unsolved(Status::NotAssemblable),
             (_, Some(g)) => Vector2::from(g),
-            (Geometry::Triangle(t), None) => match t.assembly(mode) {
-                Assembly::Closed { theta3, theta4, .. } => Vector2::new(theta3, theta4),
-                _ => unreachable!("a triangle always closes"),
-            },
-            (Geometry::Indeterminate, None) => return (Point::failed(Status::Singular, 0, f64::NAN), nan),
+            (Geometry::Triangle(t), None) => t.angles(mode).0,
+            (Geometry::Indeterminate, None) => return Point::unsolved(Status::Singular),
         };
         self.solve_from(sys, start, mode, opts, history)
     }

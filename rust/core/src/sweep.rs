@@ -251,9 +251,7 @@ fn sweep_point(
         return fb.solve_on(sys, opts.mode, None, &opts.newton, None);
     };
     let tri = match fb.geometry(sys.c2, sys.s2) {
-        Geometry::NotAssemblable => {
-            return (Point::failed(Status::NotAssemblable, 0, f64::NAN), Matrix2::repeat(f64::NAN))
-        }
+        Geometry::NotAssemblable => return Point::unsolved(Status::NotAssemblable),
         Geometry::Indeterminate => None,
         Geometry::Triangle(t) => Some(t),
     };
@@ -262,11 +260,9 @@ fn sweep_point(
         return (first, j);
     }
     // the closed form of the mode is computed only now, when continuation failed
-    let (mut second, j) = match tri.map(|t| t.assembly(opts.mode)) {
-        Some(Assembly::Closed { theta3, theta4, .. }) => {
-            fb.solve_from(sys, Vector2::new(theta3, theta4), opts.mode, &opts.newton, None)
-        }
-        _ => (Point::failed(Status::Singular, 0, f64::NAN), Matrix2::repeat(f64::NAN)),
+    let (mut second, j) = match tri {
+        Some(t) => fb.solve_from(sys, t.angles(opts.mode).0, opts.mode, &opts.newton, None),
+        None => Point::unsolved(Status::Singular),
     };
     second.nit += first.nit;
     (second, j)
