@@ -24,9 +24,21 @@ pub enum Error {
         /// The length it must have.
         expected: usize,
     },
+    /// A scene (linkage drawn as data) is invalid: names the entry and says why.
+    #[error("{entry}: {message}")]
+    Scene {
+        /// The entry as the scene file spells it, e.g. `links.crank` or `input.pivot`.
+        entry: String,
+        /// What is wrong with it.
+        message: String,
+    },
 }
 
 impl Error {
+    pub(crate) fn scene(entry: impl Into<String>, message: impl Into<String>) -> Self {
+        Error::Scene { entry: entry.into(), message: message.into() }
+    }
+
     pub(crate) fn invalid(name: impl Into<String>, requirement: &'static str, value: impl std::fmt::Display) -> Self {
         Error::InvalidParameter { name: name.into(), requirement, value: value.to_string() }
     }

@@ -11,6 +11,7 @@ pub mod fourbar;
 pub mod grashof;
 pub mod limits;
 pub mod newton;
+pub mod scene;
 pub mod status;
 pub mod sweep;
 

@@ -25,13 +25,7 @@ pub trait System<const N: usize> {
     /// Dimensionless conditioning of `j` in [0, 1]; 0 means singular. The default is the
     /// Hadamard ratio |det J| / prod(column norms), invariant to scaling lengths.
     fn conditioning(&self, j: &SMatrix<f64, N, N>) -> f64 {
-        let norms: f64 = j.column_iter().map(|c| c.norm()).product();
-        if norms == 0.0 {
-            return 0.0;
-        }
-        let mut det = 1.0;
-        eliminate(*j, SVector::zeros(), &mut det);
-        (det / norms).abs()
+        hadamard_ratio(j).abs()
     }
 
     /// Brings an iterate back to a canonical representative after a step (angles to
@@ -42,6 +36,18 @@ pub trait System<const N: usize> {
     fn step(&self, j: &SMatrix<f64, N, N>, f: &SVector<f64, N>) -> Option<SVector<f64, N>> {
         eliminate(*j, -f, &mut 1.0)
     }
+}
+
+/// Signed Hadamard ratio det J / prod(column norms), in [-1, 1]: its size is a scale-free
+/// conditioning (0 at a singular J), its sign names the branch.
+pub fn hadamard_ratio<const N: usize>(j: &SMatrix<f64, N, N>) -> f64 {
+    let norms: f64 = j.column_iter().map(|c| c.norm()).product();
+    if norms == 0.0 {
+        return 0.0;
+    }
+    let mut det = 1.0;
+    eliminate(*j, SVector::zeros(), &mut det);
+    det / norms
 }
 
 /// Gaussian elimination with partial pivoting on the stack, for any N (nalgebra's LU needs

@@ -1,0 +1,100 @@
+//! The RRR dyad: a point reached by two links from two known points, in closed form
+//! (circle intersection), on the side of the line K1 -> K2 it was drawn on.
+
+use super::{cross, dot, perp, sub, Xy};
+
+/// Point `p` at distance `r1` from known point `k1` and `r2` from `k2`, on side `side`
+/// (+1: left of k1 -> k2) — the side of the drawn pose.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Dyad {
+    pub p: usize,
+    pub k1: usize,
+    pub k2: usize,
+    pub r1: f64,
+    pub r2: f64,
+    pub side: f64,
+    /// The two links meeting at `p` (through `k1` and `k2`).
+    pub links: [usize; 2],
+}
+
+/// What the closed form finds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum DyadOut {
+    /// The point and the signed sine of the triangle's angle at it: its sign is the side,
+    /// its size the distance from a dead point (the two links in line).
+    Solved(Xy, f64),
+    /// |r1 - r2| <= |k1 k2| <= r1 + r2 fails.
+    NotAssemblable,
+    /// k1 = k2 with r1 = r2: every point of the circle closes the dyad.
+    Indeterminate,
+}
+
+impl Dyad {
+    /// Circle intersection: one square root for d = |k1 k2| and one for 2 d h from
+    /// Heron's formula in factored form (nothing cancels near a dead point, and
+    /// power-of-two scaling is exact), no trigonometry.
+    #[inline]
+    pub fn solve(&self, a: Xy, b: Xy) -> DyadOut {
+        let (r1, r2) = (self.r1, self.r2);
+        let u = sub(b, a);
+        let d2 = dot(u, u);
+        let d = d2.sqrt();
+        if d == 0.0 {
+            return if r1 == r2 { DyadOut::Indeterminate } else { DyadOut::NotAssemblable };
+        }
+        let q1 = d + r1 - r2;
+        let q2 = d - r1 + r2;
+        let q3 = r1 + r2 - d;
+        if !(q1 >= 0.0 && q2 >= 0.0 && q3 >= 0.0) {
+            return DyadOut::NotAssemblable;
+        }
+        let two_dh = ((r1 + r2 + d) * q1 * q2 * q3).sqrt();
+        let along = d2 + (r1 - r2) * (r1 + r2);
+        let h = self.side * two_dh;
+        let w = perp(u);
+        let inv = 0.5 / d2;
+        let p = [a[0] + (along * u[0] + h * w[0]) * inv, a[1] + (along * u[1] + h * w[1]) * inv];
+        DyadOut::Solved(p, h / (2.0 * r1 * r2))
+    }
+
+    /// Velocity of the solved point from the known points' velocities: the two link
+    /// lengths stay fixed, (p - k_i) . (v - v_i) = 0. `None` at a dead point.
+    #[inline]
+    pub fn velocity(p: Xy, a: Xy, b: Xy, va: Xy, vb: Xy) -> Option<Xy> {
+        let (e1, e2) = (sub(p, a), sub(p, b));
+        let det = cross(e1, e2);
+        if det == 0.0 {
+            return None;
+        }
+        let (c1, c2) = (dot(e1, va), dot(e2, vb));
+        Some([(c1 * e2[1] - c2 * e1[1]) / det, (e1[0] * c2 - e2[0] * c1) / det])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn circle_intersection_and_side() {
+        let d = Dyad { p: 0, k1: 0, k2: 0, r1: 5.0, r2: 5.0, side: 1.0, links: [0, 0] };
+        // k1 = (2, 0), k2 = (6, 0): the seed four-bar at theta2 = 0, open mode
+        let DyadOut::Solved(p, s) = d.solve([2.0, 0.0], [6.0, 0.0]) else { panic!() };
+        assert!((p[0] - 4.0).abs() < 1e-15 && (p[1] - 21f64.sqrt()).abs() < 1e-15, "{p:?}");
+        assert!((s - 4.0 * 21f64.sqrt() / 25.0).abs() < 1e-15, "{s}");
+        let m = Dyad { side: -1.0, ..d.clone() };
+        let DyadOut::Solved(q, t) = m.solve([2.0, 0.0], [6.0, 0.0]) else { panic!() };
+        assert!((q[1] + 21f64.sqrt()).abs() < 1e-15 && t < 0.0);
+        assert_eq!(d.solve([0.0, 0.0], [10.5, 0.0]), DyadOut::NotAssemblable);
+        assert_eq!(d.solve([1.0, 1.0], [1.0, 1.0]), DyadOut::Indeterminate);
+    }
+
+    #[test]
+    fn velocity_keeps_lengths() {
+        let (a, b, p) = ([0.0, 0.0], [4.0, 0.0], [1.0, 2.0]);
+        let (va, vb) = ([0.3, -0.2], [0.0, 0.5]);
+        let v = Dyad::velocity(p, a, b, va, vb).unwrap();
+        assert!(dot(sub(p, a), sub(v, va)).abs() < 1e-15);
+        assert!(dot(sub(p, b), sub(v, vb)).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,225 @@
+//! Any one-degree-of-freedom planar linkage of revolute joints, described as data: named
+//! points drawn in one assembled pose and links as the lists of points they carry.
+//! [`Scene::new`] validates it (names, geometry, mobility); [`Scene::plan`] compiles the
+//! steps that the requested outputs need ([`plan`]); [`Plan::sweep`] solves them over
+//! input angles ([`sweep`]).
+
+mod dyad;
+mod group;
+pub mod plan;
+pub mod sweep;
+mod validate;
+
+use std::collections::HashMap;
+
+pub use plan::{Plan, StepInfo, StepKind};
+pub use sweep::{SceneSweepOptions, SceneSweepOut};
+
+use crate::error::Error;
+
+/// A 2-D point or vector.
+pub type Xy = [f64; 2];
+
+/// A link: a rigid body carrying the listed points (indices into the scene's points).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Link {
+    /// Its name in the scene.
+    pub name: String,
+    /// The points it carries, in the order listed.
+    pub points: Vec<usize>,
+}
+
+/// A ground-pivoted link whose angle is an input or output: the direction from `pivot`
+/// to `tip`, its first listed point other than the pivot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Pivoted {
+    /// Index of the link.
+    pub link: usize,
+    /// Index of the ground pivot.
+    pub pivot: usize,
+    /// Index of the point whose direction from the pivot is the link's angle.
+    pub tip: usize,
+}
+
+/// The scene as given, before validation: names and drawn coordinates.
+#[derive(Clone, Debug, Default)]
+pub struct SceneSpec {
+    /// Point name and drawn (x, y), any length unit.
+    pub points: Vec<(String, Xy)>,
+    /// Link name and the names of the points it carries.
+    pub links: Vec<(String, Vec<String>)>,
+    /// The fixed link.
+    pub ground: String,
+    /// The driven link and its ground pivot.
+    pub input: (String, String),
+    /// Optional output link and its ground pivot.
+    pub output: Option<(String, String)>,
+}
+
+/// A validated scene. Coordinates are kept as drawn and, for solving, shifted to the input
+/// pivot and divided by a power of two near the scene's size (exact: any power-of-two
+/// scaling of a drawing gives bit-identical angles and statuses).
+#[derive(Clone, Debug)]
+pub struct Scene {
+    names: Vec<String>,
+    drawn: Vec<Xy>,
+    /// (drawn - origin) / scale.
+    xy: Vec<Xy>,
+    origin: Xy,
+    scale: f64,
+    links: Vec<Link>,
+    /// Links carrying each point.
+    point_links: Vec<Vec<usize>>,
+    ground: usize,
+    input: Pivoted,
+    output: Option<Pivoted>,
+    theta0: f64,
+}
+
+impl Scene {
+    /// Validates a scene: every name, coordinate and link, the ground, input and output
+    /// links, and mobility (Gruebler count and a rank check at the drawn pose). The error
+    /// names the entry and says why.
+    pub fn new(spec: SceneSpec) -> Result<Scene, Error> {
+        validate::scene(spec)
+    }
+
+    /// Point names, in the order given.
+    pub fn point_names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// Drawn coordinates, in the order of [`Scene::point_names`].
+    pub fn drawn(&self) -> &[Xy] {
+        &self.drawn
+    }
+
+    /// The links, in the order given.
+    pub fn links(&self) -> &[Link] {
+        &self.links
+    }
+
+    /// Index of the ground link.
+    pub fn ground(&self) -> usize {
+        self.ground
+    }
+
+    /// The input link, its pivot and the point that sets its angle.
+    pub fn input(&self) -> Pivoted {
+        self.input
+    }
+
+    /// The output link, if any.
+    pub fn output(&self) -> Option<Pivoted> {
+        self.output
+    }
+
+    /// The input angle as drawn (radians, atan2 of pivot -> tip).
+    pub fn input_angle(&self) -> f64 {
+        self.theta0
+    }
+
+    /// The power of two that coordinates are divided by for solving (about the largest
+    /// distance between two points of one link).
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    /// Gruebler's count M = 3 (links - 1) - 2 joints, where a point on m links is m - 1
+    /// joints. A valid scene has M = 1.
+    pub fn gruebler(&self) -> i64 {
+        validate::gruebler(self.links.len(), &self.point_links)
+    }
+
+    /// Number of joints (a point on m >= 2 links counts m - 1).
+    pub fn joints(&self) -> usize {
+        self.point_links.iter().map(|l| l.len().saturating_sub(1)).sum()
+    }
+
+    /// Index of a point by name.
+    pub fn point_index(&self, name: &str) -> Option<usize> {
+        self.names.iter().position(|n| n == name)
+    }
+
+    /// Index of a link by name.
+    pub fn link_index(&self, name: &str) -> Option<usize> {
+        self.links.iter().position(|l| l.name == name)
+    }
+
+    /// The points that define a link's angle: (pivot, tip) for the input and output links,
+    /// else its first two listed points.
+    pub fn angle_points(&self, link: usize) -> (usize, usize) {
+        for p in [Some(self.input), self.output].into_iter().flatten() {
+            if p.link == link {
+                return (p.pivot, p.tip);
+            }
+        }
+        let pts = &self.links[link].points;
+        (pts[0], pts[1])
+    }
+
+    /// Compiles the steps that solve `outputs` (point or link names; `None`: every point
+    /// and link). Errors name an unknown output.
+    pub fn plan(&self, outputs: Option<&[String]>) -> Result<Plan, Error> {
+        let (points, links) = match outputs {
+            None => ((0..self.names.len()).collect(), (0..self.links.len()).collect()),
+            Some(names) => self.resolve(names)?,
+        };
+        plan::compile(self, &points, &links)
+    }
+
+    fn resolve(&self, names: &[String]) -> Result<(Vec<usize>, Vec<usize>), Error> {
+        let pts: HashMap<&str, usize> = self.names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+        let lks: HashMap<&str, usize> = self.links.iter().enumerate().map(|(i, l)| (l.name.as_str(), i)).collect();
+        let (mut points, mut links) = (Vec::new(), Vec::new());
+        for (k, name) in names.iter().enumerate() {
+            match (pts.get(name.as_str()), lks.get(name.as_str())) {
+                (Some(_), Some(_)) => {
+                    return Err(Error::scene(
+                        format!("outputs[{k}]"),
+                        format!("{name:?} names both a point and a link; rename one"),
+                    ))
+                }
+                (Some(&p), None) => points.push(p),
+                (None, Some(&l)) => links.push(l),
+                (None, None) => {
+                    return Err(Error::scene(format!("outputs[{k}]"), format!("{name:?} is not a point or link")))
+                }
+            }
+        }
+        Ok((points, links))
+    }
+}
+
+/// (a - b)
+#[inline]
+pub(crate) fn sub(a: Xy, b: Xy) -> Xy {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+/// z-component of a x b.
+#[inline]
+pub(crate) fn cross(a: Xy, b: Xy) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// a . b
+#[inline]
+pub(crate) fn dot(a: Xy, b: Xy) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+/// `v` turned by the rotation whose (cos, sin) is `cs`.
+#[inline]
+pub(crate) fn rotate(cs: Xy, v: Xy) -> Xy {
+    [cs[0] * v[0] - cs[1] * v[1], cs[1] * v[0] + cs[0] * v[1]]
+}
+
+/// `v` turned by +90 degrees.
+#[inline]
+pub(crate) fn perp(v: Xy) -> Xy {
+    [-v[1], v[0]]
+}
+
+#[cfg(test)]
+pub(crate) mod tests;

@@ -1,0 +1,424 @@
+//! A scene sweep: the plan solved at each input angle, following the drawn assembly.
+//!
+//! Dyads are closed forms on their drawn side, so they need no history. Groups use
+//! continuation from the drawn pose: to the first angle along the shortest way round, then
+//! along the angles in order, in steps of at most `max_step`, each predicted to second
+//! order from the last two tangents (dphi/dtheta = -J^-1 dF/dtheta). A step whose Newton
+//! solve fails, jumps, or lands on another branch (the sign of the group's conditioning
+//! changed) is halved, down to `max_step / 2^16`; what still fails is reported with its
+//! status, and points that do not depend on it are solved all the same.
+
+use super::dyad::{Dyad, DyadOut};
+use super::group::{GroupSolve, MAX};
+use super::plan::{Op, Plan};
+use super::{cross, dot, perp, sub, Xy};
+use crate::error::{positive_finite, Error};
+use crate::newton::NewtonOptions;
+use crate::{wrap_angle, Status};
+
+/// How many times a failing continuation step is halved.
+const MAX_HALVINGS: u32 = 16;
+/// Newton steps per continuation step before it is halved (at most the user's max_iter).
+const STEP_ITER: u32 = 8;
+/// A converged group whose rotations moved more than this from the prediction (with a
+/// prediction made over at most one `max_step`) has jumped to another solution.
+const JUMP: f64 = 0.25;
+
+/// Options of a scene sweep, validated once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneSweepOptions {
+    /// Newton stopping criteria for groups; its singular threshold applies to dyads too.
+    pub newton: NewtonOptions,
+    /// Largest continuation step of a group (radians of input angle).
+    pub max_step: f64,
+    /// Input angular velocity: point and link velocities are computed when given.
+    pub omega: Option<f64>,
+}
+
+impl SceneSweepOptions {
+    /// Validates `max_step` (finite, > 0) and `omega` (finite).
+    pub fn new(newton: NewtonOptions, max_step: f64, omega: Option<f64>) -> Result<Self, Error> {
+        positive_finite("max_step", max_step)?;
+        if let Some(w) = omega {
+            if !w.is_finite() {
+                return Err(Error::invalid("omega", "must be finite", w));
+            }
+        }
+        Ok(Self { newton, max_step, omega })
+    }
+}
+
+/// Output slices of a sweep over N input angles with P reported points, L reported link
+/// angles and S steps (row-major).
+pub struct SceneSweepOut<'a> {
+    /// (N, P, 2) positions in scene units; NaN where the point is not solved.
+    pub points: &'a mut [f64],
+    /// (N, L) link angles in (-pi, pi].
+    pub angles: &'a mut [f64],
+    /// (N,) the first failing step's status, or CONVERGED.
+    pub status: &'a mut [i8],
+    /// (N,) Newton steps spent reaching each angle (groups only; dyads take none).
+    pub nit: &'a mut [u32],
+    /// (N,) product of the steps' signed conditioning.
+    pub det: &'a mut [f64],
+    /// (N, S) each step's status.
+    pub step_status: &'a mut [i8],
+    /// (N, S) each step's signed conditioning.
+    pub step_det: &'a mut [f64],
+    /// (N, P) each reported point's status.
+    pub point_status: &'a mut [i8],
+    /// (N, P, 2) and (N, L): velocities and angular velocities, when `omega` is given.
+    pub velocity: Option<(&'a mut [f64], &'a mut [f64])>,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Tangent {
+    theta: f64,
+    dphi: [f64; MAX],
+}
+
+/// Continuation state of one group.
+#[derive(Clone, Copy, Debug)]
+struct GroupState {
+    theta: f64,
+    phi: [f64; MAX],
+    tangent: Option<Tangent>,
+    previous: Option<Tangent>,
+}
+
+impl GroupState {
+    /// Second order from the last two tangents; first order with one; the last solution
+    /// itself after a gap (a prediction over several steps is worse than none).
+    fn predict(&self, theta: f64, n: usize, max_step: f64) -> [f64; MAX] {
+        let h = theta - self.theta;
+        let mut x = self.phi;
+        if h.abs() > 4.0 * max_step {
+            return x;
+        }
+        if let Some(t1) = self.tangent {
+            let curv = self.previous.filter(|t0| t0.theta != t1.theta);
+            for k in 0..n {
+                let mut dx = t1.dphi[k] * h;
+                if let Some(t0) = curv {
+                    dx += 0.5 * (t1.dphi[k] - t0.dphi[k]) / (t1.theta - t0.theta) * h * h;
+                }
+                if dx.is_finite() {
+                    x[k] += dx;
+                }
+            }
+        }
+        x
+    }
+}
+
+struct Solver<'p> {
+    plan: &'p Plan,
+    opts: SceneSweepOptions,
+    step_newton: NewtonOptions,
+    /// Velocities are needed for group tangents and for the `omega` outputs.
+    need_vel: bool,
+    pos: Vec<Xy>,
+    vel: Vec<Xy>,
+    pst: Vec<Status>,
+    op_status: Vec<Status>,
+    op_det: Vec<f64>,
+    /// Group state per op (None for other ops).
+    groups: Vec<Option<GroupState>>,
+    nit: u32,
+    last_eval: f64,
+}
+
+impl<'p> Solver<'p> {
+    fn new(plan: &'p Plan, opts: SceneSweepOptions) -> Self {
+        let n = plan.npoints;
+        let mut s = Solver {
+            plan,
+            opts,
+            step_newton: NewtonOptions { max_iter: opts.newton.max_iter.min(STEP_ITER), ..opts.newton },
+            need_vel: plan.has_group() || opts.omega.is_some(),
+            pos: vec![[f64::NAN; 2]; n],
+            vel: vec![[0.0; 2]; n],
+            pst: vec![Status::Converged; n],
+            op_status: vec![Status::Converged; plan.ops.len()],
+            op_det: vec![1.0; plan.ops.len()],
+            groups: plan
+                .ops
+                .iter()
+                .map(|o| {
+                    matches!(o, Op::Group(_)).then_some(GroupState {
+                        theta: plan.theta0,
+                        phi: [0.0; MAX],
+                        tangent: None,
+                        previous: None,
+                    })
+                })
+                .collect(),
+            nit: 0,
+            last_eval: f64::NAN,
+        };
+        for &(p, xy) in &plan.fixed {
+            s.pos[p] = xy;
+        }
+        s
+    }
+
+    /// Solves every op at `theta`, each group from its own prediction; commits the groups
+    /// that converge on their branch. Returns true when some group failed by itself (not
+    /// because something it depends on failed).
+    fn eval(&mut self, theta: f64) -> bool {
+        self.last_eval = theta;
+        let plan = self.plan;
+        let (s, c) = theta.sin_cos();
+        let u = [c, s];
+        let pu = perp(u);
+        let mut failed = false;
+        for (i, op) in plan.ops.iter().enumerate() {
+            let bad = |pst: &[Status], ins: &[usize]| ins.iter().map(|&p| pst[p]).find(|s| *s != Status::Converged);
+            let (status, det) = match op {
+                Op::Input { q, lam, mu } => {
+                    let st = if theta.is_finite() { Status::Converged } else { Status::NonFinite };
+                    let p = plan.pivot;
+                    self.pos[*q] = [p[0] + lam * u[0] + mu * pu[0], p[1] + lam * u[1] + mu * pu[1]];
+                    self.vel[*q] = [lam * pu[0] - mu * u[0], lam * pu[1] - mu * u[1]];
+                    self.pst[*q] = st;
+                    (st, 1.0)
+                }
+                Op::Dyad(d) => {
+                    let r = match bad(&self.pst, &[d.k1, d.k2]) {
+                        Some(st) => (st, f64::NAN),
+                        None => self.dyad(d),
+                    };
+                    self.pst[d.p] = r.0;
+                    r
+                }
+                Op::Carry { q, a, b, m } => {
+                    let st = bad(&self.pst, &[*a, *b]).unwrap_or(Status::Converged);
+                    let (pa, pb) = (self.pos[*a], self.pos[*b]);
+                    let r = rot_m(*m, sub(pb, pa));
+                    self.pos[*q] = [pa[0] + r[0], pa[1] + r[1]];
+                    if self.need_vel {
+                        let (va, vb) = (self.vel[*a], self.vel[*b]);
+                        let rv = rot_m(*m, sub(vb, va));
+                        self.vel[*q] = [va[0] + rv[0], va[1] + rv[1]];
+                    }
+                    self.pst[*q] = st;
+                    (st, 1.0)
+                }
+                Op::Group(g) => {
+                    let r = match bad(&self.pst, &g.anchors) {
+                        Some(st) => (st, f64::NAN),
+                        None => {
+                            let (st, det) = self.group(i, theta);
+                            failed |= st != Status::Converged;
+                            (st, det)
+                        }
+                    };
+                    if r.0 != Status::Converged {
+                        for nd in &g.nodes {
+                            self.pst[nd.point] = r.0;
+                        }
+                    }
+                    r
+                }
+            };
+            self.op_status[i] = status;
+            self.op_det[i] = det;
+        }
+        failed
+    }
+
+    fn dyad(&mut self, d: &Dyad) -> (Status, f64) {
+        let (a, b) = (self.pos[d.k1], self.pos[d.k2]);
+        match d.solve(a, b) {
+            DyadOut::Solved(p, det) => {
+                if !(det.abs() >= self.opts.newton.singular) {
+                    return (if det.is_nan() { Status::NonFinite } else { Status::Singular }, det);
+                }
+                self.pos[d.p] = p;
+                if self.need_vel {
+                    match Dyad::velocity(p, a, b, self.vel[d.k1], self.vel[d.k2]) {
+                        Some(v) => self.vel[d.p] = v,
+                        None => return (Status::Singular, det),
+                    }
+                }
+                (Status::Converged, det)
+            }
+            DyadOut::NotAssemblable => (Status::NotAssemblable, f64::NAN),
+            DyadOut::Indeterminate => (Status::Singular, 0.0),
+        }
+    }
+
+    fn group(&mut self, i: usize, theta: f64) -> (Status, f64) {
+        let Op::Group(g) = &self.plan.ops[i] else { unreachable!("op {i} is a group") };
+        let n = g.n();
+        let state = self.groups[i].expect("a group has a state");
+        let guess = state.predict(theta, n, self.opts.max_step);
+        let delta = g.deltas(|p| self.pos[p]);
+        let ddelta = g.deltas(|p| self.vel[p]);
+        let nc = g.closures.len();
+        let out: GroupSolve = g.solve(&delta[..nc], Some(&ddelta[..nc]), &guess[..n], &self.step_newton);
+        self.nit += out.nit;
+        let mut status = out.status;
+        if status == Status::Converged {
+            let jumped = (theta - state.theta).abs() <= self.opts.max_step * (1.0 + 1e-9)
+                && (0..n).any(|k| wrap_angle(out.phi[k] - guess[k]).abs() > JUMP);
+            if out.det * g.sign < 0.0 || jumped {
+                status = Status::BranchJump;
+            }
+        }
+        if status != Status::Converged {
+            return (status, out.det);
+        }
+        let anchors: Vec<Xy> = g.anchors.iter().map(|&a| self.pos[a]).collect();
+        let pos = &mut self.pos;
+        g.place(&out.phi[..n], &anchors, |p, xy| pos[p] = xy);
+        let pos = &self.pos;
+        let vel = &mut self.vel;
+        let anchor_vel: Vec<Xy> = g.anchors.iter().map(|&a| vel[a]).collect();
+        g.place_velocity(&out.dphi[..n], |p| pos[p], &anchor_vel, |p, v| vel[p] = v);
+        for nd in &g.nodes {
+            self.pst[nd.point] = Status::Converged;
+        }
+        let t = Tangent { theta, dphi: out.dphi };
+        let st = self.groups[i].as_mut().expect("a group has a state");
+        st.previous = st.tangent.filter(|t0| t0.theta != theta);
+        st.tangent = Some(t);
+        st.theta = theta;
+        st.phi = out.phi;
+        (Status::Converged, out.det)
+    }
+
+    /// Continuation from `from` to `to`: uniform steps of at most `max_step`, each halved
+    /// while some group fails; ends with an evaluation at `to`.
+    fn advance(&mut self, from: f64, to: f64) {
+        let h = to - from;
+        let m = (h.abs() / self.opts.max_step).ceil().clamp(1.0, 1e7) as u64;
+        let mut a = from;
+        for k in 1..=m {
+            let b = if k == m { to } else { from + h * (k as f64 / m as f64) };
+            if !self.reach(a, b, 0) {
+                break;
+            }
+            a = b;
+        }
+        if self.last_eval != to {
+            self.eval(to);
+        }
+    }
+
+    fn reach(&mut self, a: f64, b: f64, depth: u32) -> bool {
+        if !self.eval(b) {
+            return true;
+        }
+        if depth >= MAX_HALVINGS || !b.is_finite() {
+            return false;
+        }
+        let mid = 0.5 * (a + b);
+        self.reach(a, mid, depth + 1) && self.reach(mid, b, depth + 1)
+    }
+
+    fn write(&self, k: usize, out: &mut SceneSweepOut<'_>) {
+        let plan = self.plan;
+        let (np, nl, ns) = (plan.points.len(), plan.links.len(), plan.steps.len());
+        let sc = plan.scale;
+        let omega = self.opts.omega.unwrap_or(0.0);
+        for (j, &p) in plan.points.iter().enumerate() {
+            let ok = self.pst[p] == Status::Converged;
+            out.point_status[k * np + j] = self.pst[p].code();
+            let xy = self.pos[p];
+            let o = 2 * (k * np + j);
+            out.points[o] = if ok { xy[0] * sc + plan.origin[0] } else { f64::NAN };
+            out.points[o + 1] = if ok { xy[1] * sc + plan.origin[1] } else { f64::NAN };
+            if let Some((v, _)) = out.velocity.as_mut() {
+                let w = self.vel[p];
+                v[o] = if ok { w[0] * sc * omega } else { f64::NAN };
+                v[o + 1] = if ok { w[1] * sc * omega } else { f64::NAN };
+            }
+        }
+        for (j, &(a, b)) in plan.link_points.iter().enumerate() {
+            let ok = self.pst[a] == Status::Converged && self.pst[b] == Status::Converged;
+            let d = sub(self.pos[b], self.pos[a]);
+            out.angles[k * nl + j] = if ok { (d[1] + 0.0).atan2(d[0]) } else { f64::NAN };
+            if let Some((_, w)) = out.velocity.as_mut() {
+                let dv = sub(self.vel[b], self.vel[a]);
+                w[k * nl + j] = if ok { cross(d, dv) / dot(d, d) * omega } else { f64::NAN };
+            }
+        }
+        let status = self.op_status.iter().copied().find(|s| *s != Status::Converged).unwrap_or(Status::Converged);
+        let mut det = 1.0;
+        for (s, &i) in plan.step_op.iter().enumerate() {
+            out.step_status[k * ns + s] = self.op_status[i].code();
+            out.step_det[k * ns + s] = self.op_det[i];
+            det *= self.op_det[i];
+        }
+        out.status[k] = status.code();
+        out.det[k] = det;
+        out.nit[k] = self.nit;
+    }
+}
+
+/// q - a = m (b - a) in complex arithmetic.
+#[inline]
+fn rot_m(m: Xy, d: Xy) -> Xy {
+    [m[0] * d[0] - m[1] * d[1], m[1] * d[0] + m[0] * d[1]]
+}
+
+impl Plan {
+    /// Solves the plan at every angle of `theta` (radians, any order; the continuation
+    /// follows the order given, starting from the drawn pose).
+    pub fn sweep(&self, theta: &[f64], opts: &SceneSweepOptions, mut out: SceneSweepOut<'_>) -> Result<(), Error> {
+        let n = theta.len();
+        let (np, nl, ns) = (self.points.len(), self.links.len(), self.steps.len());
+        let check = |name: &str, got: usize, expected: usize| {
+            if got == expected {
+                Ok(())
+            } else {
+                Err(Error::Shape { name: name.into(), got, expected })
+            }
+        };
+        check("points", out.points.len(), n * np * 2)?;
+        check("angles", out.angles.len(), n * nl)?;
+        check("status", out.status.len(), n)?;
+        check("nit", out.nit.len(), n)?;
+        check("det", out.det.len(), n)?;
+        check("step_status", out.step_status.len(), n * ns)?;
+        check("step_det", out.step_det.len(), n * ns)?;
+        check("point_status", out.point_status.len(), n * np)?;
+        if let Some((v, w)) = out.velocity.as_ref() {
+            check("velocity", v.len(), n * np * 2)?;
+            check("angular velocity", w.len(), n * nl)?;
+        }
+        let mut s = Solver::new(self, *opts);
+        let has_group = self.has_group();
+        let mut prev = self.theta0;
+        if has_group {
+            s.eval(self.theta0); // tangents at the drawn pose
+            if let Some(&t0) = theta.first().filter(|t| t.is_finite()) {
+                let start = self.theta0 + wrap_angle(t0 - self.theta0);
+                s.advance(self.theta0, start);
+                for g in s.groups.iter_mut().flatten() {
+                    // the input repeats every turn: relabel the states to theta[0]
+                    let shift = t0 - start;
+                    g.theta += shift;
+                    for t in [g.tangent.as_mut(), g.previous.as_mut()].into_iter().flatten() {
+                        t.theta += shift;
+                    }
+                }
+                prev = t0;
+            }
+        }
+        for (k, &t) in theta.iter().enumerate() {
+            s.nit = 0;
+            if has_group && t.is_finite() && prev.is_finite() {
+                s.advance(prev, t);
+            } else {
+                s.eval(t);
+            }
+            if t.is_finite() {
+                prev = t;
+            }
+            s.write(k, &mut out);
+        }
+        Ok(())
+    }
+}

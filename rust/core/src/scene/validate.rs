@@ -1,0 +1,215 @@
+//! Scene validation: names, coordinates, links, ground/input/output, and mobility (the
+//! Gruebler count, then the rank of the constraint Jacobian at the drawn pose, so that a
+//! special geometry that moves although the count says it cannot is reported).
+
+use std::collections::HashMap;
+
+use nalgebra::DMatrix;
+
+use super::{perp, sub, Link, Pivoted, Scene, SceneSpec, Xy};
+use crate::error::Error;
+
+/// Two points of one link closer than this, relative to the scene's size, coincide.
+const COINCIDENT: f64 = 1e-12;
+/// The constraint Jacobian at the drawn pose is rank deficient when its smallest singular
+/// value is below this fraction of its largest.
+const RANK_TOL: f64 = 1e-9;
+
+pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
+    let SceneSpec { points, links, ground, input, output } = spec;
+    if points.is_empty() {
+        return Err(Error::scene("points", "the scene has no points"));
+    }
+    let mut index: HashMap<&str, usize> = HashMap::new();
+    for (i, (name, xy)) in points.iter().enumerate() {
+        if index.insert(name.as_str(), i).is_some() {
+            return Err(Error::scene(format!("points.{name}"), "is given twice"));
+        }
+        if !xy.iter().all(|v| v.is_finite()) {
+            return Err(Error::scene(format!("points.{name}"), format!("coordinates must be finite, got {xy:?}")));
+        }
+    }
+    let drawn: Vec<Xy> = points.iter().map(|p| p.1).collect();
+    let names: Vec<String> = points.iter().map(|p| p.0.clone()).collect();
+
+    if links.is_empty() {
+        return Err(Error::scene("links", "the scene has no links"));
+    }
+    let mut link_index: HashMap<&str, usize> = HashMap::new();
+    let mut parsed = Vec::with_capacity(links.len());
+    for (k, (name, pts)) in links.iter().enumerate() {
+        let entry = format!("links.{name}");
+        if link_index.insert(name.as_str(), k).is_some() {
+            return Err(Error::scene(entry, "is given twice"));
+        }
+        if pts.len() < 2 {
+            return Err(Error::scene(entry, format!("a link needs at least 2 points, got {}", pts.len())));
+        }
+        let mut idx = Vec::with_capacity(pts.len());
+        for p in pts {
+            let &i = index.get(p.as_str()).ok_or_else(|| Error::scene(&entry, format!("unknown point {p:?}")))?;
+            if idx.contains(&i) {
+                return Err(Error::scene(&entry, format!("lists point {p:?} twice")));
+            }
+            idx.push(i);
+        }
+        parsed.push(Link { name: name.clone(), points: idx });
+    }
+
+    // Size of the scene: the largest distance between two points of one link.
+    let dist = |a: usize, b: usize| {
+        let d = sub(drawn[a], drawn[b]);
+        (d[0] * d[0] + d[1] * d[1]).sqrt()
+    };
+    let mut size = 0.0_f64;
+    for l in &parsed {
+        for (i, &a) in l.points.iter().enumerate() {
+            for &b in &l.points[i + 1..] {
+                size = size.max(dist(a, b));
+            }
+        }
+    }
+    if !size.is_finite() {
+        return Err(Error::scene("points", "coordinates are too large to measure (a distance overflows)"));
+    }
+    for l in &parsed {
+        for (i, &a) in l.points.iter().enumerate() {
+            for &b in &l.points[i + 1..] {
+                let d = dist(a, b);
+                if !(d > COINCIDENT * size) {
+                    return Err(Error::scene(
+                        format!("links.{}", l.name),
+                        format!("points {:?} and {:?} coincide (distance {d:e})", names[a], names[b]),
+                    ));
+                }
+            }
+        }
+    }
+
+    let mut point_links = vec![Vec::new(); names.len()];
+    for (k, l) in parsed.iter().enumerate() {
+        for &p in &l.points {
+            point_links[p].push(k);
+        }
+    }
+    if let Some(p) = point_links.iter().position(|l| l.is_empty()) {
+        return Err(Error::scene(format!("points.{}", names[p]), "is on no link"));
+    }
+
+    let link_of = |entry: &str, name: &str| {
+        link_index.get(name).copied().ok_or_else(|| Error::scene(entry, format!("{name:?} is not a link")))
+    };
+    let ground = link_of("ground", &ground)?;
+    let pivoted = |what: &str, (link, pivot): &(String, String)| -> Result<Pivoted, Error> {
+        let l = link_of(&format!("{what}.link"), link)?;
+        if l == ground {
+            return Err(Error::scene(format!("{what}.link"), format!("{link:?} is the ground link")));
+        }
+        let entry = format!("{what}.pivot");
+        let &p = index.get(pivot.as_str()).ok_or_else(|| Error::scene(&entry, format!("unknown point {pivot:?}")))?;
+        if !parsed[l].points.contains(&p) {
+            return Err(Error::scene(entry, format!("{pivot:?} is not a point of link {link:?}")));
+        }
+        if !parsed[ground].points.contains(&p) {
+            return Err(Error::scene(
+                entry,
+                format!(
+                    "{pivot:?} is not on the ground link {:?}: the {what} must be pinned to ground",
+                    parsed[ground].name
+                ),
+            ));
+        }
+        let tip = *parsed[l].points.iter().find(|&&q| q != p).expect("a link has >= 2 distinct points");
+        Ok(Pivoted { link: l, pivot: p, tip })
+    };
+    let input = pivoted("input", &input)?;
+    let output = output.as_ref().map(|o| pivoted("output", o)).transpose()?;
+
+    let m = gruebler(parsed.len(), &point_links);
+    if m != 1 {
+        let joints: usize = point_links.iter().map(|l| l.len().saturating_sub(1)).sum();
+        return Err(Error::scene(
+            "mobility",
+            format!(
+                "Gruebler's count gives M = 3 ({} - 1) - 2 x {joints} = {m}, expected 1 (a one-degree-of-freedom linkage)",
+                parsed.len()
+            ),
+        ));
+    }
+
+    let e = size.log2().floor() as i32;
+    let scale = 2f64.powi(e);
+    let origin = drawn[input.pivot];
+    let xy: Vec<Xy> = drawn.iter().map(|&p| [(p[0] - origin[0]) / scale, (p[1] - origin[1]) / scale]).collect();
+    let d = sub(xy[input.tip], xy[input.pivot]);
+    let theta0 = (d[1] + 0.0).atan2(d[0]);
+
+    let sc = Scene { names, drawn, xy, origin, scale, links: parsed, point_links, ground, input, output, theta0 };
+    rank_check(&sc)?;
+    Ok(sc)
+}
+
+/// M = 3 (links - 1) - 2 joints.
+pub(super) fn gruebler(links: usize, point_links: &[Vec<usize>]) -> i64 {
+    let joints: usize = point_links.iter().map(|l| l.len().saturating_sub(1)).sum();
+    3 * (links as i64 - 1) - 2 * joints as i64
+}
+
+/// The constraint Jacobian at the drawn pose, with the input angle held, must be square and
+/// of full rank: otherwise the drawn pose is a dead point, or the linkage has more freedom
+/// there than its count says (e.g. a structure that moves because of special geometry).
+fn rank_check(sc: &Scene) -> Result<(), Error> {
+    // unknowns: (tx, ty, phi) of every non-ground link; a link's points are
+    // t + R(phi) (p - p_first)
+    let col: Vec<Option<usize>> = {
+        let mut next = 0;
+        (0..sc.links.len())
+            .map(|k| {
+                (k != sc.ground).then(|| {
+                    next += 3;
+                    next - 3
+                })
+            })
+            .collect()
+    };
+    let ncol = 3 * (sc.links.len() - 1);
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    // d position of point p via link k
+    let grad = |k: usize, p: usize, row: &mut [f64], comp: usize, sign: f64| {
+        if let Some(c) = col[k] {
+            let first = sc.links[k].points[0];
+            let r = perp(sub(sc.xy[p], sc.xy[first]));
+            row[c + comp] += sign;
+            row[c + 2] += sign * r[comp];
+        }
+    };
+    for (p, ls) in sc.point_links.iter().enumerate() {
+        for &k in &ls[1..] {
+            for comp in 0..2 {
+                let mut row = vec![0.0; ncol];
+                grad(k, p, &mut row, comp, 1.0);
+                grad(ls[0], p, &mut row, comp, -1.0);
+                rows.push(row);
+            }
+        }
+    }
+    let mut row = vec![0.0; ncol];
+    row[col[sc.input.link].expect("input is not ground") + 2] = 1.0;
+    rows.push(row);
+    debug_assert_eq!(rows.len(), ncol, "Gruebler M = 1 makes the system square");
+    let j = DMatrix::from_fn(rows.len(), ncol, |r, c| rows[r][c]);
+    let sv = j.singular_values();
+    let (lo, hi) = (sv.min(), sv.max());
+    if !(lo > RANK_TOL * hi) {
+        return Err(Error::scene(
+            "mobility",
+            format!(
+                "the constraint Jacobian at the drawn pose is rank deficient (smallest / largest singular value \
+                 {:.1e}): the drawn pose is a dead point, or the linkage moves with more than one degree of \
+                 freedom there although Gruebler's count is 1",
+                lo / hi
+            ),
+        ));
+    }
+    Ok(())
+}
