@@ -21,6 +21,7 @@ from ._types import (
     SweepSummary,
 )
 from .fourbar import FourBar, closed_form_batch, sweep_batch
+from .scene import Plan, Scene, SceneSweep, Step
 
 __all__ = [
     "BUILD_PROFILE",
@@ -30,6 +31,10 @@ __all__ = [
     "FourBar",
     "Grashof",
     "Limits",
+    "Plan",
+    "Scene",
+    "SceneSweep",
+    "Step",
     "Solution",
     "Status",
     "Sweep",

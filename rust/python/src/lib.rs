@@ -9,15 +9,17 @@ use planarkin_core::{arrays, batch, sweep, FourBar, Method, Mode, NewtonOptions,
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+mod scene;
+
 /// The one place core errors become Python exceptions.
-fn err(e: core::Error) -> PyErr {
+pub(crate) fn err(e: core::Error) -> PyErr {
     PyValueError::new_err(e.to_string())
 }
 
-type Arr1<'py, T> = Bound<'py, PyArray1<T>>;
+pub(crate) type Arr1<'py, T> = Bound<'py, PyArray1<T>>;
 type Arr2<'py, T> = Bound<'py, PyArray2<T>>;
 
-fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
+pub(crate) fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
     a.as_slice().map_err(|_| PyValueError::new_err(format!("{name} must be a contiguous 1-D float64 array")))
 }
 
@@ -339,6 +341,7 @@ fn closed_form_batch<'py>(
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyFourBar>()?;
+    scene::register(m)?;
     m.add_function(wrap_pyfunction!(transmission, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_batch, m)?)?;
     m.add_function(wrap_pyfunction!(closed_form_batch, m)?)?;

@@ -1,0 +1,8 @@
+"""Scenes: any one-degree-of-freedom planar linkage of revolute joints described as data
+(named points in one drawn pose, links as lists of points), solved by a plan of dyads and
+rigid groups compiled for the outputs asked for."""
+
+from ._model import Scene
+from ._results import Plan, SceneSweep, Step
+
+__all__ = ["Plan", "Scene", "SceneSweep", "Step"]

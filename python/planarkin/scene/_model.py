@@ -1,0 +1,306 @@
+"""The Scene: parsing, validation (in the Rust core), file round trips, plans and sweeps."""
+
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .. import _core
+from .._types import as_angles, as_float, check_options
+from ._results import Plan, SceneSweep, Step
+from ._toml import dumps as toml_dumps
+
+#: Keys a scene may have; the first five are required (``output`` is optional).
+KEYS = ("name", "description", "units", "points", "links", "ground", "input", "output", "outputs")
+REQUIRED = ("points", "links", "ground", "input")
+#: Default largest continuation step of a group (3 degrees).
+MAX_STEP = math.radians(3.0)
+TAU = 2.0 * math.pi
+
+
+def _entry(cond: bool, entry: str, message: str) -> None:
+    if not cond:
+        raise ValueError(f"{entry}: {message}")
+
+
+def _pivoted(d: Mapping[str, Any], key: str) -> tuple[str, str]:
+    v = d[key]
+    _entry(
+        isinstance(v, Mapping) and set(v) == {"link", "pivot"},
+        key,
+        f"must be a table with keys 'link' and 'pivot', got {v!r}",
+    )
+    _entry(isinstance(v["link"], str), f"{key}.link", f"must be a link name, got {v['link']!r}")
+    _entry(isinstance(v["pivot"], str), f"{key}.pivot", f"must be a point name, got {v['pivot']!r}")
+    return v["link"], v["pivot"]
+
+
+def _xy(name: str, v: object) -> tuple[float, float]:
+    ok = isinstance(v, (list, tuple, np.ndarray)) and len(v) == 2
+    _entry(ok, f"points.{name}", f"must be a pair [x, y], got {v!r}")
+    x, y = v  # type: ignore[misc]
+    return as_float(f"points.{name}[0]", x), as_float(f"points.{name}[1]", y)
+
+
+class Scene:
+    """A one-degree-of-freedom planar linkage of revolute joints, drawn in one assembled pose.
+
+    ``points`` name -> (x, y) as drawn (any length unit); ``links`` name -> the points it
+    carries (a rigid body: a ternary lists 3); a point on two or more links is a revolute
+    joint, a point on one link only is a tracer. ``ground`` is the fixed link; ``input``
+    the driven link, pinned to ground at its pivot; its angle is the direction (radians)
+    from the pivot to the link's first other listed point. The drawn pose chooses the
+    assembly that sweeps follow. Invalid scenes raise ValueError naming the entry.
+
+    >>> import planarkin as pk
+    >>> sc = pk.scenes.load("fourbar")
+    >>> sw = sc.sweep(outputs=["P"])
+    >>> sw.points["P"].shape
+    (361, 2)
+    """
+
+    __slots__ = ("_core", "_data", "_plans")
+
+    def __init__(self, data: Mapping[str, Any]) -> None:
+        _entry(isinstance(data, Mapping), "scene", f"must be a mapping, got {type(data).__name__}")
+        unknown = [k for k in data if k not in KEYS]
+        _entry(not unknown, "scene", f"unknown keys {unknown}; known keys: {', '.join(KEYS)}")
+        for k in REQUIRED:
+            _entry(k in data, k, "is required")
+        pts, links = data["points"], data["links"]
+        _entry(isinstance(pts, Mapping), "points", "must be a table name -> [x, y]")
+        _entry(isinstance(links, Mapping), "links", "must be a table name -> [point names]")
+        points = {str(n): _xy(n, v) for n, v in pts.items()}
+        lk: dict[str, tuple[str, ...]] = {}
+        for n, v in links.items():
+            ok = isinstance(v, (list, tuple)) and all(isinstance(p, str) for p in v)
+            _entry(ok, f"links.{n}", f"must be a list of point names, got {v!r}")
+            lk[str(n)] = tuple(v)
+        _entry(isinstance(data["ground"], str), "ground", "must be a link name")
+        inp = _pivoted(data, "input")
+        out = _pivoted(data, "output") if data.get("output") is not None else None
+        outputs = data.get("outputs")
+        if outputs is not None:
+            ok = isinstance(outputs, (list, tuple)) and all(isinstance(o, str) for o in outputs)
+            _entry(ok, "outputs", f"must be a list of point or link names, got {outputs!r}")
+        for k in ("name", "description", "units"):
+            v = data.get(k)
+            _entry(v is None or isinstance(v, str), k, f"must be a string, got {v!r}")
+        self._core = _core.Scene(
+            list(points.items()), [(n, list(v)) for n, v in lk.items()], data["ground"], inp, out
+        )
+        self._data: dict[str, Any] = {
+            "name": data.get("name"),
+            "description": data.get("description"),
+            "units": data.get("units"),
+            "points": points,
+            "links": lk,
+            "ground": data["ground"],
+            "input": {"link": inp[0], "pivot": inp[1]},
+            "output": None if out is None else {"link": out[0], "pivot": out[1]},
+            "outputs": None if outputs is None else tuple(outputs),
+        }
+        self._plans: dict[tuple[str, ...] | None, tuple[Plan, Any]] = {}
+        if outputs is not None:
+            self.plan(outputs)  # names checked now, not at the first sweep
+
+    # --- construction and files ------------------------------------------------------
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> Scene:
+        """A scene from a mapping with the file format's keys."""
+        return cls(data)
+
+    @classmethod
+    def load(cls, path: str | Path) -> Scene:
+        """Reads a ``.json`` or ``.toml`` scene file."""
+        p = Path(path)
+        if p.suffix == ".json":
+            data = json.loads(p.read_text(encoding="utf-8"))
+        elif p.suffix == ".toml":
+            data = tomllib.loads(p.read_text(encoding="utf-8"))
+        else:
+            raise ValueError(f"path must end in .json or .toml, got {str(path)!r}")
+        if isinstance(data, dict) and data.get("name") is None:
+            data["name"] = p.stem
+        return cls(data)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The scene in the file format (plain lists and dicts; absent keys left out)."""
+        d = self._data
+        out: dict[str, Any] = {}
+        for k in ("name", "description", "units"):
+            if d[k] is not None:
+                out[k] = d[k]
+        out["points"] = {n: [x, y] for n, (x, y) in d["points"].items()}
+        out["links"] = {n: list(v) for n, v in d["links"].items()}
+        out["ground"] = d["ground"]
+        out["input"] = dict(d["input"])
+        if d["output"] is not None:
+            out["output"] = dict(d["output"])
+        if d["outputs"] is not None:
+            out["outputs"] = list(d["outputs"])
+        return out
+
+    def save(self, path: str | Path) -> Path:
+        """Writes the scene as ``.json`` or ``.toml`` (by the suffix); returns the path."""
+        p = Path(path)
+        if p.suffix == ".json":
+            p.write_text(json.dumps(self.to_dict(), indent=2) + "\n", encoding="utf-8")
+        elif p.suffix == ".toml":
+            p.write_text(toml_dumps(self.to_dict()), encoding="utf-8")
+        else:
+            raise ValueError(f"path must end in .json or .toml, got {str(path)!r}")
+        return p
+
+    # --- what it is ------------------------------------------------------------------
+
+    @property
+    def name(self) -> str | None:
+        return self._data["name"]
+
+    @property
+    def description(self) -> str | None:
+        return self._data["description"]
+
+    @property
+    def units(self) -> str | None:
+        return self._data["units"]
+
+    @property
+    def points(self) -> dict[str, tuple[float, float]]:
+        """Point name -> (x, y) as drawn."""
+        return dict(self._data["points"])
+
+    @property
+    def links(self) -> dict[str, tuple[str, ...]]:
+        """Link name -> the names of the points it carries."""
+        return dict(self._data["links"])
+
+    @property
+    def ground(self) -> str:
+        return self._data["ground"]
+
+    @property
+    def input(self) -> tuple[str, str]:
+        """(input link, its ground pivot)."""
+        d = self._data["input"]
+        return d["link"], d["pivot"]
+
+    @property
+    def output(self) -> tuple[str, str] | None:
+        """(output link, its ground pivot), or None."""
+        d = self._data["output"]
+        return None if d is None else (d["link"], d["pivot"])
+
+    @property
+    def outputs(self) -> tuple[str, ...] | None:
+        """The names requested by default (None: every point and link)."""
+        return self._data["outputs"]
+
+    @property
+    def input_angle(self) -> float:
+        """The input angle as drawn (radians)."""
+        return self._core.input_angle
+
+    @property
+    def mobility(self) -> int:
+        """Gruebler's count 3 (links - 1) - 2 joints (1 for every valid scene)."""
+        return self._core.gruebler
+
+    @property
+    def joints(self) -> dict[str, tuple[str, ...]]:
+        """Revolute joints: point name -> the links it joins (points on >= 2 links)."""
+        on: dict[str, list[str]] = {p: [] for p in self._data["points"]}
+        for n, pts in self._data["links"].items():
+            for p in pts:
+                on[p].append(n)
+        return {p: tuple(ls) for p, ls in on.items() if len(ls) >= 2}
+
+    def __repr__(self) -> str:
+        d = self._data
+        return (
+            f"Scene({d['name']!r}: {len(d['points'])} points, {len(d['links'])} links, "
+            f"input {d['input']['link']!r} at {d['input']['pivot']!r})"
+        )
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Scene) and self.to_dict() == other.to_dict()
+
+    __hash__ = None  # type: ignore[assignment]
+
+    # --- solving ---------------------------------------------------------------------
+
+    def _compiled(self, outputs: Iterable[str] | str | None) -> tuple[Plan, Any]:
+        if outputs is None:
+            outputs = self.outputs
+        if isinstance(outputs, str):
+            if outputs != "all":
+                raise ValueError(f"outputs must be a list of names or 'all', got {outputs!r}")
+            outputs = None
+        key = None if outputs is None else tuple(outputs)
+        if key is not None and not all(isinstance(o, str) for o in key):
+            raise ValueError(f"outputs must be a list of point or link names, got {outputs!r}")
+        hit = self._plans.get(key)
+        if hit is None:
+            core = self._core.plan(None if key is None else list(key))
+            names = list(self._data["points"])
+            lnames = list(self._data["links"])
+            steps = tuple(
+                Step(kind, tuple(names[i] for i in pts), tuple(lnames[i] for i in unk))
+                for kind, pts, unk in core.steps
+            )
+            plan = Plan(
+                steps=steps,
+                outputs=key,
+                points=tuple(names[i] for i in core.points),
+                links=tuple(lnames[i] for i in core.links),
+            )
+            hit = self._plans[key] = (plan, core)
+        return hit
+
+    def plan(self, outputs: Iterable[str] | str | None = None) -> Plan:
+        """The steps that solve ``outputs`` (point or link names; None: the scene's
+        ``outputs``, else everything; ``"all"``: everything). Each step has ``.kind``
+        ("dyad" or "group"), ``.points`` (solved) and ``.unknowns`` (link angles)."""
+        return self._compiled(outputs)[0]
+
+    def sweep(
+        self,
+        theta: object = None,
+        *,
+        outputs: Iterable[str] | str | None = None,
+        tol: float = 1e-9,
+        max_iter: int = 100,
+        omega: float | None = None,
+        max_step: float = MAX_STEP,
+    ) -> SceneSweep:
+        """Solves the plan of ``outputs`` at every input angle ``theta`` (radians; default
+        361 angles from the drawn angle through one full turn), following the drawn
+        assembly: from the drawn angle to ``theta[0]``, then along ``theta`` in order.
+
+        Every angle gets a status; a point that cannot be solved is NaN with its status, and
+        points that do not depend on it are still solved. ``omega`` (input angular velocity)
+        adds point velocities and link angular velocities. ``tol`` and ``max_iter`` are the
+        Newton criteria of group steps, ``max_step`` their largest continuation step.
+        """
+        plan, core = self._compiled(outputs)
+        if theta is None:
+            t = self.input_angle + np.arange(361) * (TAU / 360)
+        else:
+            t = as_angles("theta", theta)
+            if t.ndim != 1:
+                raise ValueError(f"theta must be a 1-D array of input angles, got shape {t.shape}")
+        tol, max_iter = check_options(tol, max_iter)
+        ms = as_float("max_step", max_step)
+        w = None if omega is None else as_float("omega", omega)
+        pts, ang, status, nit, det, step_status, step_det, pstat, vel = core.sweep(
+            t, tol, max_iter, ms, w
+        )
+        return SceneSweep.build(plan, t, pts, ang, status, nit, det, step_status, step_det, pstat, vel)
