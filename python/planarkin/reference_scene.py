@@ -227,6 +227,12 @@ class _System:
             x[3 * i + 2] = _wrap(float(x[3 * i + 2]))
         return x
 
+    def sign(self, x: np.ndarray, theta: float) -> float:
+        """The sign of det J at x: it names the branch (it flips at a dead point)."""
+        dt = theta - self.theta0
+        _, j = self.residual_jacobian(x, (math.cos(dt), math.sin(dt)))
+        return float(np.linalg.slogdet(j)[0]) if self.n else 1.0
+
     def pose(self, x: np.ndarray, theta: float) -> dict[str, np.ndarray]:
         """Every point's position, each through its home link."""
         dt = theta - self.theta0
@@ -252,28 +258,39 @@ def scene_mobility(scene: Mapping) -> int:
     return 3 * (len(links) - 1) - 2 * sum(k - 1 for k in count.values())
 
 
+#: A substep whose solution lies farther than this (rotation in radians, translation over
+#: the scene's size) from its linear prediction is a jump to another branch, not a step.
+JUMP = 0.5
+
+
 def _march(sys_, hist, t_to, tol, max_iter, max_step):
-    """Continuation from the last state of ``hist`` (a list of converged (t, x), oldest
-    first) to ``t_to`` in substeps no larger than max_step, each predicted linearly from
-    the last two converged states. Returns (x, status, nit, history at t_to); the
-    caller's list is left alone, so a failure leaves the last converged state in place."""
+    """Continuation from the last state of ``hist`` (a list of converged (t, x, sign of
+    det J), oldest first) to ``t_to`` in substeps no larger than max_step, each predicted
+    linearly from the last two converged states. A substep that converges where det J has
+    the other sign (past a dead point) or far from its prediction is BRANCH_JUMP.
+    Returns (x, status, nit, history at t_to); the caller's list is left alone, so a
+    failure leaves the last converged state in place."""
     hist = list(hist[-2:])
-    t_from, x = hist[-1]
+    t_from, x, sign = hist[-1]
     span = t_to - t_from
     steps = max(1, math.ceil(abs(span) / max_step))
     nit = 0
     for k in range(1, steps + 1):
         t = t_to if k == steps else t_from + span * (k / steps)
         if len(hist) >= 2 and hist[-1][0] != hist[-2][0]:
-            (t1, x1), (t2, x2) = hist[-2], hist[-1]
+            (t1, x1, _), (t2, x2, _) = hist[-2], hist[-1]
             guess = x2 + (x2 - x1) * ((t - t2) / (t2 - t1))
         else:
             guess = x
         x, st, n = sys_.newton(guess, t, tol, max_iter)
         nit += n
+        if st == Status.CONVERGED:
+            far = x.size and float(np.max(np.abs(sys_.normalize(x - guess)))) > JUMP
+            if far or sys_.sign(x, t) != sign:
+                st = Status.BRANCH_JUMP
         if st != Status.CONVERGED:
             return x, st, nit, hist
-        hist = [hist[-1], (t, x)]
+        hist = [hist[-1], (t, x, sign)]
     return x, Status.CONVERGED, nit, hist
 
 
@@ -299,8 +316,10 @@ def scene_sweep(
     shortest difference, then along ``theta`` in order (the raw differences), in substeps
     no larger than ``max_step``, each predicted linearly from the last two converged
     states. An angle that fails gets NaN points and angles and status MAX_ITERATIONS,
-    SINGULAR (reciprocal condition number of the Jacobian below 1e-10) or NON_FINITE; the
-    next angle marches again from the last converged pose and its angle. Default
+    SINGULAR (reciprocal condition number of the Jacobian below 1e-10), NON_FINITE, or
+    BRANCH_JUMP (a substep converged where det J has the other sign than at the drawn
+    pose, i.e. past a dead point, or farther than 0.5 from its prediction); the next
+    angle marches again from the last converged pose and its angle. Default
     ``theta``: the drawn angle + 0, 1, ..., 360 degrees.
     """
     sys_ = _System(scene)
@@ -330,7 +349,7 @@ def scene_sweep(
         # the drawn state, re-labelled theta[0] minus the wrapped shortest difference
         t0 = float(th[0])
         span = _wrap(t0 - sys_.theta0) if math.isfinite(t0) else 0.0
-        hist = [(t0 - span, x)]
+        hist = [(t0 - span, x, sys_.sign(x, sys_.theta0))]
     for i in range(n if hist else 0):
         t = float(th[i])
         if not math.isfinite(t):

@@ -74,48 +74,44 @@ def dist(a, b):
 
 
 def reach(scene, direction, limit=2 * math.pi, step=1 * DEG, h_min=1e-9):
-    """(angle turned from the drawn angle before a turning point, capped at ``limit``;
-    min reciprocal condition number on the way; the state at the end). Step halving
-    near the end locates a turning point to about h_min; a step whose solution moves a
-    rotation by more than 0.3 rad is refused as a jump to another branch."""
+    """How far the drawn circuit's input turns from the drawn angle in ``direction``
+    before a dead point (capped at ``limit``), by the reference's own continuation with
+    step halving near the end (to about h_min). Returns (angle turned, [(angle turned,
+    reciprocal condition number of the Jacobian)], final state)."""
     sys_ = ref._System(scene)
-    x, st, _ = sys_.newton(np.zeros(sys_.n), sys_.theta0, 1e-13, 50)
+    t0 = sys_.theta0
+    x, st, _ = sys_.newton(np.zeros(sys_.n), t0, 1e-13, 50)
     assert st == Status.CONVERGED, st
-    hist = [(0.0, x)]
-    done, h, worst = 0.0, step, 1.0
+    hist = [(t0, x, sys_.sign(x, t0))]
+    done, h, trace = 0.0, step, []
     while done < limit - 1e-12:
         h = min(h, limit - done)
         t = done + h
-        if len(hist) >= 2:
-            (t1, x1), (t2, x2) = hist[-2], hist[-1]
-            guess = x2 + (x2 - x1) * ((t - t2) / (t2 - t1))
-        else:
-            guess = hist[-1][1]
-        xn, st, _ = sys_.newton(guess, sys_.theta0 + direction * t, 1e-13, 30)
-        ok = st == Status.CONVERGED and np.max(np.abs(xn - hist[-1][1])) < 0.3
-        if not ok:
+        xn, st, _, hn = ref._march(sys_, hist, t0 + direction * t, 1e-13, 30, h)
+        if st != Status.CONVERGED:
             h /= 2
             if h < h_min:
                 break
             continue
         _, j = sys_.residual_jacobian(xn, (math.cos(direction * t), math.sin(direction * t)))
         sv = np.linalg.svd(j, compute_uv=False)
-        worst = min(worst, sv[-1] / sv[0])
-        hist = [hist[-1], (t, xn)]
-        done = t
+        trace.append((t, sv[-1] / sv[0]))
+        hist, done, x = hn, t, xn
         h = min(step, 2 * h)
-    return done, worst, hist[-1][1]
+    return done, trace, x
 
 
-def motion(scene):
-    """(lo, hi, full_turn, min rcond): the drawn circuit's input range about the drawn
-    angle, in radians relative to it."""
-    hi, w1, xe = reach(scene, +1)
+def motion(scene, margin=5 * DEG):
+    """(lo, hi, full_turn, worst conditioning): the drawn circuit's input range about the
+    drawn angle (radians, relative to it), and the smallest reciprocal condition number
+    of the Jacobian met on it more than ``margin`` from its ends (dead points)."""
+    hi, tr, xe = reach(scene, +1)
     if hi >= 2 * math.pi - 1e-12:
         closed = np.max(np.abs(np.array([ref._wrap(v) for v in xe]))) < 1e-8
-        return 0.0, 2 * math.pi, closed, w1
-    lo, w2, _ = reach(scene, -1)
-    return -lo, hi, False, min(w1, w2)
+        return 0.0, 2 * math.pi, bool(closed), min(r for _, r in tr)
+    lo, tr2, _ = reach(scene, -1)
+    inner = [r for t, r in tr if t < hi - margin] + [r for t, r in tr2 if t < lo - margin]
+    return -lo, hi, False, min(inner, default=0.0)
 
 
 def redraw(scene, dtheta):
@@ -399,9 +395,11 @@ def _separated(pts, links, min_len):
 
 
 def search(base_scene, base_pts, fixed, sigma, n, seed, min_len, want_full=False):
-    """Seeded random search: perturb the free points of base_pts by N(0, sigma), keep the
-    candidate whose drawn circuit has the largest input range (then the best worst
-    conditioning). Returns (scene, lo, hi, full, rcond, tried)."""
+    """Seeded random search: perturb the free points of base_pts by N(0, sigma) (the
+    first trial is base_pts itself); rank candidates by a full turn of the input, then by
+    the input range of the drawn circuit in 10 deg bins up to 150 deg, then by the worst
+    conditioning met more than 5 deg inside the range. Returns (scene, lo, hi, full,
+    rcond, trial)."""
     rng = np.random.default_rng(seed)
     names = list(base_pts)
     best, best_key = None, None
@@ -420,7 +418,7 @@ def search(base_scene, base_pts, fixed, sigma, n, seed, min_len, want_full=False
         except (AssertionError, ValueError):
             continue
         rng_deg = (hi - lo) / DEG
-        key = (min(rng_deg, 360.0) + (1.0 if full else 0.0), w)
+        key = (full, min(rng_deg, 150.0) // 10, w)
         if best_key is None or key > best_key:
             best, best_key = (sc, lo, hi, full, w, trial), key
     return best
@@ -457,7 +455,7 @@ def stephenson3_base():
 def stephenson3():
     base = stephenson3_base()
     sc, lo, hi, full, w, trial = search(
-        base, STEPHENSON_BASE, fixed=("j3", "j7"), sigma=0.5, n=150, seed=3, min_len=0.6
+        base, STEPHENSON_BASE, fixed=("j3", "j7"), sigma=0.5, n=60, seed=3, min_len=0.6
     )
     print(f"  stephenson3: trial {trial}, range {(hi - lo) / DEG:.3f} deg, full {full}, "
           f"min rcond {w:.3e}")
@@ -465,11 +463,11 @@ def stephenson3():
         "A Stephenson-III six-bar (Stephenson chain: ternaries T1 {j1, j2, j3} and "
         "T2 {j4, j5, j6}, binaries B1 {j1, j4}, B2 {j2, j5}, the ground bar B3 {j3, j7} "
         "and the input crank B4 {j7, j6}). With this input there is no dyad: T1, B1, T2 "
-        "and B2 form one rigid group solved together. Geometry: the best of 150 seeded "
+        "and B2 form one rigid group solved together. Geometry: the best of 60 seeded "
         "random perturbations (numpy default_rng(3), sigma 0.5 on every moving point) of "
-        "a hand-drawn starting design (_make.py, STEPHENSON_BASE), ranked by the input "
-        "range of the drawn circuit as swept by the NumPy reference, then by its worst "
-        f"Jacobian conditioning ({w:.2e}). "
+        "a hand-drawn starting design (_make.py, STEPHENSON_BASE), ranked first by a "
+        "full turn of the crank (checked by the NumPy reference), then by the worst "
+        f"reciprocal condition number of the Jacobian over the turn ({w:.2e}). "
         + ("The crank turns fully." if full else
            f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead points.")
     )
@@ -490,6 +488,8 @@ DB_BASE = {
     "D": (1.2, 3.2),
     "G": (2.8, 3.2),
 }
+
+N_DB = 100  # candidates per double-butterfly search
 
 DB_LINKS_1 = {
     "ground": ["A", "K"],
@@ -535,7 +535,7 @@ def double_butterfly(kind):
         }
         fixed, seed = ("B",), 22
     sc, lo, hi, full, w, trial = search(
-        base, DB_BASE, fixed=fixed, sigma=0.35, n=150, seed=seed, min_len=0.4
+        base, DB_BASE, fixed=fixed, sigma=0.35, n=N_DB, seed=seed, min_len=0.4
     )
     print(f"  double-butterfly-{kind}: trial {trial}, range {(hi - lo) / DEG:.3f} deg, "
           f"full {full}, min rcond {w:.3e}")
@@ -605,11 +605,12 @@ def main():
             f"four-bar sub-loop), inversion {'I' if kind == 1 else 'II'}: ground {ground}, "
             f"input {inp}. With ground and input fixed the other six links form one rigid "
             "group with no dyad. Joint letters as in DESIGN.md's type I: ternaries A-B-C, "
-            "B-D-E, H-I-K, F-G-I; binaries A-K, E-H, D-G, C-F. Geometry: the best of 150 "
-            f"seeded random perturbations (numpy default_rng({seed}), sigma 0.35) of a "
+            "B-D-E, H-I-K, F-G-I; binaries A-K, E-H, D-G, C-F. Geometry: the best of "
+            f"{N_DB} seeded random perturbations (numpy default_rng({seed}), sigma 0.35) of a "
             "mirror-symmetric starting design (_make.py, DB_BASE), ranked by the input "
-            "range of the drawn circuit as swept by the NumPy reference, then by its worst "
-            f"Jacobian conditioning ({w:.2e}). "
+            "range of the drawn circuit as swept by the NumPy reference (10 deg bins up to 150 "
+            "deg), then by the worst reciprocal condition number of the Jacobian more than 5 "
+            f"deg inside the range ({w:.2e}). "
             + ("The input turns fully." if full else
                f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead points; "
                "drawn 5 deg inside the lower one, so the default sweep runs through the "
