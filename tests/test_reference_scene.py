@@ -11,7 +11,6 @@ import math
 
 import numpy as np
 import pytest
-
 from planarkin import scenes
 from planarkin.reference_scene import scene_assemble_check, scene_sweep
 

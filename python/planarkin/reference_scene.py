@@ -128,13 +128,7 @@ class _System:
         for p, ls in carriers.items():
             if not ls:
                 raise ValueError(f"point {p!r} is on no link")
-            ref = (
-                self.ground
-                if self.ground in ls
-                else self.input
-                if self.input in ls
-                else ls[0]
-            )
+            ref = self.ground if self.ground in ls else self.input if self.input in ls else ls[0]
             self.home[p] = ref
             for link in ls:
                 if link == ref:

@@ -191,12 +191,17 @@ def watt2():
     }
 
 
+#: Theo Jansen's "holy numbers" (lengths of the Strandbeest leg).
+JANSEN_HOLY = dict(
+    a=38, b=41.5, c=39.3, d=40.1, e=55.8, f=39.4, g=36.7, h=65.7, i=49, j=50, k=61.9, l=7.8, m=15
+)
+
+
 def jansen():
-    a, b, c, d, e, f, g, h, i, j, k, l, m = (
-        38, 41.5, 39.3, 40.1, 55.8, 39.4, 36.7, 65.7, 49, 50, 61.9, 7.8, 15
-    )
+    n = JANSEN_HOLY
+    a, b, c, d, e, f, g, h, i, j, k, m = (n[x] for x in "abcdefghijkm")
     o = np.array([0.0, 0.0])
-    z = np.array([-a, -l])
+    z = np.array([-a, -n["l"]])
     mm = np.array([m, 0.0])  # crank pin at crank angle 0
     pb = pick(mm, j, z, b, key=lambda p: -p[1])  # upper joint
     pc = pick(mm, k, z, c, key=lambda p: p[1])  # lower joint
@@ -457,8 +462,10 @@ def stephenson3():
     sc, lo, hi, full, w, trial = search(
         base, STEPHENSON_BASE, fixed=("j3", "j7"), sigma=0.5, n=60, seed=3, min_len=0.6
     )
-    print(f"  stephenson3: trial {trial}, range {(hi - lo) / DEG:.3f} deg, full {full}, "
-          f"min rcond {w:.3e}")
+    print(
+        f"  stephenson3: trial {trial}, range {(hi - lo) / DEG:.3f} deg, full {full}, "
+        f"min rcond {w:.3e}"
+    )
     sc["description"] = (
         "A Stephenson-III six-bar (Stephenson chain: ternaries T1 {j1, j2, j3} and "
         "T2 {j4, j5, j6}, binaries B1 {j1, j4}, B2 {j2, j5}, the ground bar B3 {j3, j7} "
@@ -468,8 +475,11 @@ def stephenson3():
         "a hand-drawn starting design (_make.py, STEPHENSON_BASE), ranked first by a "
         "full turn of the crank (checked by the NumPy reference), then by the worst "
         f"reciprocal condition number of the Jacobian over the turn ({w:.2e}). "
-        + ("The crank turns fully." if full else
-           f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead points.")
+        + (
+            "The crank turns fully."
+            if full
+            else f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead points."
+        )
     )
     sc["units"] = "arbitrary length units"
     sc["outputs"] = ["j4", "j5"]
@@ -537,8 +547,10 @@ def double_butterfly(kind):
     sc, lo, hi, full, w, trial = search(
         base, DB_BASE, fixed=fixed, sigma=0.35, n=N_DB, seed=seed, min_len=0.4
     )
-    print(f"  double-butterfly-{kind}: trial {trial}, range {(hi - lo) / DEG:.3f} deg, "
-          f"full {full}, min rcond {w:.3e}")
+    print(
+        f"  double-butterfly-{kind}: trial {trial}, range {(hi - lo) / DEG:.3f} deg, "
+        f"full {full}, min rcond {w:.3e}"
+    )
     return base, sc, lo, hi, full, w, trial, seed
 
 
@@ -572,8 +584,17 @@ def check(name, scene, lo=None, hi=None):
 
 
 def write(name, scene):
-    order = ("name", "description", "units", "points", "links", "ground", "input",
-             "output", "outputs")
+    order = (
+        "name",
+        "description",
+        "units",
+        "points",
+        "links",
+        "ground",
+        "input",
+        "output",
+        "outputs",
+    )
     out = {k: scene[k] for k in order if k in scene}
     out["points"] = {k: [float(v[0]), float(v[1])] for k, v in scene["points"].items()}
     (HERE / f"{name}.json").write_text(json.dumps(out, indent=2) + "\n")
@@ -611,10 +632,13 @@ def main():
             "range of the drawn circuit as swept by the NumPy reference (10 deg bins up to 150 "
             "deg), then by the worst reciprocal condition number of the Jacobian more than 5 "
             f"deg inside the range ({w:.2e}). "
-            + ("The input turns fully." if full else
-               f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead points; "
-               "drawn 5 deg inside the lower one, so the default sweep runs through the "
-               "range and then fails past the upper dead point.")
+            + (
+                "The input turns fully."
+                if full
+                else f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead points; "
+                "drawn 5 deg inside the lower one, so the default sweep runs through the "
+                "range and then fails past the upper dead point."
+            )
         )
         sc["units"] = "arbitrary length units"
         sc["outputs"] = ["F", "G"] if kind == 1 else ["H", "K"]
