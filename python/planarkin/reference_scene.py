@@ -1,0 +1,395 @@
+"""The NumPy scene reference: any scene solved by a route independent of the Rust planner.
+
+Every link other than ground and input is a rigid body with an unknown pose, and all the
+joint constraints are solved at once by Newton-Raphson from the drawn pose (no plan, no
+dyad peeling), so parity tests compare two different formulations. Imports no extension.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ._types import Status
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+__all__ = ["SceneReference", "scene_assemble_check", "scene_mobility", "scene_sweep"]
+
+TAU = 2.0 * math.pi
+
+#: A Jacobian whose reciprocal condition number (smallest over largest singular value,
+#: unknowns and residuals both scale-free) is below this is SINGULAR.
+RCOND_THRESHOLD = 1e-10
+
+_REQUIRED = ("points", "links", "ground", "input")
+
+
+@dataclass(frozen=True)
+class SceneReference:
+    """A scene swept by the reference: every point and link angle at each input angle.
+
+    ``points[name]`` is (N, 2) for every point of the scene (ground points constant),
+    ``angles[link]`` (N,) in (-pi, pi], ``status`` (N,) int8 codes of
+    :class:`planarkin.Status`, ``nit`` (N,) the Newton iterations spent reaching each
+    input angle (summed over its continuation substeps). Failed angles hold NaN.
+    """
+
+    theta: np.ndarray
+    points: dict[str, np.ndarray]
+    angles: dict[str, np.ndarray]
+    status: np.ndarray
+    nit: np.ndarray
+
+    @property
+    def success(self) -> np.ndarray:
+        """(N,) bool: where the status is CONVERGED."""
+        return self.status == Status.CONVERGED
+
+
+def _wrap(a: float) -> float:
+    """Wraps to (-pi, pi]."""
+    if -math.pi < a <= math.pi:
+        return a
+    r = math.fmod(a + math.pi, TAU)
+    if r < 0.0:
+        r += TAU
+    r -= math.pi
+    return math.pi if r <= -math.pi else r
+
+
+class _System:
+    """The scene's joint equations over the free links' poses.
+
+    Unknowns, three per free link: the displacement of its first listed point divided by
+    the scene's size (two) and its rotation from the drawn pose (one). Residuals: at every
+    point carried by two or more links, its position through each other link minus its
+    position through the point's reference link (ground if it carries the point, else the
+    input, else the first link listing it), divided by the size. The input's pivot is on
+    both ground and input by construction and gives no equation there.
+    """
+
+    def __init__(self, scene: Mapping) -> None:
+        if not isinstance(scene, Mapping):
+            raise ValueError(f"scene must be a mapping, got {type(scene).__name__}")
+        for key in _REQUIRED:
+            if key not in scene:
+                raise ValueError(f"scene is missing the key {key!r}")
+        inp = scene["input"]
+        if not isinstance(inp, Mapping) or "link" not in inp or "pivot" not in inp:
+            raise ValueError("scene['input'] must hold the keys 'link' and 'pivot'")
+        self.points = {
+            str(k): np.array([float(v[0]), float(v[1])]) for k, v in scene["points"].items()
+        }
+        self.links = {str(k): [str(p) for p in v] for k, v in scene["links"].items()}
+        self.ground = str(scene["ground"])
+        self.input = str(inp["link"])
+        self.pivot = str(inp["pivot"])
+        for name in (self.ground, self.input):
+            if name not in self.links:
+                raise ValueError(f"unknown link {name!r} (ground or input)")
+        for link, pts in self.links.items():
+            for p in pts:
+                if p not in self.points:
+                    raise ValueError(f"link {link!r} carries the unknown point {p!r}")
+        if self.pivot not in self.links[self.input] or self.pivot not in self.links[self.ground]:
+            raise ValueError(f"input pivot {self.pivot!r} must be on ground and input links")
+        out = scene.get("output")
+        self.output = (str(out["link"]), str(out["pivot"])) if isinstance(out, Mapping) else None
+
+        # the scene's size: its longest link (largest distance between two points of a link)
+        self.size = 0.0
+        for pts in self.links.values():
+            xy = np.array([self.points[p] for p in pts])
+            d = np.sqrt(((xy[:, None, :] - xy[None, :, :]) ** 2).sum(-1))
+            self.size = max(self.size, float(d.max()))
+        if not (self.size > 0 and math.isfinite(self.size)):
+            raise ValueError("scene['points'] must span a positive, finite size")
+
+        self.free = [k for k in self.links if k not in (self.ground, self.input)]
+        self.index = {k: i for i, k in enumerate(self.free)}
+        pin = self.points[self.pivot]
+        first_other = next(p for p in self.links[self.input] if p != self.pivot)
+        d = self.points[first_other] - pin
+        self.theta0 = math.atan2(d[1], d[0])
+
+        carriers: dict[str, list[str]] = {p: [] for p in self.points}
+        for link, pts in self.links.items():
+            for p in dict.fromkeys(pts):
+                carriers[p].append(link)
+        self.carriers = carriers
+        self.equations: list[tuple[str, str, str]] = []  # (point, link, reference link)
+        self.home: dict[str, str] = {}  # the link each point is computed through
+        for p, ls in carriers.items():
+            if not ls:
+                raise ValueError(f"point {p!r} is on no link")
+            ref = self.ground if self.ground in ls else self.input if self.input in ls else ls[0]
+            self.home[p] = ref
+            for link in ls:
+                if link == ref:
+                    continue
+                if p == self.pivot and {link, ref} == {self.ground, self.input}:
+                    continue
+                self.equations.append((p, link, ref))
+        self.n = 3 * len(self.free)
+        self.m = 2 * len(self.equations)
+        if self.m != self.n:
+            raise ValueError(
+                f"scene has {self.m} joint equations for {self.n} unknowns: its mobility "
+                f"is {scene_mobility(scene)}, the reference needs mobility 1"
+            )
+
+    def _first(self, link: str) -> np.ndarray:
+        return self.points[self.links[link][0]]
+
+    def position(self, p: str, link: str, x: np.ndarray, cs: tuple[float, float]):
+        """(position of p through link, d position / d unknowns of that link or None)."""
+        p0 = self.points[p]
+        if link == self.ground:
+            return p0, None
+        if link == self.input:
+            c, s = cs
+            piv = self.points[self.pivot]
+            v = p0 - piv
+            return piv + np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]]), None
+        i = self.index[link]
+        f = self._first(link)
+        v = p0 - f
+        phi = x[3 * i + 2]
+        c, s = math.cos(phi), math.sin(phi)
+        rv = np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+        pos = f + self.size * x[3 * i : 3 * i + 2] + rv
+        return pos, (i, rv)
+
+    def residual_jacobian(self, x: np.ndarray, cs: tuple[float, float]):
+        """F (m,) and J (m, n), both scale-free."""
+        f = np.empty(self.m)
+        j = np.zeros((self.m, self.n))
+        for k, (p, link, ref) in enumerate(self.equations):
+            a, da = self.position(p, link, x, cs)
+            b, db = self.position(p, ref, x, cs)
+            f[2 * k : 2 * k + 2] = (a - b) / self.size
+            for sign, d in ((1.0, da), (-1.0, db)):
+                if d is None:
+                    continue
+                i, rv = d
+                j[2 * k, 3 * i] += sign
+                j[2 * k + 1, 3 * i + 1] += sign
+                j[2 * k, 3 * i + 2] += -sign * rv[1] / self.size
+                j[2 * k + 1, 3 * i + 2] += sign * rv[0] / self.size
+        return f, j
+
+    def newton(self, x: np.ndarray, theta: float, tol: float, max_iter: int):
+        """Newton-Raphson from x at input angle theta: (x, Status, nit)."""
+        dt = theta - self.theta0
+        cs = (math.cos(dt), math.sin(dt))
+        x = x.copy()
+        nit = 0
+        while True:
+            f, j = self.residual_jacobian(x, cs)
+            if not (np.all(np.isfinite(f)) and np.all(np.isfinite(x))):
+                return x, Status.NON_FINITE, nit
+            if self.n:
+                sv = np.linalg.svd(j, compute_uv=False)
+                if not sv[0] > 0 or sv[-1] / sv[0] < RCOND_THRESHOLD:
+                    return x, Status.SINGULAR, nit
+                try:
+                    step = np.linalg.solve(j, -f)
+                except np.linalg.LinAlgError:
+                    return x, Status.SINGULAR, nit
+            else:
+                step = np.zeros(0)
+            if not np.all(np.isfinite(step)):
+                return x, Status.NON_FINITE, nit
+            res = float(np.max(np.abs(f))) if f.size else 0.0
+            if res < tol and (float(np.max(np.abs(step))) if step.size else 0.0) < tol:
+                x += step  # the last correction is applied, without a further evaluation
+                return self.normalize(x), Status.CONVERGED, nit
+            if nit >= max_iter:
+                return x, Status.MAX_ITERATIONS, nit
+            x = self.normalize(x + step)
+            nit += 1
+
+    def normalize(self, x: np.ndarray) -> np.ndarray:
+        """Rotations kept in (-pi, pi]: iterates that wander lose bits."""
+        for i in range(len(self.free)):
+            x[3 * i + 2] = _wrap(float(x[3 * i + 2]))
+        return x
+
+    def sign(self, x: np.ndarray, theta: float) -> float:
+        """The sign of det J at x: it names the branch (it flips at a dead point)."""
+        dt = theta - self.theta0
+        _, j = self.residual_jacobian(x, (math.cos(dt), math.sin(dt)))
+        return float(np.linalg.slogdet(j)[0]) if self.n else 1.0
+
+    def pose(self, x: np.ndarray, theta: float) -> dict[str, np.ndarray]:
+        """Every point's position, each through its home link."""
+        dt = theta - self.theta0
+        cs = (math.cos(dt), math.sin(dt))
+        return {p: self.position(p, self.home[p], x, cs)[0] for p in self.points}
+
+    def angle_points(self, link: str) -> tuple[str, str]:
+        """The two points whose direction is the link's angle."""
+        pts = self.links[link]
+        for pivot_link, pivot in ((self.input, self.pivot), self.output or (None, None)):
+            if link == pivot_link and pivot in pts:
+                return pivot, next(p for p in pts if p != pivot)
+        return pts[0], next(p for p in pts if p != pts[0])
+
+
+def scene_mobility(scene: Mapping) -> int:
+    """Gruebler's count 3 (links - 1) - 2 sum over points (links at the point - 1)."""
+    links = scene["links"]
+    count: dict[str, int] = {}
+    for pts in links.values():
+        for p in set(pts):
+            count[p] = count.get(p, 0) + 1
+    return 3 * (len(links) - 1) - 2 * sum(k - 1 for k in count.values())
+
+
+#: A substep whose solution lies farther than this (rotation in radians, translation over
+#: the scene's size) from its linear prediction is a jump to another branch, not a step.
+JUMP = 0.5
+
+
+def _march(sys_, hist, t_to, tol, max_iter, max_step):
+    """Continuation from the last state of ``hist`` (a list of converged (t, x, sign of
+    det J), oldest first) to ``t_to`` in substeps no larger than max_step, each predicted
+    linearly from the last two converged states. A substep that converges where det J has
+    the other sign (past a dead point) or far from its prediction is BRANCH_JUMP.
+    Returns (x, status, nit, history at t_to); the caller's list is left alone, so a
+    failure leaves the last converged state in place."""
+    hist = list(hist[-2:])
+    t_from, x, sign = hist[-1]
+    span = t_to - t_from
+    steps = max(1, math.ceil(abs(span) / max_step))
+    nit = 0
+    for k in range(1, steps + 1):
+        t = t_to if k == steps else t_from + span * (k / steps)
+        if len(hist) >= 2 and hist[-1][0] != hist[-2][0]:
+            (t1, x1, _), (t2, x2, _) = hist[-2], hist[-1]
+            guess = x2 + (x2 - x1) * ((t - t2) / (t2 - t1))
+        else:
+            guess = x
+        x, st, n = sys_.newton(guess, t, tol, max_iter)
+        nit += n
+        if st == Status.CONVERGED:
+            far = x.size and float(np.max(np.abs(sys_.normalize(x - guess)))) > JUMP
+            if far or sys_.sign(x, t) != sign:
+                st = Status.BRANCH_JUMP
+        if st != Status.CONVERGED:
+            return x, st, nit, hist
+        hist = [hist[-1], (t, x, sign)]
+    return x, Status.CONVERGED, nit, hist
+
+
+def scene_sweep(
+    scene: Mapping,
+    theta: ArrayLike | None = None,
+    *,
+    tol: float = 1e-12,
+    max_iter: int = 50,
+    max_step: float = math.radians(1.0),
+) -> SceneReference:
+    """Sweeps a scene over input angles ``theta`` (radians), following the drawn assembly.
+
+    ``scene`` is a scene dict (``points``, ``links``, ``ground``, ``input`` {link, pivot},
+    optional ``output``). The input link turns about its pivot by theta minus the drawn
+    input angle (the direction from the pivot to the input's first other listed point);
+    every other non-ground link is a rigid body whose pose is unknown, and all the joint
+    equations are solved together by Newton-Raphson (``np.linalg.solve``). Residuals and
+    translations are divided by the scene's size (its longest link); a solve converges
+    when the largest residual and the largest Newton correction are both below ``tol``.
+
+    Continuation: from the drawn pose at the drawn angle to ``theta[0]`` along the wrapped
+    shortest difference, then along ``theta`` in order (the raw differences), in substeps
+    no larger than ``max_step``, each predicted linearly from the last two converged
+    states. An angle that fails gets NaN points and angles and status MAX_ITERATIONS,
+    SINGULAR (reciprocal condition number of the Jacobian below 1e-10), NON_FINITE, or
+    BRANCH_JUMP (a substep converged where det J has the other sign than at the drawn
+    pose, i.e. past a dead point, or farther than 0.5 from its prediction); the next
+    angle marches again from the last converged pose and its angle. Default
+    ``theta``: the drawn angle + 0, 1, ..., 360 degrees.
+    """
+    sys_ = _System(scene)
+    if theta is None:
+        th = sys_.theta0 + np.arange(361) * (TAU / 360)
+    else:
+        th = np.atleast_1d(np.asarray(theta, dtype=np.float64)).ravel()
+    if not (tol > 0 and math.isfinite(tol)):
+        raise ValueError(f"tol must be finite and > 0, got {tol}")
+    if not (max_step > 0 and math.isfinite(max_step)):
+        raise ValueError(f"max_step must be finite and > 0, got {max_step}")
+    max_iter = int(max_iter)
+    if max_iter < 1:
+        raise ValueError(f"max_iter must be >= 1, got {max_iter}")
+    n = th.size
+    status = np.zeros(n, dtype=np.int8)
+    nit = np.zeros(n, dtype=np.int64)
+    pts = {p: np.full((n, 2), np.nan) for p in sys_.points}
+    angles = {k: np.full(n, np.nan) for k in sys_.links}
+    ang_pts = {k: sys_.angle_points(k) for k in sys_.links}
+
+    x, st, _ = sys_.newton(np.zeros(sys_.n), sys_.theta0, tol, max_iter)
+    hist: list = []
+    if st != Status.CONVERGED:
+        status[:] = st  # the drawn pose itself does not solve
+    elif n:
+        # the drawn state, re-labelled theta[0] minus the wrapped shortest difference
+        t0 = float(th[0])
+        span = _wrap(t0 - sys_.theta0) if math.isfinite(t0) else 0.0
+        hist = [(t0 - span, x, sys_.sign(x, sys_.theta0))]
+    for i in range(n if hist else 0):
+        t = float(th[i])
+        if not math.isfinite(t):
+            status[i] = Status.NON_FINITE
+            continue
+        x, s, k, h = _march(sys_, hist, t, tol, max_iter, max_step)
+        nit[i] = k
+        status[i] = s
+        if s != Status.CONVERGED:
+            continue
+        hist = h
+        pose = sys_.pose(x, t)
+        for p, v in pose.items():
+            pts[p][i] = v
+        for link, (a, b) in ang_pts.items():
+            d = pose[b] - pose[a]
+            angles[link][i] = _wrap(math.atan2(d[1], d[0]))
+    for p in sys_.carriers:
+        if sys_.home[p] == sys_.ground:
+            pts[p][:] = sys_.points[p]
+    a, b = ang_pts[sys_.ground]
+    d = sys_.points[b] - sys_.points[a]
+    angles[sys_.ground][:] = _wrap(math.atan2(d[1], d[0]))
+    return SceneReference(theta=th, points=pts, angles=angles, status=status, nit=nit)
+
+
+def scene_assemble_check(scene: Mapping) -> float:
+    """How far the drawing is from an assembled pose of its own links, relative to size.
+
+    Solves the scene at its drawn input angle from the drawn pose (as ``scene_sweep``
+    does) and returns the largest change, over links, of the distance between two of the
+    link's points, and over points, of a position, both divided by the scene's size
+    (its longest link). A consistent scene gives 0 or a few ulp.
+    """
+    sys_ = _System(scene)
+    x, st, _ = sys_.newton(np.zeros(sys_.n), sys_.theta0, 1e-14, 50)
+    if st != Status.CONVERGED:
+        return math.inf
+    pose = sys_.pose(x, sys_.theta0)
+    worst = 0.0
+    for p, v in pose.items():
+        worst = max(worst, float(np.max(np.abs(v - sys_.points[p]))) / sys_.size)
+    for pts in sys_.links.values():
+        for a in range(len(pts)):
+            for b in range(a + 1, len(pts)):
+                d0 = np.hypot(*(sys_.points[pts[a]] - sys_.points[pts[b]]))
+                d1 = np.hypot(*(pose[pts[a]] - pose[pts[b]]))
+                worst = max(worst, abs(float(d1 - d0)) / sys_.size)
+    return worst

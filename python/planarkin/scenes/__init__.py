@@ -1,0 +1,44 @@
+"""The built-in scenes: classic linkages as scene data files (``<name>.json``).
+
+``names()`` lists them, ``data(name)`` parses one, ``load(name)`` builds a ``Scene``.
+The files are written by ``_make.py`` (which also says where each geometry comes from).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
+__all__ = ["data", "load", "names", "path"]
+
+_HERE = Path(__file__).resolve().parent
+
+
+def names() -> list[str]:
+    """The built-in scenes' names, sorted."""
+    return sorted(p.stem for p in _HERE.glob("*.json"))
+
+
+def path(name: str) -> Path:
+    """The data file of the built-in scene ``name``; ValueError for an unknown name."""
+    known = names()
+    if not isinstance(name, str) or name not in known:
+        raise ValueError(f"unknown built-in scene {name!r}; known: {', '.join(known)}")
+    return _HERE / f"{name}.json"
+
+
+def data(name: str) -> dict[str, Any]:
+    """The built-in scene ``name`` as a dict in the scene format (a fresh copy)."""
+    with path(name).open(encoding="utf-8") as f:
+        return json.load(f)
+
+
+def load(name: str) -> Scene:
+    """The built-in scene ``name`` as a :class:`planarkin.Scene`."""
+    from ..scene import Scene
+
+    return Scene.from_dict(data(name))
