@@ -6,7 +6,7 @@
 361
 """
 
-from . import reference
+from . import reference, scenes
 from ._core import BUILD_PROFILE
 from ._core import __version__ as __version__
 from ._types import (
@@ -41,5 +41,6 @@ __all__ = [
     "SweepSummary",
     "closed_form_batch",
     "reference",
+    "scenes",
     "sweep_batch",
 ]

@@ -165,3 +165,16 @@ fn validation_names_the_entry() {
     let e = Scene::new(s).unwrap_err().to_string();
     assert!(e.starts_with("mobility: the constraint Jacobian"), "{e}");
 }
+
+#[test]
+#[ignore]
+fn timing_fourbar_scene() {
+    let sc = Scene::new(fourbar(1.0)).unwrap();
+    let plan = sc.plan(None).unwrap();
+    let theta = grid(361);
+    let t = std::time::Instant::now();
+    for _ in 0..1000 {
+        std::hint::black_box(run(&plan, &theta));
+    }
+    eprintln!("{:?} per sweep", t.elapsed() / 1000);
+}

@@ -131,7 +131,8 @@ pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
         return Err(Error::scene(
             "mobility",
             format!(
-                "Gruebler's count gives M = 3 ({} - 1) - 2 x {joints} = {m}, expected 1 (a one-degree-of-freedom linkage)",
+                "Gruebler's count gives M = {m} (3 x ({} links - 1) - 2 x {joints} joints), expected 1 \
+                 (a one-degree-of-freedom linkage)",
                 parsed.len()
             ),
         ));
