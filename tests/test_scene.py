@@ -319,9 +319,12 @@ def test_scaling_the_drawing(name, s):
         np.testing.assert_array_equal(sws.coords, sw.coords * s)
         np.testing.assert_array_equal(sws.nit, sw.nit)
     else:
-        np.testing.assert_allclose(sws.coords / s, sw.coords, atol=1e-11, rtol=0)
-    for k in sw.angles:
-        np.testing.assert_allclose(sws.angles[k], sw.angles[k], atol=1e-11, rtol=0)
+        # rounding of the scaled drawing moves a pose by about eps / conditioning
+        tol = np.maximum(1e-11, 1e-14 / np.abs(sw.det))
+        err = np.nanmax(np.abs(sws.coords / s - sw.coords), axis=(1, 2), initial=0)
+        assert (err <= tol).all()
+        for k in sw.angles:
+            assert (np.abs(sws.angles[k] - sw.angles[k])[sw.success] <= tol[sw.success]).all()
 
 
 # --- the sweep's contract ------------------------------------------------------------

@@ -54,6 +54,9 @@ class Status(IntEnum):
     #: The residual is below ``tol`` but rounding keeps the Newton correction above it:
     #: ``tol`` asks for more than double precision resolves at this point.
     PRECISION_LOSS = -7
+    #: The input angle lies past a dead point of a group on the circuit being followed:
+    #: the motion must reverse there (scene sweeps report the dead point's input angle).
+    LIMIT = -8
 
     @property
     def message(self) -> str:
@@ -71,6 +74,7 @@ _MESSAGES = {
     Status.NOT_ASSEMBLABLE: "not assemblable: the loop cannot close at this crank angle",
     Status.BRANCH_JUMP: "converged on the other assembly mode than the one requested",
     Status.PRECISION_LOSS: "tolerance below what double precision resolves at this point",
+    Status.LIMIT: "past a dead point of the circuit followed: the input must reverse there",
 }
 
 

@@ -169,6 +169,14 @@ def build_parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     a.add_argument(
+        "scene",
+        nargs="?",
+        metavar="SCENE",
+        help="a scene file (.json/.toml) or built-in scene name to analyze instead of the "
+        "four-bar given by --links (see 'planarkin scenes'); then --links, --mode, "
+        "--predictor, --coupler and --newton-at do not apply",
+    )
+    a.add_argument(
         "--out",
         type=Path,
         default=Path("figures"),
@@ -200,6 +208,13 @@ def build_parser() -> argparse.ArgumentParser:
         "controls) of the linkage moving through the sweep with its coupler curve traced.",
     )
     m.add_argument(
+        "scene",
+        nargs="?",
+        metavar="SCENE",
+        help="a scene file (.json/.toml) or built-in scene name to animate instead of the "
+        "four-bar given by --links",
+    )
+    m.add_argument(
         "--out",
         type=Path,
         default=Path("figures"),
@@ -214,6 +229,9 @@ def build_parser() -> argparse.ArgumentParser:
         "--dpi", type=float, default=80.0, help="frame resolution (default: %(default)s)"
     )
     m.set_defaults(func=run_animate)
+
+    sc = sub.add_parser("scenes", help="list the built-in scenes")
+    sc.set_defaults(func=run_scenes)
 
     t = sub.add_parser("tradeoff", help="measure the speed/accuracy trade-off")
     tradeoff.add_arguments(t)
@@ -608,7 +626,20 @@ def format_table(summary: dict) -> str:
     return head + "\n" + "\n".join(f"  {k:<{width}}{v}" for k, v in rows)
 
 
+def run_scenes(args: argparse.Namespace) -> int:
+    from . import scenes
+
+    for name in scenes.names():
+        sc = scenes.load(name)
+        print(f"{name:20s} {len(sc.links)} links, {len(sc.points)} points: {sc.name}")
+    return 0
+
+
 def run_analyze(args: argparse.Namespace) -> int:
+    if args.scene is not None:
+        from .scene import cli as scene_cli
+
+        return scene_cli.run_analyze(args)
     t_start = time.perf_counter()
     fb, theta2 = _setup(args)
     t0 = time.perf_counter()
@@ -646,6 +677,10 @@ def run_analyze(args: argparse.Namespace) -> int:
 
 
 def run_animate(args: argparse.Namespace) -> int:
+    if args.scene is not None:
+        from .scene import cli as scene_cli
+
+        return scene_cli.run_animate(args)
     from matplotlib.animation import PillowWriter
 
     fb, theta2 = _setup(args)

@@ -300,7 +300,5 @@ class Scene:
         tol, max_iter = check_options(tol, max_iter)
         ms = as_float("max_step", max_step)
         w = None if omega is None else as_float("omega", omega)
-        pts, ang, status, nit, det, step_status, step_det, pstat, vel = core.sweep(
-            t, tol, max_iter, ms, w
-        )
-        return SceneSweep.build(plan, t, pts, ang, status, nit, det, step_status, step_det, pstat, vel)
+        arrays = core.sweep(t, tol, max_iter, ms, w)
+        return SceneSweep.build(plan, t, *arrays)

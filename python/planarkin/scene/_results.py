@@ -70,6 +70,9 @@ class SceneSweep:
     nit: np.ndarray
     #: (N,) signed, scale-free conditioning of the whole solve: the product of the steps'.
     det: np.ndarray
+    #: (N,) for LIMIT angles, the input angle (radians) of the dead point that stops the
+    #: motion on the circuit followed (where continuation last converged); NaN elsewhere.
+    limit: np.ndarray
     #: (N, steps) each step's signed conditioning (a dyad's sine of its angle at the
     #: solved point; a group's Hadamard ratio det J / prod |columns|).
     step_det: np.ndarray
@@ -85,7 +88,7 @@ class SceneSweep:
     coords: np.ndarray = field(default_factory=lambda: np.empty((0, 0, 2)))
 
     @classmethod
-    def build(cls, plan, theta, pts, ang, status, nit, det, step_status, step_det, pstat, vel):  # noqa: ANN001, ANN206
+    def build(cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel):  # noqa: ANN001, ANN206, E501
         names, links = plan.points, plan.links
         v = w = None
         if vel is not None:
@@ -99,6 +102,7 @@ class SceneSweep:
             status=status,
             nit=nit,
             det=det,
+            limit=limit,
             step_det=step_det,
             step_status=step_status,
             point_status={n: pstat[:, j] for j, n in enumerate(names)},

@@ -21,11 +21,14 @@ pub enum Status {
     /// The residual is below `tol` but rounding keeps the Newton correction above it: `tol`
     /// asks for more than double precision resolves at this conditioning.
     PrecisionLoss = -7,
+    /// The input angle lies past a dead point of a group on the circuit being followed:
+    /// the motion must reverse there (a turning point); the sweep reports its input angle.
+    Limit = -8,
 }
 
 impl Status {
     /// All statuses, in code order from 0 down.
-    pub const ALL: [Status; 7] = [
+    pub const ALL: [Status; 8] = [
         Status::Converged,
         Status::MaxIterations,
         Status::NonFinite,
@@ -33,6 +36,7 @@ impl Status {
         Status::NotAssemblable,
         Status::BranchJump,
         Status::PrecisionLoss,
+        Status::Limit,
     ];
 
     /// The `i8` code stored in status arrays.
@@ -57,6 +61,7 @@ impl Status {
             Status::NotAssemblable => "not assemblable: the loop cannot close at this crank angle",
             Status::BranchJump => "converged on the other assembly mode than the one requested",
             Status::PrecisionLoss => "tolerance below what double precision resolves at this point",
+            Status::Limit => "past a dead point of the circuit followed: the input must reverse there",
         }
     }
 }

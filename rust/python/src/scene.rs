@@ -76,6 +76,7 @@ type SceneSweepArrays<'py> = (
     Arr1<'py, i8>,
     Arr1<'py, u32>,
     Arr1<'py, f64>,
+    Arr1<'py, f64>,
     Arr2<'py, i8>,
     Arr2<'py, f64>,
     Arr2<'py, i8>,
@@ -102,7 +103,7 @@ impl PyPlan {
         self.inner.links().to_vec()
     }
 
-    /// Sweep: (points (N,P,2), angles (N,L), status, nit, det, step_status (N,S),
+    /// Sweep: (points (N,P,2), angles (N,L), status, nit, det, limit, step_status (N,S),
     /// step_det (N,S), point_status (N,P), (velocity (N,P,2), angular velocity (N,L))?).
     #[pyo3(signature = (theta, tol, max_iter, max_step, omega))]
     fn sweep<'py>(
@@ -121,7 +122,7 @@ impl PyPlan {
         let (n, np, nl, ns) = (t.len(), plan.points().len(), plan.links().len(), plan.steps().len());
         let mut points = vec![0.0; n * np * 2];
         let mut angles = vec![0.0; n * nl];
-        let (mut status, mut nit, mut det) = (vec![0i8; n], vec![0u32; n], vec![0.0; n]);
+        let (mut status, mut nit, mut det, mut limit) = (vec![0i8; n], vec![0u32; n], vec![0.0; n], vec![0.0; n]);
         let (mut step_status, mut step_det, mut point_status) =
             (vec![0i8; n * ns], vec![0.0; n * ns], vec![0i8; n * np]);
         let mut vel = omega.map(|_| (vec![0.0; n * np * 2], vec![0.0; n * nl]));
@@ -132,6 +133,7 @@ impl PyPlan {
                 status: &mut status,
                 nit: &mut nit,
                 det: &mut det,
+                limit: &mut limit,
                 step_status: &mut step_status,
                 step_det: &mut step_det,
                 point_status: &mut point_status,
@@ -151,6 +153,7 @@ impl PyPlan {
             status.into_pyarray(py),
             nit.into_pyarray(py),
             det.into_pyarray(py),
+            limit.into_pyarray(py),
             i2(n, ns, step_status),
             a2(n, ns, step_det),
             i2(n, np, point_status),

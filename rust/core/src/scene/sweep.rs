@@ -61,6 +61,9 @@ pub struct SceneSweepOut<'a> {
     pub nit: &'a mut [u32],
     /// (N,) product of the steps' signed conditioning.
     pub det: &'a mut [f64],
+    /// (N,) for LIMIT angles, the input angle of the dead point that stops the motion
+    /// (where continuation last converged, within about max_step / 2^16 of it); else NaN.
+    pub limit: &'a mut [f64],
     /// (N, S) each step's status.
     pub step_status: &'a mut [i8],
     /// (N, S) each step's signed conditioning.
@@ -84,6 +87,9 @@ struct GroupState {
     phi: [f64; MAX],
     tangent: Option<Tangent>,
     previous: Option<Tangent>,
+    /// A dead point met while continuing in direction `dir` (+1 / -1): angles past it in
+    /// that direction are LIMIT without a solve.
+    limit: Option<(f64, f64)>,
 }
 
 impl GroupState {
@@ -122,6 +128,8 @@ struct Solver<'p> {
     pst: Vec<Status>,
     op_status: Vec<Status>,
     op_det: Vec<f64>,
+    /// The op (a group) failed by itself at the last evaluation, not through its inputs.
+    own_failure: Vec<bool>,
     /// Group state per op (None for other ops).
     groups: Vec<Option<GroupState>>,
     nit: u32,
@@ -141,6 +149,7 @@ impl<'p> Solver<'p> {
             pst: vec![Status::Converged; n],
             op_status: vec![Status::Converged; plan.ops.len()],
             op_det: vec![1.0; plan.ops.len()],
+            own_failure: vec![false; plan.ops.len()],
             groups: plan
                 .ops
                 .iter()
@@ -150,6 +159,7 @@ impl<'p> Solver<'p> {
                         phi: [0.0; MAX],
                         tangent: None,
                         previous: None,
+                        limit: None,
                     })
                 })
                 .collect(),
@@ -207,12 +217,11 @@ impl<'p> Solver<'p> {
                 Op::Group(g) => {
                     let r = match bad(&self.pst, &g.anchors) {
                         Some(st) => (st, f64::NAN),
-                        None => {
-                            let (st, det) = self.group(i, theta);
-                            failed |= st != Status::Converged;
-                            (st, det)
-                        }
+                        None => self.group(i, theta),
                     };
+                    let own = r.0 != Status::Converged && r.0 != Status::Limit && bad(&self.pst, &g.anchors).is_none();
+                    self.own_failure[i] = own;
+                    failed |= own;
                     if r.0 != Status::Converged {
                         for nd in &g.nodes {
                             self.pst[nd.point] = r.0;
@@ -252,6 +261,11 @@ impl<'p> Solver<'p> {
         let Op::Group(g) = &self.plan.ops[i] else { unreachable!("op {i} is a group") };
         let n = g.n();
         let state = self.groups[i].expect("a group has a state");
+        if let Some((at, dir)) = state.limit {
+            if (theta - at) * dir > 0.0 {
+                return (Status::Limit, f64::NAN);
+            }
+        }
         let guess = state.predict(theta, n, self.opts.max_step);
         let delta = g.deltas(|p| self.pos[p]);
         let ddelta = g.deltas(|p| self.vel[p]);
@@ -260,8 +274,7 @@ impl<'p> Solver<'p> {
         self.nit += out.nit;
         let mut status = out.status;
         if status == Status::Converged {
-            let jumped = (theta - state.theta).abs() <= self.opts.max_step * (1.0 + 1e-9)
-                && (0..n).any(|k| wrap_angle(out.phi[k] - guess[k]).abs() > JUMP);
+            let jumped = (0..n).any(|k| wrap_angle(out.phi[k] - guess[k]).abs() > JUMP);
             if out.det * g.sign < 0.0 || jumped {
                 status = Status::BranchJump;
             }
@@ -285,12 +298,22 @@ impl<'p> Solver<'p> {
         st.tangent = Some(t);
         st.theta = theta;
         st.phi = out.phi;
+        st.limit = None;
         (Status::Converged, out.det)
     }
 
-    /// Continuation from `from` to `to`: uniform steps of at most `max_step`, each halved
-    /// while some group fails; ends with an evaluation at `to`.
-    fn advance(&mut self, from: f64, to: f64) {
+    /// Continuation to `to` from where the groups are (the one farthest away sets the
+    /// start): uniform steps of at most `max_step`, each halved while some group fails; a
+    /// group that still fails at the smallest step has met a dead point there, and angles
+    /// past it are LIMIT. Ends with an evaluation at `to`.
+    fn advance(&mut self, to: f64) {
+        let from = self
+            .groups
+            .iter()
+            .flatten()
+            .map(|g| g.theta)
+            .max_by(|a, b| (a - to).abs().total_cmp(&(b - to).abs()))
+            .unwrap_or(to);
         let h = to - from;
         let m = (h.abs() / self.opts.max_step).ceil().clamp(1.0, 1e7) as u64;
         let mut a = from;
@@ -311,10 +334,31 @@ impl<'p> Solver<'p> {
             return true;
         }
         if depth >= MAX_HALVINGS || !b.is_finite() {
+            // what still fails this close to its last solution is at a dead point
+            for (i, st) in self.groups.iter_mut().enumerate() {
+                if let Some(g) = st.as_mut() {
+                    let s = self.op_status[i];
+                    if self.own_failure[i] && s != Status::Limit {
+                        g.limit = Some((g.theta, (b - g.theta).signum()));
+                    }
+                }
+            }
             return false;
         }
         let mid = 0.5 * (a + b);
         self.reach(a, mid, depth + 1) && self.reach(mid, b, depth + 1)
+    }
+
+    /// The dead point (input angle) that stops the first group at LIMIT, if any.
+    fn limit_angle(&self) -> f64 {
+        for (i, st) in self.groups.iter().enumerate() {
+            if let (Some(g), Status::Limit) = (st, self.op_status[i]) {
+                if let Some((at, _)) = g.limit {
+                    return at;
+                }
+            }
+        }
+        f64::NAN
     }
 
     fn write(&self, k: usize, out: &mut SceneSweepOut<'_>) {
@@ -353,6 +397,7 @@ impl<'p> Solver<'p> {
         }
         out.status[k] = status.code();
         out.det[k] = det;
+        out.limit[k] = f64::NAN;
         out.nit[k] = self.nit;
     }
 }
@@ -364,8 +409,10 @@ fn rot_m(m: Xy, d: Xy) -> Xy {
 }
 
 impl Plan {
-    /// Solves the plan at every angle of `theta` (radians, any order; the continuation
-    /// follows the order given, starting from the drawn pose).
+    /// Solves the plan at every angle of `theta` (radians, any order): from the drawn pose
+    /// to `theta[0]` the shortest way round, then along `theta` in order. Angles past a dead
+    /// point of a group are LIMIT; those that the drawn circuit reaches the other way round
+    /// are then solved by continuing backwards from the drawn pose over the end of `theta`.
     pub fn sweep(&self, theta: &[f64], opts: &SceneSweepOptions, mut out: SceneSweepOut<'_>) -> Result<(), Error> {
         let n = theta.len();
         let (np, nl, ns) = (self.points.len(), self.links.len(), self.steps.len());
@@ -381,6 +428,7 @@ impl Plan {
         check("status", out.status.len(), n)?;
         check("nit", out.nit.len(), n)?;
         check("det", out.det.len(), n)?;
+        check("limit", out.limit.len(), n)?;
         check("step_status", out.step_status.len(), n * ns)?;
         check("step_det", out.step_det.len(), n * ns)?;
         check("point_status", out.point_status.len(), n * np)?;
@@ -388,37 +436,76 @@ impl Plan {
             check("velocity", v.len(), n * np * 2)?;
             check("angular velocity", w.len(), n * nl)?;
         }
-        let mut s = Solver::new(self, *opts);
-        let has_group = self.has_group();
-        let mut prev = self.theta0;
-        if has_group {
-            s.eval(self.theta0); // tangents at the drawn pose
-            if let Some(&t0) = theta.first().filter(|t| t.is_finite()) {
-                let start = self.theta0 + wrap_angle(t0 - self.theta0);
-                s.advance(self.theta0, start);
-                for g in s.groups.iter_mut().flatten() {
-                    // the input repeats every turn: relabel the states to theta[0]
-                    let shift = t0 - start;
-                    g.theta += shift;
-                    for t in [g.tangent.as_mut(), g.previous.as_mut()].into_iter().flatten() {
-                        t.theta += shift;
-                    }
-                }
-                prev = t0;
-            }
-        }
-        for (k, &t) in theta.iter().enumerate() {
-            s.nit = 0;
-            if has_group && t.is_finite() && prev.is_finite() {
-                s.advance(prev, t);
-            } else {
+        if !self.has_group() {
+            let mut s = Solver::new(self, *opts);
+            for (k, &t) in theta.iter().enumerate() {
                 s.eval(t);
+                s.write(k, &mut out);
             }
-            if t.is_finite() {
-                prev = t;
+            return Ok(());
+        }
+        let limit = Status::Limit.code();
+        self.continuation(theta, 0..n, opts, &mut out, false);
+        // the rest of the drawn circuit, backwards from the drawn pose
+        if out.status.contains(&limit) {
+            let status = out.status.to_vec();
+            let last = (0..n).rev().take_while(|&k| status[k] == limit || !theta[k].is_finite()).last();
+            if let Some(first) = last {
+                self.continuation(theta, (first..n).rev(), opts, &mut out, true);
             }
-            s.write(k, &mut out);
         }
         Ok(())
+    }
+
+    /// Continuation from the drawn pose over the indices `order`; `backward` stops at the
+    /// first LIMIT (what lies beyond is off the drawn circuit's reach) and leaves
+    /// non-finite angles as they are.
+    fn continuation(
+        &self,
+        theta: &[f64],
+        order: impl Iterator<Item = usize>,
+        opts: &SceneSweepOptions,
+        out: &mut SceneSweepOut<'_>,
+        backward: bool,
+    ) {
+        let mut s = Solver::new(self, *opts);
+        s.eval(self.theta0); // tangents at the drawn pose
+        let mut started = false;
+        for k in order {
+            let t = theta[k];
+            s.nit = 0;
+            if !t.is_finite() {
+                s.eval(t);
+            } else {
+                if !started {
+                    // the input repeats every turn: reach theta[k] the shortest way, then
+                    // relabel the states to it
+                    let start = self.theta0 + wrap_angle(t - self.theta0);
+                    s.advance(start);
+                    for g in s.groups.iter_mut().flatten() {
+                        let shift = t - start;
+                        g.theta += shift;
+                        for tg in [g.tangent.as_mut(), g.previous.as_mut()].into_iter().flatten() {
+                            tg.theta += shift;
+                        }
+                        if let Some(l) = g.limit.as_mut() {
+                            l.0 += shift;
+                        }
+                    }
+                    s.last_eval = t;
+                    started = true;
+                } else {
+                    s.advance(t);
+                }
+            }
+            if backward && !t.is_finite() {
+                continue;
+            }
+            s.write(k, out);
+            out.limit[k] = s.limit_angle();
+            if backward && out.status[k] == Status::Limit.code() {
+                break;
+            }
+        }
     }
 }

@@ -43,6 +43,7 @@ fn run(plan: &Plan, theta: &[f64]) -> Run {
         nit: vec![0; n],
         det: vec![0.0; n],
     };
+    let mut limit = vec![0.0; n];
     let (mut ss, mut sd, mut ps) = (vec![0; n * ns], vec![0.0; n * ns], vec![0; n * np]);
     let opts = SceneSweepOptions::new(NewtonOptions::default(), 0.05, None).unwrap();
     let out = SceneSweepOut {
@@ -51,6 +52,7 @@ fn run(plan: &Plan, theta: &[f64]) -> Run {
         status: &mut r.status,
         nit: &mut r.nit,
         det: &mut r.det,
+        limit: &mut limit,
         step_status: &mut ss,
         step_det: &mut sd,
         point_status: &mut ps,
