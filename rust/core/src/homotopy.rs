@@ -816,8 +816,23 @@ mod tests {
             let r = residual(a, b, phi);
             assert!(r <= 1e-12 * a.amax().max(1.0), "residual {r:e}");
         }
+        // every complex root satisfies the closure and the circles; non-real roots pair up
+        // with their conjugates
+        let scale = a.amax().max(b.amax()).max(1.0);
         for z in &sol.complex {
             assert_eq!(z.len(), 2 * N);
+            let zmax = z.iter().map(|v| v.norm()).fold(1.0, f64::max);
+            for i in 0..N {
+                let mut r = C::new(-b[i], 0.0);
+                for k in 0..2 * N {
+                    r += z[k] * a[(i, k)];
+                }
+                assert!(r.norm() <= 1e-10 * scale * zmax, "closure residual {:e}", r.norm());
+                let q = z[i] * z[i] + z[N + i] * z[N + i] - 1.0;
+                assert!(q.norm() <= 1e-10 * zmax * zmax, "circle residual {:e}", q.norm());
+            }
+            let conj: Vec<C> = z.iter().map(|v| v.conj()).collect();
+            assert!(sol.complex.iter().any(|w| w.iter().zip(&conj).all(|(p, q)| (p - q).norm() <= 1e-8 * zmax)));
         }
         let sys = Closure::<N> { a, b };
         let opts = NewtonOptions { tol: 1e-11, max_iter: 60, singular: 1e-8 };
@@ -954,6 +969,46 @@ mod tests {
                 assert!(newton_found >= 1);
             }
         }
+    }
+
+    /// Random dense A (N x 2N) with b = A z(phi*): generic, so all 2^N roots are finite.
+    fn dense(n: usize, seed: u64) -> (DMatrix<f64>, DVector<f64>, Vec<f64>) {
+        let mut rng = SplitMix64(seed);
+        let a = DMatrix::from_fn(n, 2 * n, |_, _| 2.0 * rng.uniform() - 1.0);
+        let phi: Vec<f64> = (0..n).map(|_| PI * (2.0 * rng.uniform() - 1.0)).collect();
+        let z = DVector::from_iterator(2 * n, phi.iter().map(|p| p.cos()).chain(phi.iter().map(|p| p.sin())));
+        let b = &a * z;
+        (a, b, phi)
+    }
+
+    #[test]
+    fn homotopy_generic_dense_system_has_all_bezout_roots() {
+        let (a, b, phi) = dense(6, 7);
+        let sol = solve(&a, &b);
+        assert_eq!(sol.complex.len(), 64, "{:?} failed {}", sol.per_run_found, sol.failed);
+        assert!(contains(&sol.real, &phi, 1e-12));
+        check_real::<6>(&a, &b, &sol, 2000, 7);
+    }
+
+    /// N = 10: 1024 finite roots per run (release: a few seconds in debug is too slow).
+    #[test]
+    #[ignore]
+    fn homotopy_ten_links_dense() {
+        let (a, b, phi) = dense(10, 11);
+        let t = std::time::Instant::now();
+        let sol = solve(&a, &b);
+        eprintln!(
+            "N = 10: {} complex, {} real, per run {:?}, failed {:?}, infinite {}, {:.0} ms",
+            sol.complex.len(),
+            sol.real.len(),
+            sol.per_run_found,
+            sol.per_run_failed,
+            sol.infinite,
+            t.elapsed().as_secs_f64() * 1e3
+        );
+        assert!(contains(&sol.real, &phi, 1e-12));
+        check_real::<10>(&a, &b, &sol, 2000, 11);
+        assert_eq!(sol.complex.len(), 1024);
     }
 
     #[test]
