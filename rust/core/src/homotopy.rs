@@ -1046,47 +1046,99 @@ mod tests {
         let _ = unit_circle_solutions(&a, &b, &HomotopyOptions::default()).unwrap();
     }
 
-    /// Statistics over 1000 random double butterflies (bar ground, input at A), in
-    /// release: `cargo test --release -p planarkin-core homotopy_stats -- --ignored --nocapture`.
+    /// Random double-butterfly joints, each scaled by 10^U(-spread, spread).
+    fn spread_joints(rng: &mut SplitMix64, spread: f64) -> HashMap<char, P> {
+        let mut j = joints(rng, BUTTERFLY);
+        for c in BUTTERFLY.chars() {
+            let f = 10f64.powf(spread * (2.0 * rng.uniform() - 1.0));
+            let p = j.get_mut(&c).unwrap();
+            *p = [p[0] * f, p[1] * f];
+        }
+        j
+    }
+
     #[test]
     #[ignore]
-    fn homotopy_stats_double_butterfly() {
+    fn homotopy_debug_geometry() {
+        let which: Vec<String> = std::env::var("HOMGEO").unwrap().split(',').map(String::from).collect();
+        let (kind, seed, spread, g): (&str, u64, f64, usize) = (&which[0], which[1].parse().unwrap(), which[2].parse().unwrap(), which[3].parse().unwrap());
+        let mut rng = SplitMix64(seed);
+        let mut j = spread_joints(&mut rng, spread);
+        for _ in 0..g {
+            j = spread_joints(&mut rng, spread);
+        }
+        let build = if kind == "hinge" { butterfly_hinge_input } else { butterfly_bar_ground };
+        let (a, b) = build(&j);
+        eprintln!("joints {j:?}");
+        let sol = solve(&a, &b);
+        eprintln!("{} roots; real {:?}", sol.complex.len(), sol.real);
+        for z in &sol.complex {
+            let im = z.iter().map(|v| v.im.abs()).fold(0.0, f64::max);
+            let d0 = (0..6).map(|k| (z[k] - 1.0).norm().max(z[6 + k].norm())).fold(0.0, f64::max);
+            eprintln!("  max|Im| {im:.3e}, dist to drawn {d0:.3e}");
+        }
+        let sys = Closure::<6> { a: &a, b: &b };
+        let (_, jac) = sys.eval(&SVector::zeros());
+        eprintln!("conditioning at the drawn pose {:e}", sys.conditioning(&jac));
+    }
+
+    /// Path failures and lost roots over `count` random geometries of one mechanism.
+    /// `spread`: joint coordinates scaled per joint by 10^U(-spread, spread) (links of
+    /// disparate lengths: harder). Prints the statistics; asserts that the drawn pose is
+    /// found every time.
+    fn stats(name: &str, build: fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>), expected: usize, spread: f64, seed: u64) {
         let count = 1000;
-        let mut rng = SplitMix64(4242);
-        let (mut fail_runs, mut lost_runs, mut lost_merged, mut found_hist) = (vec![0usize; 2], vec![0usize; 2], 0usize, HashMap::new());
-        let (mut paths_failed_hist, mut infinite) = (HashMap::new(), 0usize);
+        let mut rng = SplitMix64(seed);
+        let (mut fail_runs, mut short_runs, mut short_merged) = ([0usize; 2], [0usize; 2], 0usize);
+        let (mut counts, mut fail_hist, mut infinite) = (HashMap::new(), HashMap::new(), 0usize);
         let mut times = Vec::new();
-        for _ in 0..count {
-            let j = joints(&mut rng, BUTTERFLY);
-            let (a, b) = butterfly_bar_ground(&j);
+        let mut missing_pose = 0;
+        for g in 0..count {
+            let (a, b) = build(&spread_joints(&mut rng, spread));
             let t = std::time::Instant::now();
             let sol = solve(&a, &b);
             times.push(t.elapsed().as_secs_f64());
-            let total = sol.complex.len();
-            *found_hist.entry(total).or_insert(0) += 1;
-            *paths_failed_hist.entry(sol.failed).or_insert(0) += 1;
+            *counts.entry(sol.complex.len()).or_insert(0) += 1;
+            *fail_hist.entry(sol.failed).or_insert(0) += 1;
             infinite += sol.infinite;
             for r in 0..2 {
                 fail_runs[r] += sol.per_run_failed[r];
-                if sol.per_run_found[r] < total {
-                    lost_runs[r] += total - sol.per_run_found[r];
-                }
+                short_runs[r] += expected.saturating_sub(sol.per_run_found[r]);
             }
-            if total < 16 {
-                lost_merged += 16 - total;
+            short_merged += expected.saturating_sub(sol.complex.len());
+            if !contains(&sol.real, &[0.0; 6], 1e-12) || sol.complex.len() != expected {
+                missing_pose += 1;
+                let near = sol.real.iter().map(|r| r.iter().map(|v| v.abs()).fold(0.0, f64::max)).fold(f64::INFINITY, f64::min);
+                let sys = Closure::<6> { a: &a, b: &b };
+                let cond = sys.conditioning(&sys.eval(&SVector::zeros()).1);
+                eprintln!(
+                    "  geometry {g}: {} roots, per run {:?}, failed {:?}; nearest real root to the drawn pose {near:.1e} rad; conditioning there {cond:.1e}",
+                    sol.complex.len(),
+                    sol.per_run_found,
+                    sol.per_run_failed
+                );
             }
-            assert!(contains(&sol.real, &[0.0; 6], 1e-12));
         }
         times.sort_by(f64::total_cmp);
         let mean = times.iter().sum::<f64>() / count as f64;
-        eprintln!("geometries {count}; merged root counts {found_hist:?}");
-        eprintln!("failed paths per run {fail_runs:?} of {} each; histogram of failed paths per solve {paths_failed_hist:?}", count * 64);
-        eprintln!("roots missed by run 1 / run 2 (vs merged) {lost_runs:?}; roots short of 16 after merging {lost_merged}; infinite paths {infinite}");
+        eprintln!("{name}, spread {spread}: {count} geometries; root counts {counts:?} (expected {expected})");
+        eprintln!("  failed paths per run {fail_runs:?} of {} each; failed paths per solve (histogram) {fail_hist:?}; infinite {infinite}", count * 64);
+        eprintln!("  roots short of {expected}: run 1 {}, run 2 {}, merged {short_merged}; geometries listed {missing_pose}", short_runs[0], short_runs[1]);
         eprintln!(
-            "time per solve (2 runs x 64 paths): mean {:.2} ms, median {:.2} ms, max {:.2} ms",
+            "  time per solve (2 runs x 64 paths): mean {:.1} ms, median {:.1} ms, max {:.1} ms",
             mean * 1e3,
             times[count / 2] * 1e3,
             times[count - 1] * 1e3
         );
+    }
+
+    /// Statistics over 1000 random double butterflies, in release:
+    /// `cargo test --release -p planarkin-core homotopy_stats -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn homotopy_stats_double_butterfly() {
+        stats("ternary ground, input at hinge I", butterfly_hinge_input, 18, 0.0, 4343);
+        stats("bar ground, input at A", butterfly_bar_ground, 16, 1.0, 4444);
+        stats("bar ground, input at A", butterfly_bar_ground, 16, 0.0, 4242);
     }
 }
