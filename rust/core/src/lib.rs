@@ -9,6 +9,7 @@ pub mod batch;
 pub mod error;
 pub mod fourbar;
 pub mod grashof;
+pub mod homotopy;
 pub mod limits;
 pub mod newton;
 pub mod scene;

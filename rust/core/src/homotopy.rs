@@ -1,0 +1,1144 @@
+//! Every assembly of a rigid group of links, by homotopy continuation: all finite complex
+//! solutions of the closure equations `A z = b` (linear in `z = (cos phi, sin phi)`) with
+//! the unit circles `c_j^2 + s_j^2 = 1`, and the real assemblies among them.
+//!
+//! Method. The linear part is eliminated first: rows of `[A | b]` are scaled to unit
+//! max-norm, an SVD checks that `A` (N x 2N) has full row rank and gives the
+//! minimum-norm solution `z0` and an orthonormal basis `K` (2N x N) of its null space, so
+//! `z = z0 + K t`. What is left is N quadrics in N unknowns,
+//! `q_j(t) = c_j(t)^2 + s_j(t)^2 - 1`. They are solved by a total-degree homotopy
+//! `H(t, tau) = (1 - tau) gamma G(t) + tau F(t)`, `G_j = t_j^2 - 1` (2^N start points
+//! `t_j = +-1`), `gamma` a random unit complex number (the "gamma trick": no path meets a
+//! singularity for tau < 1, with probability one). Each path is tracked in projective
+//! coordinates `X = (x0, x)`, `t = x / x0`, on a moving orthogonal patch
+//! (`conj(X_k) . X = 1`, renormalised after every accepted step), so paths whose `t`
+//! diverges stay bounded and arrive at `x0 = 0`: they are classified *infinite*, not failed.
+//! Predictor: classical RK4 on the Davidenko equation `H_X dX/dtau = -H_tau`; corrector:
+//! at most three Newton steps that must contract; adaptive step (halved on rejection,
+//! doubled after three acceptances), bounded by `max_steps` per path, so nothing hangs.
+//! Every endpoint that reached tau = 1 is finished by Newton on the affine target `F(t)`
+//! and kept only if Newton converges near it (a finite, verified root). Roots are
+//! deduplicated; the whole tracking runs `runs` times (default 2) with independent
+//! `gamma`s and the root sets are merged, so a root lost by one run to a path failure or
+//! path jumping is still found if the other run finds it. Real assemblies: roots whose
+//! imaginary parts are below a scale-aware tolerance, polished by real Newton in the
+//! angles on `A z(phi) = b` (the circles then hold exactly) to about 1e-15 rad.
+
+use nalgebra::{Complex, DMatrix, DVector};
+
+use crate::{wrap_angle, Error};
+
+type C = Complex<f64>;
+
+/// Largest number of unknown rotations accepted (2^16 paths per run).
+pub const MAX_LINKS: usize = 16;
+
+/// A path whose homogenizing coordinate |x0| (with |X| = 1) falls below this is declared
+/// infinite: its t exceeds 1e6 times the scale of the row-normalised problem. Paths to
+/// singular points at infinity approach them with |x0| ~ 1 - tau and would otherwise
+/// spend ~30 more steps shrinking towards the precision floor (measured on the double
+/// butterfly). A finite root that large (|cos phi| ~ 1e6, |Im phi| ~ 14) is lost.
+const INFINITE_X0: f64 = 1e-6;
+
+/// Tracking options, all with defaults ([`HomotopyOptions::default`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HomotopyOptions {
+    /// Seed of the random `gamma` of each run (splitmix64): the result is deterministic
+    /// for a given seed.
+    pub seed: u64,
+    /// Independent trackings (each with its own `gamma`) whose roots are merged; >= 1.
+    pub runs: u32,
+    /// At most this many predictor-corrector steps (accepted or rejected) per path; >= 1.
+    pub max_steps: u32,
+    /// Largest step in tau, in (0, 1].
+    pub max_step: f64,
+}
+
+impl Default for HomotopyOptions {
+    fn default() -> Self {
+        Self { seed: 0x5EED_2026, runs: 2, max_steps: 3000, max_step: 0.05 }
+    }
+}
+
+/// All assemblies found.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Solutions {
+    /// Finite complex solutions `z = (c_1..c_N, s_1..s_N)` (length 2N), deduplicated over
+    /// all runs. Real ones are given exactly as `(cos phi, sin phi)` of their polished
+    /// angles (zero imaginary parts).
+    pub complex: Vec<Vec<Complex<f64>>>,
+    /// Real solutions as angles `phi` (length N) in (-pi, pi], polished by real Newton.
+    pub real: Vec<Vec<f64>>,
+    /// Paths tracked, over all runs (`runs * 2^N`).
+    pub paths: usize,
+    /// Paths that ended neither at a verified finite root nor at infinity, over all runs.
+    pub failed: usize,
+    /// Paths classified as diverging to infinity, over all runs.
+    pub infinite: usize,
+    /// Distinct finite roots found by each run.
+    pub per_run_found: Vec<usize>,
+    /// Failed paths in each run.
+    pub per_run_failed: Vec<usize>,
+}
+
+/// All finite complex solutions of `A z = b`, `c_j^2 + s_j^2 = 1` (`a` is N x 2N, `b` has
+/// length N, `z = (c_1..c_N, s_1..s_N)`), and the real ones as angles. See the module docs
+/// for the method.
+///
+/// Errors (misuse only): N = 0 or N > [`MAX_LINKS`], shapes that disagree, non-finite
+/// entries, invalid options, or `A` without full row rank (dependent closure equations:
+/// the solution set is not finite). Path failures are data ([`Solutions::failed`]).
+pub fn unit_circle_solutions(
+    a: &DMatrix<f64>,
+    b: &DVector<f64>,
+    opts: &HomotopyOptions,
+) -> Result<Solutions, Error> {
+    let n = a.nrows();
+    if n == 0 {
+        return Err(Error::invalid("a", "must have at least one row", "0 rows"));
+    }
+    if n > MAX_LINKS {
+        return Err(Error::invalid("a", "must have at most 16 rows (2^N paths)", format!("{n} rows")));
+    }
+    if a.ncols() != 2 * n {
+        return Err(Error::Shape { name: "a columns".into(), got: a.ncols(), expected: 2 * n });
+    }
+    if b.len() != n {
+        return Err(Error::Shape { name: "b".into(), got: b.len(), expected: n });
+    }
+    if let Some(v) = a.iter().chain(b.iter()).find(|v| !v.is_finite()) {
+        return Err(Error::invalid("a, b", "must be finite", v));
+    }
+    if opts.runs == 0 {
+        return Err(Error::invalid("runs", "must be >= 1", 0));
+    }
+    if opts.max_steps == 0 {
+        return Err(Error::invalid("max_steps", "must be >= 1", 0));
+    }
+    if !(opts.max_step > 0.0 && opts.max_step <= 1.0) {
+        return Err(Error::invalid("max_step", "must be in (0, 1]", opts.max_step));
+    }
+    let red = Reduced::new(a, b)?;
+
+    let mut rng = SplitMix64(opts.seed);
+    let mut out = Solutions::default();
+    let mut roots: Vec<Vec<C>> = Vec::new(); // t of the merged roots
+    for _ in 0..opts.runs {
+        let theta = std::f64::consts::TAU * rng.uniform();
+        let gamma = C::new(theta.cos(), theta.sin());
+        let run = red.run(gamma, opts);
+        out.paths += run.paths;
+        out.failed += run.failed;
+        out.infinite += run.infinite;
+        out.per_run_found.push(run.roots.len());
+        out.per_run_failed.push(run.failed);
+        for t in run.roots {
+            insert_unique(&mut roots, t);
+        }
+    }
+
+    let mut real: Vec<Vec<f64>> = Vec::new();
+    for t in &roots {
+        let z = red.z_of(t);
+        let zmax = z.iter().map(|v| v.norm()).fold(1.0, f64::max);
+        let imag = z.iter().map(|v| v.im.abs()).fold(0.0, f64::max);
+        if imag <= 1e-6 * zmax {
+            if let Some(phi) = red.real_polish(&z) {
+                if !real.iter().any(|p| angles_close(p, &phi, 1e-9)) {
+                    real.push(phi);
+                }
+                continue;
+            }
+        }
+        out.complex.push(z);
+    }
+    // Real roots are stored exactly; a complex root that polished to the same real
+    // assembly as another (a near-conjugate pair) is not listed twice.
+    for phi in &real {
+        out.complex.push(phi.iter().map(|p| C::new(p.cos(), 0.0)).chain(phi.iter().map(|p| C::new(p.sin(), 0.0))).collect());
+    }
+    out.real = real;
+    Ok(out)
+}
+
+/// The system after eliminating the linear part: `z = P (x0, x)` with `P = [z0 | K]`.
+struct Reduced {
+    n: usize,
+    /// 2N x (N + 1), row major: column 0 is z0, columns 1..=N are K.
+    p: Vec<f64>,
+    /// Row-scaled `A` and `b` (same solutions), for the real polish.
+    a: DMatrix<f64>,
+    b: DVector<f64>,
+}
+
+/// How one path ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum End {
+    /// Reached tau = 1.
+    Reached,
+    /// x0 became negligible: t diverges.
+    Infinite,
+    /// Step below the minimum, step budget spent, or a singular / non-finite linear solve.
+    Failed,
+}
+
+struct RunResult {
+    roots: Vec<Vec<C>>,
+    paths: usize,
+    failed: usize,
+    infinite: usize,
+}
+
+/// Scratch buffers of one path (no allocation inside the step loop).
+struct Work {
+    m: usize,
+    jac: Vec<C>,
+    rhs: Vec<C>,
+    w: Vec<C>,
+}
+
+impl Reduced {
+    fn new(a: &DMatrix<f64>, b: &DVector<f64>) -> Result<Self, Error> {
+        let n = a.nrows();
+        let mut a_s = a.clone();
+        let mut b_s = b.clone();
+        for i in 0..n {
+            let s = a.row(i).amax();
+            if s == 0.0 {
+                return Err(Error::invalid("a", "must have full row rank", format!("row {i} is zero")));
+            }
+            a_s.row_mut(i).scale_mut(1.0 / s);
+            b_s[i] /= s;
+        }
+        // Pad to square so the SVD returns a full V^T: its N rows of zero singular value
+        // span the null space of A.
+        let mut m = DMatrix::<f64>::zeros(2 * n, 2 * n);
+        m.rows_mut(0, n).copy_from(&a_s);
+        let svd = m.svd(true, true);
+        let (Some(u), Some(vt)) = (svd.u.as_ref(), svd.v_t.as_ref()) else {
+            return Err(Error::invalid("a", "must have a computable SVD", "SVD failed"));
+        };
+        let sv = &svd.singular_values;
+        let mut order: Vec<usize> = (0..2 * n).collect();
+        order.sort_by(|&i, &j| sv[j].total_cmp(&sv[i]));
+        let smax = sv[order[0]];
+        let smin = sv[order[n - 1]];
+        if !(smin > 1e-10 * smax) {
+            return Err(Error::invalid(
+                "a",
+                "must have full row rank (independent closure equations)",
+                format!("sigma_min / sigma_max = {:e}", smin / smax),
+            ));
+        }
+        let mut z0 = vec![0.0; 2 * n];
+        for &k in &order[..n] {
+            let mut ub = 0.0;
+            for i in 0..n {
+                ub += u[(i, k)] * b_s[i];
+            }
+            let coef = ub / sv[k];
+            for (r, zr) in z0.iter_mut().enumerate() {
+                *zr += coef * vt[(k, r)];
+            }
+        }
+        let cols = n + 1;
+        let mut p = vec![0.0; 2 * n * cols];
+        for r in 0..2 * n {
+            p[r * cols] = z0[r];
+            for (c, &k) in order[n..].iter().enumerate() {
+                p[r * cols + 1 + c] = vt[(k, r)];
+            }
+        }
+        Ok(Self { n, p, a: a_s, b: b_s })
+    }
+
+    /// z = z0 + K t.
+    fn z_of(&self, t: &[C]) -> Vec<C> {
+        let cols = self.n + 1;
+        (0..2 * self.n)
+            .map(|r| {
+                let row = &self.p[r * cols..(r + 1) * cols];
+                let mut s = C::new(row[0], 0.0);
+                for k in 0..self.n {
+                    s += t[k] * row[k + 1];
+                }
+                s
+            })
+            .collect()
+    }
+
+    /// One full tracking of the 2^N paths with one gamma; returns the distinct roots.
+    fn run(&self, gamma: C, opts: &HomotopyOptions) -> RunResult {
+        let n = self.n;
+        let m = n + 1;
+        let mut work = Work { m, jac: vec![C::default(); m * m], rhs: vec![C::default(); m], w: vec![C::default(); 2 * n] };
+        let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0 };
+        let norm0 = 1.0 / (m as f64).sqrt();
+        for start in 0..(1usize << n) {
+            res.paths += 1;
+            let mut x: Vec<C> = (0..m)
+                .map(|k| {
+                    let sign = if k > 0 && (start >> (k - 1)) & 1 == 1 { -1.0 } else { 1.0 };
+                    C::new(sign * norm0, 0.0)
+                })
+                .collect();
+            let end = self.track(&mut x, gamma, opts, &mut work);
+            match end {
+                End::Infinite => res.infinite += 1,
+                End::Failed => {
+                    if x[0].norm() < 1e-4 {
+                        res.infinite += 1;
+                    } else {
+                        res.failed += 1;
+                    }
+                }
+                End::Reached => {
+                    let root = if x[0].norm() > 1e-12 {
+                        let t0: Vec<C> = x[1..].iter().map(|v| v / x[0]).collect();
+                        self.affine_newton(&t0)
+                    } else {
+                        None
+                    };
+                    match root {
+                        Some(t) => insert_unique(&mut res.roots, t),
+                        None if x[0].norm() < 1e-4 => res.infinite += 1,
+                        None => res.failed += 1,
+                    }
+                }
+            }
+        }
+        res
+    }
+
+    /// Homotopy residual (rows 0..N, plus the patch row N) into `work.rhs` and, when
+    /// `jac`, its Jacobian in X into `work.jac`; with `dtau`, `rhs` gets H_tau instead
+    /// (patch row 0).
+    fn eval(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, jac: bool, dtau: bool) {
+        let n = self.n;
+        let m = work.m;
+        for r in 0..2 * n {
+            let row = &self.p[r * m..(r + 1) * m];
+            let mut s = C::default();
+            for k in 0..m {
+                s += x[k] * row[k];
+            }
+            work.w[r] = s;
+        }
+        let x0 = x[0];
+        let g_w = gamma * (1.0 - tau);
+        for j in 0..n {
+            let (c, s) = (work.w[j], work.w[n + j]);
+            let f = c * c + s * s - x0 * x0;
+            let g = x[j + 1] * x[j + 1] - x0 * x0;
+            work.rhs[j] = if dtau { f - gamma * g } else { g_w * g + f * tau };
+            if jac {
+                let rc = &self.p[j * m..(j + 1) * m];
+                let rs = &self.p[(n + j) * m..(n + j + 1) * m];
+                let row = &mut work.jac[j * m..(j + 1) * m];
+                let (c2, s2) = (c * (2.0 * tau), s * (2.0 * tau));
+                for k in 0..m {
+                    row[k] = c2 * rc[k] + s2 * rs[k];
+                }
+                row[0] -= x0 * (2.0 * tau) + g_w * x0 * 2.0;
+                row[j + 1] += g_w * x[j + 1] * 2.0;
+            }
+        }
+        if jac {
+            work.jac[n * m..(n + 1) * m].copy_from_slice(patch);
+        }
+        work.rhs[n] = if dtau {
+            C::default()
+        } else {
+            let mut s = C::new(-1.0, 0.0);
+            for k in 0..m {
+                s += patch[k] * x[k];
+            }
+            s
+        };
+    }
+
+    /// dX/dtau at (x, tau) on the patch, into `out`. False on a singular solve.
+    fn tangent(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, out: &mut [C]) -> bool {
+        self.eval(x, tau, gamma, patch, work, true, true);
+        for v in work.rhs.iter_mut() {
+            *v = -*v;
+        }
+        if !lu_solve(&mut work.jac, work.m, &mut work.rhs) {
+            return false;
+        }
+        out.copy_from_slice(&work.rhs);
+        true
+    }
+
+    /// Tracks one path from tau = 0 to 1; `x` is updated in place (unit norm).
+    fn track(&self, x: &mut [C], gamma: C, opts: &HomotopyOptions, work: &mut Work) -> End {
+        let m = work.m;
+        let mut tau = 0.0_f64;
+        let mut h = opts.max_step.min(0.02);
+        let h_min = 1e-13;
+        let mut good = 0;
+        let mut patch = vec![C::default(); m];
+        let mut k1 = vec![C::default(); m];
+        let mut k2 = vec![C::default(); m];
+        let mut k3 = vec![C::default(); m];
+        let mut k4 = vec![C::default(); m];
+        let mut y = vec![C::default(); m];
+        for _ in 0..opts.max_steps {
+            if x[0].norm() < INFINITE_X0 {
+                return End::Infinite;
+            }
+            for k in 0..m {
+                patch[k] = x[k].conj();
+            }
+            let step = h.min(1.0 - tau);
+            let ok = 'step: {
+                if !self.tangent(x, tau, gamma, &patch, work, &mut k1) {
+                    break 'step false;
+                }
+                axpy(&mut y, x, 0.5 * step, &k1);
+                if !self.tangent(&y, tau + 0.5 * step, gamma, &patch, work, &mut k2) {
+                    break 'step false;
+                }
+                axpy(&mut y, x, 0.5 * step, &k2);
+                if !self.tangent(&y, tau + 0.5 * step, gamma, &patch, work, &mut k3) {
+                    break 'step false;
+                }
+                axpy(&mut y, x, step, &k3);
+                let t1 = if tau + step >= 1.0 { 1.0 } else { tau + step };
+                if !self.tangent(&y, t1, gamma, &patch, work, &mut k4) {
+                    break 'step false;
+                }
+                for k in 0..m {
+                    y[k] = x[k] + (k1[k] + (k2[k] + k3[k]) * 2.0 + k4[k]) * (step / 6.0);
+                }
+                // Corrector: at most three Newton steps, each contracting.
+                let mut last = f64::INFINITY;
+                for it in 0..3 {
+                    self.eval(&y, t1, gamma, &patch, work, true, false);
+                    for v in work.rhs.iter_mut() {
+                        *v = -*v;
+                    }
+                    if !lu_solve(&mut work.jac, m, &mut work.rhs) {
+                        break 'step false;
+                    }
+                    let d = work.rhs.iter().map(|v| v.norm()).fold(0.0, f64::max);
+                    if !d.is_finite() || d > 0.1 || (it > 0 && d > 0.25 * last) {
+                        break 'step false;
+                    }
+                    for k in 0..m {
+                        y[k] += work.rhs[k];
+                    }
+                    last = d;
+                    if d < 1e-10 {
+                        break 'step true;
+                    }
+                }
+                last < 1e-8
+            };
+            if ok {
+                let norm = y.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+                for k in 0..m {
+                    x[k] = y[k] / norm;
+                }
+                tau = if tau + step >= 1.0 { 1.0 } else { tau + step };
+                if tau >= 1.0 {
+                    return End::Reached;
+                }
+                good += 1;
+                if good >= 3 {
+                    h = (2.0 * h).min(opts.max_step);
+                    good = 0;
+                }
+            } else {
+                good = 0;
+                h *= 0.5;
+                if h < h_min {
+                    return End::Failed;
+                }
+            }
+        }
+        End::Failed
+    }
+
+    /// Newton on the affine target q(t) = 0 from `t0`: the root if it converges near `t0`
+    /// with a small residual.
+    fn affine_newton(&self, t0: &[C]) -> Option<Vec<C>> {
+        let n = self.n;
+        let cols = n + 1;
+        let mut t = t0.to_vec();
+        let mut jac = vec![C::default(); n * n];
+        let mut rhs = vec![C::default(); n];
+        let mut last = f64::INFINITY;
+        for _ in 0..60 {
+            let z = self.z_of(&t);
+            let mut res = 0.0_f64;
+            for j in 0..n {
+                let (c, s) = (z[j], z[n + j]);
+                rhs[j] = -(c * c + s * s - 1.0);
+                res = res.max(rhs[j].norm());
+                let rc = &self.p[j * cols + 1..(j + 1) * cols];
+                let rs = &self.p[(n + j) * cols + 1..(n + j + 1) * cols];
+                for k in 0..n {
+                    jac[j * n + k] = c * (2.0 * rc[k]) + s * (2.0 * rs[k]);
+                }
+            }
+            if !res.is_finite() || !lu_solve(&mut jac, n, &mut rhs) {
+                return None;
+            }
+            let d = rhs.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            for k in 0..n {
+                t[k] += rhs[k];
+            }
+            let tn = t.iter().map(|v| v.norm()).fold(1.0, f64::max);
+            if d <= 1e-14 * tn || (d <= 1e-10 * tn && d >= 0.5 * last) {
+                let dist = t.iter().zip(t0).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
+                let zmax = self.z_of(&t).iter().map(|v| v.norm()).fold(1.0, f64::max);
+                let ok = dist <= 1e-3 * tn && res <= 1e-8 * zmax * zmax;
+                return ok.then_some(t);
+            }
+            last = d;
+        }
+        None
+    }
+
+    /// Real Newton in the angles on the row-scaled `A z(phi) = b`, from the real part of a
+    /// nearly real root `z`: the polished angles in (-pi, pi], or `None` when it does not
+    /// converge to a real root near `z`.
+    fn real_polish(&self, z: &[C]) -> Option<Vec<f64>> {
+        let n = self.n;
+        let phi0: Vec<f64> = (0..n).map(|j| z[n + j].re.atan2(z[j].re)).collect();
+        let mut phi = phi0.clone();
+        let mut last = f64::INFINITY;
+        for _ in 0..30 {
+            let (s, c): (Vec<f64>, Vec<f64>) = phi.iter().map(|p| p.sin_cos()).unzip();
+            let mut jac = DMatrix::<f64>::zeros(n, n);
+            let mut r = DVector::<f64>::zeros(n);
+            for i in 0..n {
+                let mut v = -self.b[i];
+                for j in 0..n {
+                    let (ac, as_) = (self.a[(i, j)], self.a[(i, n + j)]);
+                    v += ac * c[j] + as_ * s[j];
+                    jac[(i, j)] = -ac * s[j] + as_ * c[j];
+                }
+                r[i] = -v;
+            }
+            let d = jac.lu().solve(&r)?;
+            let step = d.amax();
+            if !step.is_finite() {
+                return None;
+            }
+            for j in 0..n {
+                phi[j] += d[j];
+            }
+            if step <= 1e-15 || (step <= 1e-11 && step >= 0.5 * last) {
+                let res = self.real_residual(&phi);
+                let moved = phi.iter().zip(&phi0).map(|(a, b)| wrap_angle(a - b).abs()).fold(0.0, f64::max);
+                return (res <= 1e-12 && moved <= 1e-4).then(|| phi.iter().map(|&p| wrap_angle(p)).collect());
+            }
+            last = step;
+        }
+        None
+    }
+
+    /// max |A z(phi) - b| on the row-scaled system.
+    fn real_residual(&self, phi: &[f64]) -> f64 {
+        let n = self.n;
+        let mut res = 0.0_f64;
+        for i in 0..n {
+            let mut v = -self.b[i];
+            for (j, p) in phi.iter().enumerate() {
+                let (s, c) = p.sin_cos();
+                v += self.a[(i, j)] * c + self.a[(i, n + j)] * s;
+            }
+            res = res.max(v.abs());
+        }
+        res
+    }
+}
+
+/// y = x + a k.
+fn axpy(y: &mut [C], x: &[C], a: f64, k: &[C]) {
+    for i in 0..y.len() {
+        y[i] = x[i] + k[i] * a;
+    }
+}
+
+/// Adds `t` to `roots` unless a root within 1e-8 (relative) is there already.
+fn insert_unique(roots: &mut Vec<Vec<C>>, t: Vec<C>) {
+    let scale = t.iter().map(|v| v.norm()).fold(1.0, f64::max);
+    let dup = roots.iter().any(|r| r.iter().zip(&t).all(|(a, b)| (a - b).norm() <= 1e-8 * scale));
+    if !dup {
+        roots.push(t);
+    }
+}
+
+fn angles_close(a: &[f64], b: &[f64], tol: f64) -> bool {
+    a.iter().zip(b).all(|(x, y)| wrap_angle(x - y).abs() <= tol)
+}
+
+/// Solves the m x m system in place by Gaussian elimination with partial pivoting (row
+/// major `a`); the solution replaces `b`. False on a zero or non-finite pivot.
+fn lu_solve(a: &mut [C], m: usize, b: &mut [C]) -> bool {
+    for k in 0..m {
+        let mut p = k;
+        let mut best = a[k * m + k].norm_sqr();
+        for i in k + 1..m {
+            let v = a[i * m + k].norm_sqr();
+            if v > best {
+                best = v;
+                p = i;
+            }
+        }
+        if !(best > 0.0 && best.is_finite()) {
+            return false;
+        }
+        if p != k {
+            for c in 0..m {
+                a.swap(k * m + c, p * m + c);
+            }
+            b.swap(k, p);
+        }
+        let inv = C::new(1.0, 0.0) / a[k * m + k];
+        for i in k + 1..m {
+            let f = a[i * m + k] * inv;
+            if f == C::default() {
+                continue;
+            }
+            for c in k + 1..m {
+                let v = a[k * m + c];
+                a[i * m + c] -= f * v;
+            }
+            let bk = b[k];
+            b[i] -= f * bk;
+        }
+    }
+    for k in (0..m).rev() {
+        let mut s = b[k];
+        for c in k + 1..m {
+            s -= a[k * m + c] * b[c];
+        }
+        b[k] = s / a[k * m + k];
+    }
+    b.iter().all(|v| v.re.is_finite() && v.im.is_finite())
+}
+
+/// splitmix64: a tiny, good-enough PRNG for the random gammas (no dependency).
+#[derive(Clone, Debug)]
+pub(crate) struct SplitMix64(pub(crate) u64);
+
+impl SplitMix64 {
+    pub(crate) fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1).
+    pub(crate) fn uniform(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::newton::{self, NewtonOptions, System};
+    use crate::{FourBar, Mode};
+    use nalgebra::{SMatrix, SVector};
+    use std::collections::HashMap;
+    use std::f64::consts::PI;
+
+    type P = [f64; 2];
+
+    fn sub(a: P, b: P) -> P {
+        [a[0] - b[0], a[1] - b[1]]
+    }
+
+    /// Closure equations of a group: each loop `sum sign R(phi_link) v = d` gives 2 rows.
+    struct Group {
+        n: usize,
+        rows: Vec<(Vec<f64>, f64)>,
+    }
+
+    impl Group {
+        fn new(n: usize) -> Self {
+            Self { n, rows: Vec::new() }
+        }
+
+        /// R(phi) v = (c v_x - s v_y, s v_x + c v_y).
+        fn lp(&mut self, terms: &[(usize, P, f64)], d: P) -> &mut Self {
+            let n = self.n;
+            let (mut rx, mut ry) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
+            for &(j, v, sg) in terms {
+                rx[j] += sg * v[0];
+                rx[n + j] -= sg * v[1];
+                ry[j] += sg * v[1];
+                ry[n + j] += sg * v[0];
+            }
+            self.rows.push((rx, d[0]));
+            self.rows.push((ry, d[1]));
+            self
+        }
+
+        fn ab(&self) -> (DMatrix<f64>, DVector<f64>) {
+            let m = self.rows.len();
+            let a = DMatrix::from_fn(m, 2 * self.n, |i, j| self.rows[i].0[j]);
+            let b = DVector::from_fn(m, |i, _| self.rows[i].1);
+            (a, b)
+        }
+    }
+
+    /// Random named joints in [-1, 1]^2.
+    fn joints(rng: &mut SplitMix64, names: &str) -> HashMap<char, P> {
+        names.chars().map(|c| (c, [2.0 * rng.uniform() - 1.0, 2.0 * rng.uniform() - 1.0])).collect()
+    }
+
+    fn dyad(p: P, q: P, v1: P, v2: P) -> (DMatrix<f64>, DVector<f64>) {
+        Group::new(2).lp(&[(0, v1, 1.0), (1, v2, -1.0)], sub(q, p)).ab()
+    }
+
+    /// Ternary T (J1 J2 J3) on binaries from known P1, P2, P3. Unknowns: T, B1, B2, B3.
+    fn triad(j: &HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>) {
+        let g = |c| j[&c];
+        Group::new(4)
+            .lp(&[(1, sub(g('1'), g('p')), 1.0), (0, sub(g('2'), g('1')), 1.0), (2, sub(g('2'), g('q')), -1.0)], sub(g('q'), g('p')))
+            .lp(&[(1, sub(g('1'), g('p')), 1.0), (0, sub(g('3'), g('1')), 1.0), (3, sub(g('3'), g('r')), -1.0)], sub(g('r'), g('p')))
+            .ab()
+    }
+
+    /// Two ternaries T1 (about known 3; joints 1, 2) and T2 (about known 6; joints 4, 5),
+    /// binaries 1-4 and 2-5. Unknowns: T1, T2, B1, B2.
+    fn stephenson3(j: &HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>) {
+        let g = |c| j[&c];
+        Group::new(4)
+            .lp(&[(0, sub(g('1'), g('3')), 1.0), (2, sub(g('4'), g('1')), 1.0), (1, sub(g('4'), g('6')), -1.0)], sub(g('6'), g('3')))
+            .lp(&[(0, sub(g('2'), g('3')), 1.0), (3, sub(g('5'), g('2')), 1.0), (1, sub(g('5'), g('6')), -1.0)], sub(g('6'), g('3')))
+            .ab()
+    }
+
+    /// Double butterfly, ground bar A K, input ternary A B C given (input at A, a
+    /// ternary-bar joint). Unknowns: [B D E], [E H], [H I K], [D G], [F G I], [C F].
+    fn butterfly_bar_ground(j: &HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>) {
+        let g = |c| j[&c];
+        let (r3, r4, r5, r6, r7, r8) = (0, 1, 2, 3, 4, 5);
+        Group::new(6)
+            .lp(&[(r3, sub(g('E'), g('B')), 1.0), (r4, sub(g('H'), g('E')), 1.0), (r5, sub(g('H'), g('K')), -1.0)], sub(g('K'), g('B')))
+            .lp(
+                &[(r3, sub(g('D'), g('B')), 1.0), (r6, sub(g('G'), g('D')), 1.0), (r5, sub(g('I'), g('K')), -1.0), (r7, sub(g('G'), g('I')), -1.0)],
+                sub(g('K'), g('B')),
+            )
+            .lp(&[(r8, sub(g('F'), g('C')), 1.0), (r5, sub(g('I'), g('K')), -1.0), (r7, sub(g('F'), g('I')), -1.0)], sub(g('K'), g('C')))
+            .ab()
+    }
+
+    /// Ternary H I K grounded, its butterfly partner F G I given (input at the butterfly
+    /// hinge I). Unknowns: [A K], [A B C], [B D E], [E H], [D G], [C F].
+    fn butterfly_hinge_input(j: &HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>) {
+        let g = |c| j[&c];
+        let (r1, r2, r3, r4, r6, r8) = (0, 1, 2, 3, 4, 5);
+        Group::new(6)
+            .lp(&[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('C'), g('A')), 1.0), (r8, sub(g('C'), g('F')), -1.0)], sub(g('F'), g('K')))
+            .lp(
+                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('E'), g('B')), 1.0), (r4, sub(g('E'), g('H')), -1.0)],
+                sub(g('H'), g('K')),
+            )
+            .lp(
+                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('D'), g('B')), 1.0), (r6, sub(g('D'), g('G')), -1.0)],
+                sub(g('G'), g('K')),
+            )
+            .ab()
+    }
+
+    /// Ternary H I K grounded, bar E H given (input at H, a ternary-bar joint).
+    /// Unknowns: [A K], [A B C], [B D E], [D G], [F G I], [C F].
+    fn butterfly_ternary_ground_bar_input(j: &HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>) {
+        let g = |c| j[&c];
+        let (r1, r2, r3, r6, r7, r8) = (0, 1, 2, 3, 4, 5);
+        Group::new(6)
+            .lp(&[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('B'), g('E')), -1.0)], sub(g('E'), g('K')))
+            .lp(
+                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('C'), g('A')), 1.0), (r8, sub(g('F'), g('C')), 1.0), (r7, sub(g('F'), g('I')), -1.0)],
+                sub(g('I'), g('K')),
+            )
+            .lp(&[(r3, sub(g('D'), g('E')), 1.0), (r6, sub(g('G'), g('D')), 1.0), (r7, sub(g('G'), g('I')), -1.0)], sub(g('I'), g('E')))
+            .ab()
+    }
+
+    const BUTTERFLY: &str = "ABCDEFGHIK";
+
+    /// Closure in the angles, for the crate's own Newton solver (the independent check).
+    struct Closure<'a, const N: usize> {
+        a: &'a DMatrix<f64>,
+        b: &'a DVector<f64>,
+    }
+
+    impl<const N: usize> System<N> for Closure<'_, N> {
+        fn eval(&self, x: &SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
+            let mut f = SVector::<f64, N>::zeros();
+            let mut j = SMatrix::<f64, N, N>::zeros();
+            for i in 0..N {
+                f[i] = -self.b[i];
+                for k in 0..N {
+                    let (s, c) = x[k].sin_cos();
+                    f[i] += self.a[(i, k)] * c + self.a[(i, N + k)] * s;
+                    j[(i, k)] = -self.a[(i, k)] * s + self.a[(i, N + k)] * c;
+                }
+            }
+            (f, j)
+        }
+        fn scale(&self) -> f64 {
+            self.a.amax()
+        }
+        fn normalize(&self, x: &mut SVector<f64, N>) {
+            x.iter_mut().for_each(|v| *v = wrap_angle(*v));
+        }
+    }
+
+    /// max |A z(phi) - b| on the original equations.
+    fn residual(a: &DMatrix<f64>, b: &DVector<f64>, phi: &[f64]) -> f64 {
+        let z = DVector::from_iterator(2 * phi.len(), phi.iter().map(|p| p.cos()).chain(phi.iter().map(|p| p.sin())));
+        (a * z - b).amax()
+    }
+
+    fn contains(real: &[Vec<f64>], phi: &[f64], tol: f64) -> bool {
+        real.iter().any(|r| angles_close(r, phi, tol))
+    }
+
+    /// Every real root satisfies the original equations to 1e-12; every root found by
+    /// `starts` random Newton starts of the crate's solver is among them. Returns how
+    /// many distinct roots the starts found.
+    fn check_real<const N: usize>(a: &DMatrix<f64>, b: &DVector<f64>, sol: &Solutions, starts: usize, seed: u64) -> usize {
+        for phi in &sol.real {
+            assert_eq!(phi.len(), N);
+            assert!(phi.iter().all(|p| *p > -PI && *p <= PI));
+            let r = residual(a, b, phi);
+            assert!(r <= 1e-12 * a.amax().max(1.0), "residual {r:e}");
+        }
+        // every complex root satisfies the closure and the circles; non-real roots pair up
+        // with their conjugates
+        let scale = a.amax().max(b.amax()).max(1.0);
+        for z in &sol.complex {
+            assert_eq!(z.len(), 2 * N);
+            let zmax = z.iter().map(|v| v.norm()).fold(1.0, f64::max);
+            for i in 0..N {
+                let mut r = C::new(-b[i], 0.0);
+                for k in 0..2 * N {
+                    r += z[k] * a[(i, k)];
+                }
+                assert!(r.norm() <= 1e-10 * scale * zmax, "closure residual {:e}", r.norm());
+                let q = z[i] * z[i] + z[N + i] * z[N + i] - 1.0;
+                assert!(q.norm() <= 1e-10 * zmax * zmax, "circle residual {:e}", q.norm());
+            }
+            let conj: Vec<C> = z.iter().map(|v| v.conj()).collect();
+            assert!(sol.complex.iter().any(|w| w.iter().zip(&conj).all(|(p, q)| (p - q).norm() <= 1e-8 * zmax)));
+        }
+        let sys = Closure::<N> { a, b };
+        let opts = NewtonOptions { tol: 1e-11, max_iter: 60, singular: 1e-8 };
+        let mut rng = SplitMix64(seed);
+        let mut found: Vec<Vec<f64>> = Vec::new();
+        for _ in 0..starts {
+            let x0 = SVector::<f64, N>::from_fn(|_, _| PI * (2.0 * rng.uniform() - 1.0));
+            let out = newton::solve(&sys, x0, &opts, None);
+            if out.status.is_success() {
+                let phi: Vec<f64> = out.x.iter().map(|&v| wrap_angle(v)).collect();
+                assert!(contains(&sol.real, &phi, 1e-7), "Newton found {phi:?}, not among {:?}", sol.real);
+                if !contains(&found, &phi, 1e-7) {
+                    found.push(phi);
+                }
+            }
+        }
+        found.len()
+    }
+
+    fn solve(a: &DMatrix<f64>, b: &DVector<f64>) -> Solutions {
+        unit_circle_solutions(a, b, &HomotopyOptions::default()).unwrap()
+    }
+
+    #[test]
+    fn homotopy_dyad_matches_circle_intersection() {
+        let (p, q) = ([0.1, -0.2], [1.3, 0.25]);
+        let (r1, r2, a1, a2) = (1.0_f64, 0.8_f64, 0.3_f64, -1.1_f64);
+        let v1 = [r1 * a1.cos(), r1 * a1.sin()];
+        let v2 = [r2 * a2.cos(), r2 * a2.sin()];
+        let (a, b) = dyad(p, q, v1, v2);
+        let sol = solve(&a, &b);
+        assert_eq!(sol.complex.len(), 2);
+        assert_eq!(sol.real.len(), 2);
+        assert_eq!(sol.paths, 8);
+        // closed form: J = P + a e +- h e_perp
+        let u = sub(q, p);
+        let d = (u[0] * u[0] + u[1] * u[1]).sqrt();
+        let e = [u[0] / d, u[1] / d];
+        let along = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
+        let h = (r1 * r1 - along * along).sqrt();
+        for sg in [1.0, -1.0] {
+            let jx = [p[0] + along * e[0] - sg * h * e[1], p[1] + along * e[1] + sg * h * e[0]];
+            let phi1 = wrap_angle((jx[1] - p[1]).atan2(jx[0] - p[0]) - a1);
+            let phi2 = wrap_angle((jx[1] - q[1]).atan2(jx[0] - q[0]) - a2);
+            assert!(contains(&sol.real, &[phi1, phi2], 1e-12), "{phi1} {phi2} not in {:?}", sol.real);
+        }
+        assert_eq!(check_real::<2>(&a, &b, &sol, 2000, 1), 2);
+    }
+
+    #[test]
+    fn homotopy_dyad_that_cannot_close_has_two_complex_roots_and_no_real() {
+        let (a, b) = dyad([0.0, 0.0], [2.5, 0.3], [1.0, 0.0], [0.0, 0.9]);
+        let sol = solve(&a, &b);
+        assert_eq!(sol.complex.len(), 2);
+        assert!(sol.real.is_empty());
+        // the two roots are complex conjugates, each on the circles
+        for z in &sol.complex {
+            assert!(z.iter().any(|v| v.im.abs() > 1e-3));
+            for j in 0..2 {
+                assert!((z[j] * z[j] + z[2 + j] * z[2 + j] - 1.0).norm() < 1e-12);
+            }
+        }
+        assert_eq!(check_real::<2>(&a, &b, &sol, 500, 2), 0);
+    }
+
+    #[test]
+    fn homotopy_fourbar_with_given_crank_matches_the_closed_form() {
+        let fb = FourBar::new(2.0, 0.7, 1.8, 1.5).unwrap();
+        for theta2 in [0.3, 1.7, -2.4] {
+            let (s2, c2) = f64::sin_cos(theta2);
+            let crank = [0.7 * c2, 0.7 * s2];
+            // coupler A->B (r3, 0) turned by theta3; rocker O4->B (r4, 0) turned by theta4
+            let (a, b) = dyad(crank, [2.0, 0.0], [1.8, 0.0], [1.5, 0.0]);
+            let sol = solve(&a, &b);
+            assert_eq!(sol.complex.len(), 2);
+            assert_eq!(sol.real.len(), 2);
+            for mode in [Mode::Open, Mode::Crossed] {
+                let crate::Assembly::Closed { theta3, theta4, .. } = fb.closed_form(theta2, mode) else { panic!() };
+                assert!(contains(&sol.real, &[theta3, theta4], 1e-12), "{theta3} {theta4} not in {:?}", sol.real);
+            }
+        }
+    }
+
+    #[test]
+    fn homotopy_stephenson_triad_has_six_roots() {
+        for seed in 0..4 {
+            let mut rng = SplitMix64(100 + seed);
+            let j = joints(&mut rng, "123pqr");
+            let (a, b) = triad(&j);
+            let sol = solve(&a, &b);
+            assert_eq!(sol.complex.len(), 6, "seed {seed}: {:?}", sol.per_run_found);
+            assert!(contains(&sol.real, &[0.0; 4], 1e-12), "drawn pose missing");
+            assert!(sol.real.len() % 2 == 0);
+            check_real::<4>(&a, &b, &sol, 2000, seed);
+        }
+    }
+
+    #[test]
+    fn homotopy_stephenson3_group_has_six_roots() {
+        for seed in 0..4 {
+            let mut rng = SplitMix64(200 + seed);
+            let j = joints(&mut rng, "123456");
+            let (a, b) = stephenson3(&j);
+            let sol = solve(&a, &b);
+            assert_eq!(sol.complex.len(), 6, "seed {seed}: {:?}", sol.per_run_found);
+            assert!(contains(&sol.real, &[0.0; 4], 1e-12), "drawn pose missing");
+            check_real::<4>(&a, &b, &sol, 2000, seed);
+        }
+    }
+
+    #[test]
+    fn homotopy_double_butterfly_counts() {
+        for seed in 0..3 {
+            let mut rng = SplitMix64(300 + seed);
+            let j = joints(&mut rng, BUTTERFLY);
+            for (name, build, expected) in [
+                ("bar ground, input at A", butterfly_bar_ground as fn(&HashMap<char, P>) -> _, 16),
+                ("ternary ground, input at hinge I", butterfly_hinge_input, 18),
+                ("ternary ground, input at H", butterfly_ternary_ground_bar_input, 16),
+            ] {
+                let (a, b) = build(&j);
+                let sol = solve(&a, &b);
+                eprintln!(
+                    "seed {seed} {name}: {} complex, {} real, per run {:?}, failed {}, infinite {}",
+                    sol.complex.len(),
+                    sol.real.len(),
+                    sol.per_run_found,
+                    sol.failed,
+                    sol.infinite
+                );
+                assert_eq!(sol.complex.len(), expected, "{name}");
+                assert!(contains(&sol.real, &[0.0; 6], 1e-12), "drawn pose missing");
+                let newton_found = check_real::<6>(&a, &b, &sol, 2000, seed);
+                assert!(newton_found >= 1);
+            }
+        }
+    }
+
+    /// Random dense A (N x 2N) with b = A z(phi*): generic, so all 2^N roots are finite.
+    fn dense(n: usize, seed: u64) -> (DMatrix<f64>, DVector<f64>, Vec<f64>) {
+        let mut rng = SplitMix64(seed);
+        let a = DMatrix::from_fn(n, 2 * n, |_, _| 2.0 * rng.uniform() - 1.0);
+        let phi: Vec<f64> = (0..n).map(|_| PI * (2.0 * rng.uniform() - 1.0)).collect();
+        let z = DVector::from_iterator(2 * n, phi.iter().map(|p| p.cos()).chain(phi.iter().map(|p| p.sin())));
+        let b = &a * z;
+        (a, b, phi)
+    }
+
+    #[test]
+    fn homotopy_generic_dense_system_has_all_bezout_roots() {
+        let (a, b, phi) = dense(6, 7);
+        let sol = solve(&a, &b);
+        assert_eq!(sol.complex.len(), 64, "{:?} failed {}", sol.per_run_found, sol.failed);
+        assert!(contains(&sol.real, &phi, 1e-12));
+        check_real::<6>(&a, &b, &sol, 2000, 7);
+    }
+
+    /// N = 10: 1024 finite roots per run (release: a few seconds in debug is too slow).
+    #[test]
+    #[ignore]
+    fn homotopy_ten_links_dense() {
+        let (a, b, phi) = dense(10, 11);
+        let t = std::time::Instant::now();
+        let sol = solve(&a, &b);
+        eprintln!(
+            "N = 10: {} complex, {} real, per run {:?}, failed {:?}, infinite {}, {:.0} ms",
+            sol.complex.len(),
+            sol.real.len(),
+            sol.per_run_found,
+            sol.per_run_failed,
+            sol.infinite,
+            t.elapsed().as_secs_f64() * 1e3
+        );
+        assert!(contains(&sol.real, &phi, 1e-12));
+        check_real::<10>(&a, &b, &sol, 2000, 11);
+        assert_eq!(sol.complex.len(), 1024);
+    }
+
+    #[test]
+    fn homotopy_rejects_misuse() {
+        let o = HomotopyOptions::default();
+        let a = DMatrix::<f64>::zeros(2, 4);
+        let b = DVector::<f64>::zeros(2);
+        assert!(unit_circle_solutions(&a, &b, &o).is_err()); // zero rows: rank deficient
+        let mut a = DMatrix::<f64>::from_row_slice(2, 4, &[1.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0]);
+        assert!(unit_circle_solutions(&a, &b, &o).is_err()); // dependent rows
+        a[(1, 3)] = 1.0;
+        assert!(unit_circle_solutions(&a, &DVector::zeros(3), &o).is_err());
+        assert!(unit_circle_solutions(&DMatrix::zeros(2, 3), &b, &o).is_err());
+        assert!(unit_circle_solutions(&DMatrix::zeros(0, 0), &DVector::zeros(0), &o).is_err());
+        let mut bad = a.clone();
+        bad[(0, 0)] = f64::NAN;
+        assert!(unit_circle_solutions(&bad, &b, &o).is_err());
+        assert!(unit_circle_solutions(&a, &b, &HomotopyOptions { runs: 0, ..o }).is_err());
+        assert!(unit_circle_solutions(&a, &b, &HomotopyOptions { max_step: 0.0, ..o }).is_err());
+        assert!(unit_circle_solutions(&DMatrix::zeros(17, 34), &DVector::zeros(17), &o).is_err());
+        assert!(unit_circle_solutions(&a, &b, &o).is_ok());
+    }
+
+    #[test]
+    fn homotopy_degenerate_input_neither_panics_nor_hangs() {
+        // parallelogram-like dyad with coincident anchors and equal links: a circle of
+        // solutions (not isolated), and a step budget of 1 step per path
+        let (a, b) = dyad([0.0, 0.0], [0.0, 0.0], [1.0, 0.0], [1.0, 0.0]);
+        let _ = unit_circle_solutions(&a, &b, &HomotopyOptions::default());
+        let (a, b) = dyad([0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [1.0, 0.0]);
+        let sol = unit_circle_solutions(&a, &b, &HomotopyOptions { max_steps: 1, ..Default::default() }).unwrap();
+        assert_eq!(sol.failed + sol.infinite, sol.paths);
+        // tangent circles: a double real root
+        let (a, b) = dyad([0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 0.0]);
+        let _ = unit_circle_solutions(&a, &b, &HomotopyOptions::default()).unwrap();
+    }
+
+    /// Random double-butterfly joints, each scaled by 10^U(-spread, spread).
+    fn spread_joints(rng: &mut SplitMix64, spread: f64) -> HashMap<char, P> {
+        let mut j = joints(rng, BUTTERFLY);
+        for c in BUTTERFLY.chars() {
+            let f = 10f64.powf(spread * (2.0 * rng.uniform() - 1.0));
+            let p = j.get_mut(&c).unwrap();
+            *p = [p[0] * f, p[1] * f];
+        }
+        j
+    }
+
+    #[test]
+    #[ignore]
+    fn homotopy_debug_geometry() {
+        let which: Vec<String> = std::env::var("HOMGEO").unwrap().split(',').map(String::from).collect();
+        let (kind, seed, spread, g): (&str, u64, f64, usize) = (&which[0], which[1].parse().unwrap(), which[2].parse().unwrap(), which[3].parse().unwrap());
+        let mut rng = SplitMix64(seed);
+        let mut j = spread_joints(&mut rng, spread);
+        for _ in 0..g {
+            j = spread_joints(&mut rng, spread);
+        }
+        let build = if kind == "hinge" { butterfly_hinge_input } else { butterfly_bar_ground };
+        let (a, b) = build(&j);
+        eprintln!("joints {j:?}");
+        let sol = solve(&a, &b);
+        eprintln!("{} roots; real {:?}", sol.complex.len(), sol.real);
+        for z in &sol.complex {
+            let im = z.iter().map(|v| v.im.abs()).fold(0.0, f64::max);
+            let d0 = (0..6).map(|k| (z[k] - 1.0).norm().max(z[6 + k].norm())).fold(0.0, f64::max);
+            eprintln!("  max|Im| {im:.3e}, dist to drawn {d0:.3e}");
+        }
+        let sys = Closure::<6> { a: &a, b: &b };
+        let (_, jac) = sys.eval(&SVector::zeros());
+        eprintln!("conditioning at the drawn pose {:e}", sys.conditioning(&jac));
+    }
+
+    /// Path failures and lost roots over `count` random geometries of one mechanism.
+    /// `spread`: joint coordinates scaled per joint by 10^U(-spread, spread) (links of
+    /// disparate lengths: harder). Prints the statistics; asserts that the drawn pose is
+    /// found every time.
+    fn stats(name: &str, build: fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>), expected: usize, spread: f64, seed: u64) {
+        let count = 1000;
+        let mut rng = SplitMix64(seed);
+        let (mut fail_runs, mut short_runs, mut short_merged) = ([0usize; 2], [0usize; 2], 0usize);
+        let (mut counts, mut fail_hist, mut infinite) = (HashMap::new(), HashMap::new(), 0usize);
+        let mut times = Vec::new();
+        let mut missing_pose = 0;
+        for g in 0..count {
+            let (a, b) = build(&spread_joints(&mut rng, spread));
+            let t = std::time::Instant::now();
+            let sol = solve(&a, &b);
+            times.push(t.elapsed().as_secs_f64());
+            *counts.entry(sol.complex.len()).or_insert(0) += 1;
+            *fail_hist.entry(sol.failed).or_insert(0) += 1;
+            infinite += sol.infinite;
+            for r in 0..2 {
+                fail_runs[r] += sol.per_run_failed[r];
+                short_runs[r] += expected.saturating_sub(sol.per_run_found[r]);
+            }
+            short_merged += expected.saturating_sub(sol.complex.len());
+            if !contains(&sol.real, &[0.0; 6], 1e-12) || sol.complex.len() != expected {
+                missing_pose += 1;
+                let near = sol.real.iter().map(|r| r.iter().map(|v| v.abs()).fold(0.0, f64::max)).fold(f64::INFINITY, f64::min);
+                let sys = Closure::<6> { a: &a, b: &b };
+                let cond = sys.conditioning(&sys.eval(&SVector::zeros()).1);
+                eprintln!(
+                    "  geometry {g}: {} roots, per run {:?}, failed {:?}; nearest real root to the drawn pose {near:.1e} rad; conditioning there {cond:.1e}",
+                    sol.complex.len(),
+                    sol.per_run_found,
+                    sol.per_run_failed
+                );
+            }
+        }
+        times.sort_by(f64::total_cmp);
+        let mean = times.iter().sum::<f64>() / count as f64;
+        eprintln!("{name}, spread {spread}: {count} geometries; root counts {counts:?} (expected {expected})");
+        eprintln!("  failed paths per run {fail_runs:?} of {} each; failed paths per solve (histogram) {fail_hist:?}; infinite {infinite}", count * 64);
+        eprintln!("  roots short of {expected}: run 1 {}, run 2 {}, merged {short_merged}; geometries listed {missing_pose}", short_runs[0], short_runs[1]);
+        eprintln!(
+            "  time per solve (2 runs x 64 paths): mean {:.1} ms, median {:.1} ms, max {:.1} ms",
+            mean * 1e3,
+            times[count / 2] * 1e3,
+            times[count - 1] * 1e3
+        );
+    }
+
+    /// Statistics over 1000 random double butterflies, in release:
+    /// `cargo test --release -p planarkin-core homotopy_stats -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn homotopy_stats_double_butterfly() {
+        stats("ternary ground, input at hinge I", butterfly_hinge_input, 18, 0.0, 4343);
+        stats("bar ground, input at A", butterfly_bar_ground, 16, 1.0, 4444);
+        stats("bar ground, input at A", butterfly_bar_ground, 16, 0.0, 4242);
+    }
+}
