@@ -88,11 +88,7 @@ pub struct Solutions {
 /// Errors (misuse only): N = 0 or N > [`MAX_LINKS`], shapes that disagree, non-finite
 /// entries, invalid options, or `A` without full row rank (dependent closure equations:
 /// the solution set is not finite). Path failures are data ([`Solutions::failed`]).
-pub fn unit_circle_solutions(
-    a: &DMatrix<f64>,
-    b: &DVector<f64>,
-    opts: &HomotopyOptions,
-) -> Result<Solutions, Error> {
+pub fn unit_circle_solutions(a: &DMatrix<f64>, b: &DVector<f64>, opts: &HomotopyOptions) -> Result<Solutions, Error> {
     let n = a.nrows();
     if n == 0 {
         return Err(Error::invalid("a", "must have at least one row", "0 rows"));
@@ -155,7 +151,8 @@ pub fn unit_circle_solutions(
     // Real roots are stored exactly; a complex root that polished to the same real
     // assembly as another (a near-conjugate pair) is not listed twice.
     for phi in &real {
-        out.complex.push(phi.iter().map(|p| C::new(p.cos(), 0.0)).chain(phi.iter().map(|p| C::new(p.sin(), 0.0))).collect());
+        out.complex
+            .push(phi.iter().map(|p| C::new(p.cos(), 0.0)).chain(phi.iter().map(|p| C::new(p.sin(), 0.0))).collect());
     }
     out.real = real;
     Ok(out)
@@ -271,7 +268,8 @@ impl Reduced {
     fn run(&self, gamma: C, opts: &HomotopyOptions) -> RunResult {
         let n = self.n;
         let m = n + 1;
-        let mut work = Work { m, jac: vec![C::default(); m * m], rhs: vec![C::default(); m], w: vec![C::default(); 2 * n] };
+        let mut work =
+            Work { m, jac: vec![C::default(); m * m], rhs: vec![C::default(); m], w: vec![C::default(); 2 * n] };
         let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0 };
         let norm0 = 1.0 / (m as f64).sqrt();
         for start in 0..(1usize << n) {
@@ -703,8 +701,14 @@ mod tests {
     fn triad(j: &HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>) {
         let g = |c| j[&c];
         Group::new(4)
-            .lp(&[(1, sub(g('1'), g('p')), 1.0), (0, sub(g('2'), g('1')), 1.0), (2, sub(g('2'), g('q')), -1.0)], sub(g('q'), g('p')))
-            .lp(&[(1, sub(g('1'), g('p')), 1.0), (0, sub(g('3'), g('1')), 1.0), (3, sub(g('3'), g('r')), -1.0)], sub(g('r'), g('p')))
+            .lp(
+                &[(1, sub(g('1'), g('p')), 1.0), (0, sub(g('2'), g('1')), 1.0), (2, sub(g('2'), g('q')), -1.0)],
+                sub(g('q'), g('p')),
+            )
+            .lp(
+                &[(1, sub(g('1'), g('p')), 1.0), (0, sub(g('3'), g('1')), 1.0), (3, sub(g('3'), g('r')), -1.0)],
+                sub(g('r'), g('p')),
+            )
             .ab()
     }
 
@@ -713,8 +717,14 @@ mod tests {
     fn stephenson3(j: &HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>) {
         let g = |c| j[&c];
         Group::new(4)
-            .lp(&[(0, sub(g('1'), g('3')), 1.0), (2, sub(g('4'), g('1')), 1.0), (1, sub(g('4'), g('6')), -1.0)], sub(g('6'), g('3')))
-            .lp(&[(0, sub(g('2'), g('3')), 1.0), (3, sub(g('5'), g('2')), 1.0), (1, sub(g('5'), g('6')), -1.0)], sub(g('6'), g('3')))
+            .lp(
+                &[(0, sub(g('1'), g('3')), 1.0), (2, sub(g('4'), g('1')), 1.0), (1, sub(g('4'), g('6')), -1.0)],
+                sub(g('6'), g('3')),
+            )
+            .lp(
+                &[(0, sub(g('2'), g('3')), 1.0), (3, sub(g('5'), g('2')), 1.0), (1, sub(g('5'), g('6')), -1.0)],
+                sub(g('6'), g('3')),
+            )
             .ab()
     }
 
@@ -724,12 +734,23 @@ mod tests {
         let g = |c| j[&c];
         let (r3, r4, r5, r6, r7, r8) = (0, 1, 2, 3, 4, 5);
         Group::new(6)
-            .lp(&[(r3, sub(g('E'), g('B')), 1.0), (r4, sub(g('H'), g('E')), 1.0), (r5, sub(g('H'), g('K')), -1.0)], sub(g('K'), g('B')))
             .lp(
-                &[(r3, sub(g('D'), g('B')), 1.0), (r6, sub(g('G'), g('D')), 1.0), (r5, sub(g('I'), g('K')), -1.0), (r7, sub(g('G'), g('I')), -1.0)],
+                &[(r3, sub(g('E'), g('B')), 1.0), (r4, sub(g('H'), g('E')), 1.0), (r5, sub(g('H'), g('K')), -1.0)],
                 sub(g('K'), g('B')),
             )
-            .lp(&[(r8, sub(g('F'), g('C')), 1.0), (r5, sub(g('I'), g('K')), -1.0), (r7, sub(g('F'), g('I')), -1.0)], sub(g('K'), g('C')))
+            .lp(
+                &[
+                    (r3, sub(g('D'), g('B')), 1.0),
+                    (r6, sub(g('G'), g('D')), 1.0),
+                    (r5, sub(g('I'), g('K')), -1.0),
+                    (r7, sub(g('G'), g('I')), -1.0),
+                ],
+                sub(g('K'), g('B')),
+            )
+            .lp(
+                &[(r8, sub(g('F'), g('C')), 1.0), (r5, sub(g('I'), g('K')), -1.0), (r7, sub(g('F'), g('I')), -1.0)],
+                sub(g('K'), g('C')),
+            )
             .ab()
     }
 
@@ -739,13 +760,26 @@ mod tests {
         let g = |c| j[&c];
         let (r1, r2, r3, r4, r6, r8) = (0, 1, 2, 3, 4, 5);
         Group::new(6)
-            .lp(&[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('C'), g('A')), 1.0), (r8, sub(g('C'), g('F')), -1.0)], sub(g('F'), g('K')))
             .lp(
-                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('E'), g('B')), 1.0), (r4, sub(g('E'), g('H')), -1.0)],
+                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('C'), g('A')), 1.0), (r8, sub(g('C'), g('F')), -1.0)],
+                sub(g('F'), g('K')),
+            )
+            .lp(
+                &[
+                    (r1, sub(g('A'), g('K')), 1.0),
+                    (r2, sub(g('B'), g('A')), 1.0),
+                    (r3, sub(g('E'), g('B')), 1.0),
+                    (r4, sub(g('E'), g('H')), -1.0),
+                ],
                 sub(g('H'), g('K')),
             )
             .lp(
-                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('D'), g('B')), 1.0), (r6, sub(g('D'), g('G')), -1.0)],
+                &[
+                    (r1, sub(g('A'), g('K')), 1.0),
+                    (r2, sub(g('B'), g('A')), 1.0),
+                    (r3, sub(g('D'), g('B')), 1.0),
+                    (r6, sub(g('D'), g('G')), -1.0),
+                ],
                 sub(g('G'), g('K')),
             )
             .ab()
@@ -757,12 +791,23 @@ mod tests {
         let g = |c| j[&c];
         let (r1, r2, r3, r6, r7, r8) = (0, 1, 2, 3, 4, 5);
         Group::new(6)
-            .lp(&[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('B'), g('E')), -1.0)], sub(g('E'), g('K')))
             .lp(
-                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('C'), g('A')), 1.0), (r8, sub(g('F'), g('C')), 1.0), (r7, sub(g('F'), g('I')), -1.0)],
+                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('B'), g('E')), -1.0)],
+                sub(g('E'), g('K')),
+            )
+            .lp(
+                &[
+                    (r1, sub(g('A'), g('K')), 1.0),
+                    (r2, sub(g('C'), g('A')), 1.0),
+                    (r8, sub(g('F'), g('C')), 1.0),
+                    (r7, sub(g('F'), g('I')), -1.0),
+                ],
                 sub(g('I'), g('K')),
             )
-            .lp(&[(r3, sub(g('D'), g('E')), 1.0), (r6, sub(g('G'), g('D')), 1.0), (r7, sub(g('G'), g('I')), -1.0)], sub(g('I'), g('E')))
+            .lp(
+                &[(r3, sub(g('D'), g('E')), 1.0), (r6, sub(g('G'), g('D')), 1.0), (r7, sub(g('G'), g('I')), -1.0)],
+                sub(g('I'), g('E')),
+            )
             .ab()
     }
 
@@ -809,7 +854,13 @@ mod tests {
     /// Every real root satisfies the original equations to 1e-12; every root found by
     /// `starts` random Newton starts of the crate's solver is among them. Returns how
     /// many distinct roots the starts found.
-    fn check_real<const N: usize>(a: &DMatrix<f64>, b: &DVector<f64>, sol: &Solutions, starts: usize, seed: u64) -> usize {
+    fn check_real<const N: usize>(
+        a: &DMatrix<f64>,
+        b: &DVector<f64>,
+        sol: &Solutions,
+        starts: usize,
+        seed: u64,
+    ) -> usize {
         for phi in &sol.real {
             assert_eq!(phi.len(), N);
             assert!(phi.iter().all(|p| *p > -PI && *p <= PI));
@@ -1061,7 +1112,8 @@ mod tests {
     #[ignore]
     fn homotopy_debug_geometry() {
         let which: Vec<String> = std::env::var("HOMGEO").unwrap().split(',').map(String::from).collect();
-        let (kind, seed, spread, g): (&str, u64, f64, usize) = (&which[0], which[1].parse().unwrap(), which[2].parse().unwrap(), which[3].parse().unwrap());
+        let (kind, seed, spread, g): (&str, u64, f64, usize) =
+            (&which[0], which[1].parse().unwrap(), which[2].parse().unwrap(), which[3].parse().unwrap());
         let mut rng = SplitMix64(seed);
         let mut j = spread_joints(&mut rng, spread);
         for _ in 0..g {
@@ -1086,7 +1138,13 @@ mod tests {
     /// `spread`: joint coordinates scaled per joint by 10^U(-spread, spread) (links of
     /// disparate lengths: harder). Prints the statistics; asserts that the drawn pose is
     /// found every time.
-    fn stats(name: &str, build: fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>), expected: usize, spread: f64, seed: u64) {
+    fn stats(
+        name: &str,
+        build: fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>),
+        expected: usize,
+        spread: f64,
+        seed: u64,
+    ) {
         let count = 1000;
         let mut rng = SplitMix64(seed);
         let (mut fail_runs, mut short_runs, mut short_merged) = ([0usize; 2], [0usize; 2], 0usize);
@@ -1108,7 +1166,11 @@ mod tests {
             short_merged += expected.saturating_sub(sol.complex.len());
             if !contains(&sol.real, &[0.0; 6], 1e-12) || sol.complex.len() != expected {
                 missing_pose += 1;
-                let near = sol.real.iter().map(|r| r.iter().map(|v| v.abs()).fold(0.0, f64::max)).fold(f64::INFINITY, f64::min);
+                let near = sol
+                    .real
+                    .iter()
+                    .map(|r| r.iter().map(|v| v.abs()).fold(0.0, f64::max))
+                    .fold(f64::INFINITY, f64::min);
                 let sys = Closure::<6> { a: &a, b: &b };
                 let cond = sys.conditioning(&sys.eval(&SVector::zeros()).1);
                 eprintln!(
@@ -1123,7 +1185,10 @@ mod tests {
         let mean = times.iter().sum::<f64>() / count as f64;
         eprintln!("{name}, spread {spread}: {count} geometries; root counts {counts:?} (expected {expected})");
         eprintln!("  failed paths per run {fail_runs:?} of {} each; failed paths per solve (histogram) {fail_hist:?}; infinite {infinite}", count * 64);
-        eprintln!("  roots short of {expected}: run 1 {}, run 2 {}, merged {short_merged}; geometries listed {missing_pose}", short_runs[0], short_runs[1]);
+        eprintln!(
+            "  roots short of {expected}: run 1 {}, run 2 {}, merged {short_merged}; geometries listed {missing_pose}",
+            short_runs[0], short_runs[1]
+        );
         eprintln!(
             "  time per solve (2 runs x 64 paths): mean {:.1} ms, median {:.1} ms, max {:.1} ms",
             mean * 1e3,

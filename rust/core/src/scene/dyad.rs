@@ -35,6 +35,12 @@ impl Dyad {
     /// power-of-two scaling is exact), no trigonometry.
     #[inline]
     pub fn solve(&self, a: Xy, b: Xy) -> DyadOut {
+        self.solve_side(a, b, self.side)
+    }
+
+    /// [`Dyad::solve`] on a given side (+1 / -1) instead of the drawn one.
+    #[inline]
+    pub fn solve_side(&self, a: Xy, b: Xy, side: f64) -> DyadOut {
         let (r1, r2) = (self.r1, self.r2);
         let u = sub(b, a);
         let d2 = dot(u, u);
@@ -50,11 +56,17 @@ impl Dyad {
         }
         let two_dh = ((r1 + r2 + d) * q1 * q2 * q3).sqrt();
         let along = d2 + (r1 - r2) * (r1 + r2);
-        let h = self.side * two_dh;
+        let h = side * two_dh;
         let w = perp(u);
         let inv = 0.5 / d2;
         let p = [a[0] + (along * u[0] + h * w[0]) * inv, a[1] + (along * u[1] + h * w[1]) * inv];
         DyadOut::Solved(p, h / (2.0 * r1 * r2))
+    }
+
+    /// Signed sine of the angle at `p` of the triangle k1-p-k2, from positions.
+    #[inline]
+    pub fn det_at(&self, p: Xy, a: Xy, b: Xy) -> f64 {
+        cross(sub(a, p), sub(b, p)) / (self.r1 * self.r2)
     }
 
     /// Velocity of the solved point from the known points' velocities: the two link

@@ -67,6 +67,9 @@ pub(super) struct Group {
     /// How many of `nodes` are joints (the rest are carried).
     pub joints: usize,
     pub closures: Vec<Closure>,
+    /// Per link: two of its points (base, other) and their drawn difference, to read the
+    /// link's rotation off positions.
+    pub arms: Vec<(usize, usize, Xy)>,
     /// Sign of the signed conditioning at the drawn pose: the branch to follow.
     pub sign: f64,
 }
@@ -92,6 +95,21 @@ impl Group {
         if n == 0 || n > MAX || n % 2 == 1 {
             return None;
         }
+        let mut g = Self::tree(links, link_points, known, xy, 0)?;
+        let delta = g.deltas(|p| xy[p]);
+        let det = g.conditioning_with(&[0.0; MAX][..n], &delta[..g.closures.len()]);
+        if !(det.abs() >= newton::SINGULAR_THRESHOLD) {
+            return None;
+        }
+        g.sign = det.signum();
+        Some(g)
+    }
+
+    /// The spanning tree and closures of `links` over the known points, leaving `dof`
+    /// unknowns free (0 for a rigid group; 1 for a whole linkage with its input among the
+    /// links, as tracing uses it). Any size: the caller checks what it needs.
+    pub fn tree(links: &[usize], link_points: &[&[usize]], known: &[bool], xy: &[Xy], dof: usize) -> Option<Group> {
+        let n = links.len();
         let mut count = std::collections::HashMap::<usize, usize>::new();
         for pts in link_points {
             for &p in *pts {
@@ -111,6 +129,7 @@ impl Group {
         let mut path: Vec<Vec<(usize, Xy)>> = vec![Vec::new(); na];
         let mut nodes = Vec::new();
         let mut base = vec![usize::MAX; n];
+        let mut arms = vec![(0, 0, [0.0; 2]); n];
         let mut closures_at: Vec<(usize, usize)> = Vec::new(); // (group point, link)
         let mut queue: std::collections::VecDeque<usize> = anchors.iter().copied().collect();
         let is_joint = |p: usize| known[p] || count[&p] >= 2;
@@ -121,6 +140,9 @@ impl Group {
                     continue;
                 }
                 base[j] = gx;
+                if let Some(&y) = pts.iter().find(|&&y| y != x) {
+                    arms[j] = (x, y, sub(xy[y], xy[x]));
+                }
                 for &y in pts.iter().filter(|&&y| y != x && is_joint(y)) {
                     match gp.get(&y) {
                         Some(&gy) => closures_at.push((gy, j)),
@@ -141,7 +163,7 @@ impl Group {
         if base.contains(&usize::MAX) || count.keys().any(|p| is_joint(*p) && !gp.contains_key(p)) {
             return None;
         }
-        if 2 * closures_at.len() != n {
+        if 2 * closures_at.len() + dof != n {
             return None;
         }
         let closures = closures_at
@@ -170,14 +192,80 @@ impl Group {
                 nodes.push(Node { point: y, base: gb, link: j, v: sub(xy[y], xy[bp]) });
             }
         }
-        let mut g = Group { links: links.to_vec(), anchors, nodes, joints, closures, sign: 0.0 };
-        let a: Vec<Xy> = g.anchors.iter().map(|&p| xy[p]).collect();
-        let det = g.conditioning_at(&[0.0; MAX][..n], &a);
-        if !(det.abs() >= newton::SINGULAR_THRESHOLD) {
-            return None;
+        Some(Group { links: links.to_vec(), anchors, nodes, joints, closures, arms, sign: 0.0 })
+    }
+
+    /// Residuals and Jacobian of the closures at rotations `phi` (any number of them):
+    /// `f(row, value)` and `j(row, column, value)` receive the nonzero entries.
+    pub fn closure_terms(
+        &self,
+        phi: &[f64],
+        delta: &[Xy],
+        mut f: impl FnMut(usize, f64),
+        mut j: impl FnMut(usize, usize, f64),
+    ) {
+        // on the stack for every group (and chains up to 32 links): this runs per Newton step
+        let mut buf = [[0.0; 2]; 32];
+        let heap: Vec<Xy>;
+        let cs: &[Xy] = if phi.len() <= buf.len() {
+            for (b, a) in buf.iter_mut().zip(phi) {
+                *b = cs_of(*a);
+            }
+            &buf[..phi.len()]
+        } else {
+            heap = phi.iter().map(|a| cs_of(*a)).collect();
+            &heap
+        };
+        for (c, cl) in self.closures.iter().enumerate() {
+            let (mut fx, mut fy) = (delta[c][0], delta[c][1]);
+            for (k, u) in cl.u.iter().enumerate() {
+                if u[0] == 0.0 && u[1] == 0.0 {
+                    continue;
+                }
+                let r = rotate(cs[k], *u);
+                fx += r[0];
+                fy += r[1];
+                j(2 * c, k, -r[1]);
+                j(2 * c + 1, k, r[0]);
+            }
+            f(2 * c, fx);
+            f(2 * c + 1, fy);
         }
-        g.sign = det.signum();
-        Some(g)
+    }
+
+    /// The closures as `A z = b`, z = (cos phi_1..cos phi_N, sin phi_1..sin phi_N):
+    /// R(phi) u = (c u_x - s u_y, s u_x + c u_y), b = -delta.
+    pub fn linear_form(&self, delta: &[Xy]) -> (nalgebra::DMatrix<f64>, nalgebra::DVector<f64>) {
+        let (m, n) = (2 * self.closures.len(), self.n());
+        let mut a = nalgebra::DMatrix::zeros(m, 2 * n);
+        let mut b = nalgebra::DVector::zeros(m);
+        for (c, cl) in self.closures.iter().enumerate() {
+            for (k, u) in cl.u.iter().enumerate() {
+                a[(2 * c, k)] = u[0];
+                a[(2 * c, n + k)] = -u[1];
+                a[(2 * c + 1, k)] = u[1];
+                a[(2 * c + 1, n + k)] = u[0];
+            }
+            b[2 * c] = -delta[c][0];
+            b[2 * c + 1] = -delta[c][1];
+        }
+        (a, b)
+    }
+
+    /// Rotations of the group's links from their drawn pose, read off positions.
+    pub fn rotations_from(&self, pos: impl Fn(usize) -> Xy) -> Vec<f64> {
+        self.arms
+            .iter()
+            .map(|&(a, b, e)| {
+                let d = sub(pos(b), pos(a));
+                wrap_angle((d[1] + 0.0).atan2(d[0]) - (e[1] + 0.0).atan2(e[0]))
+            })
+            .collect()
+    }
+
+    /// Signed Hadamard ratio of the group's Jacobian at rotations `phi`.
+    pub fn conditioning_with(&self, phi: &[f64], delta: &[Xy]) -> f64 {
+        dispatch!(self.n(), cond_n, self, delta, phi)
     }
 
     /// Number of unknowns.
@@ -193,11 +281,6 @@ impl Group {
             d[c] = sub(anchor(self.anchors[cl.plus]), anchor(self.anchors[cl.minus]));
         }
         d
-    }
-
-    fn conditioning_at(&self, phi: &[f64], anchors: &[Xy]) -> f64 {
-        let delta = self.deltas(|p| anchors[self.anchors.iter().position(|&a| a == p).expect("an anchor")]);
-        dispatch!(self.n(), cond_n, self, &delta, phi)
     }
 
     /// Newton from `guess` with the anchors' `delta`; the tangent dphi/dtheta from the
@@ -259,22 +342,7 @@ impl<const N: usize> System<N> for At<'_> {
     fn eval(&self, x: &SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
         let mut f = SVector::<f64, N>::zeros();
         let mut j = SMatrix::<f64, N, N>::zeros();
-        let cs: [Xy; N] = std::array::from_fn(|k| cs_of(x[k]));
-        for (c, cl) in self.g.closures.iter().enumerate() {
-            let (mut fx, mut fy) = (self.delta[c][0], self.delta[c][1]);
-            for (k, u) in cl.u.iter().enumerate() {
-                if u[0] == 0.0 && u[1] == 0.0 {
-                    continue;
-                }
-                let r = rotate(cs[k], *u);
-                fx += r[0];
-                fy += r[1];
-                j[(2 * c, k)] = -r[1];
-                j[(2 * c + 1, k)] = r[0];
-            }
-            f[2 * c] = fx;
-            f[2 * c + 1] = fy;
-        }
+        self.g.closure_terms(x.as_slice(), self.delta, |r, v| f[r] = v, |r, c, v| j[(r, c)] = v);
         (f, j)
     }
 

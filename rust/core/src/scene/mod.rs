@@ -4,16 +4,20 @@
 //! steps that the requested outputs need ([`plan`]); [`Plan::sweep`] solves them over
 //! input angles ([`sweep`]).
 
+pub mod assemble;
 mod dyad;
 mod group;
 pub mod plan;
 pub mod sweep;
+pub mod trace;
 mod validate;
 
 use std::collections::HashMap;
 
+pub use assemble::{Assemblies, Assembly};
 pub use plan::{Plan, StepInfo, StepKind};
 pub use sweep::{SceneSweepOptions, SceneSweepOut};
+pub use trace::{Circuit, Trace, TraceOptions, Tracer};
 
 use crate::error::Error;
 

@@ -123,6 +123,25 @@ impl Plan {
         self.theta0
     }
 
+    /// The signed conditioning of the whole solve and of each step at a pose given by the
+    /// positions of every point (solving frame).
+    pub(super) fn dets_at(&self, pos: &[Xy]) -> (f64, Vec<f64>) {
+        let dets: Vec<f64> = self
+            .step_op
+            .iter()
+            .map(|&i| match &self.ops[i] {
+                Op::Dyad(d) => d.det_at(pos[d.p], pos[d.k1], pos[d.k2]),
+                Op::Group(g) => {
+                    let phi = g.rotations_from(|p| pos[p]);
+                    let delta = g.deltas(|p| pos[p]);
+                    g.conditioning_with(&phi, &delta[..g.closures.len()])
+                }
+                _ => unreachable!("steps open with a dyad or a group"),
+            })
+            .collect();
+        (dets.iter().product(), dets)
+    }
+
     /// True when some step is a group (solved by Newton with continuation).
     pub fn has_group(&self) -> bool {
         self.ops.iter().any(|o| matches!(o, Op::Group(_)))

@@ -180,3 +180,79 @@ fn timing_fourbar_scene() {
     }
     eprintln!("{:?} per sweep", t.elapsed() / 1000);
 }
+
+fn four_bar_lengths(r: [f64; 4], mode: f64, t2: f64) -> SceneSpec {
+    let fb = FourBar::new(r[0], r[1], r[2], r[3]).unwrap();
+    let m = if mode > 0.0 { Mode::Open } else { Mode::Crossed };
+    let crate::Assembly::Closed { theta3, .. } = fb.closed_form(t2, m) else { panic!("not assemblable") };
+    let a = [r[1] * t2.cos(), r[1] * t2.sin()];
+    let b = [a[0] + r[2] * theta3.cos(), a[1] + r[2] * theta3.sin()];
+    spec(
+        &[("O2", [0.0, 0.0]), ("O4", [r[0], 0.0]), ("A", a), ("B", b)],
+        &[("ground", &["O2", "O4"]), ("crank", &["O2", "A"]), ("coupler", &["A", "B"]), ("rocker", &["O4", "B"])],
+        "ground",
+        ("crank", "O2"),
+    )
+}
+
+#[test]
+fn non_grashof_trace_turns_at_the_toggles_and_closes() {
+    let r = [4.0, 3.0, 1.5, 2.0];
+    let sc = Scene::new(four_bar_lengths(r, 1.0, 0.0)).unwrap();
+    let tracer = Tracer::new(&sc).unwrap();
+    let tr = tracer.trace_from(&sc.xy, &TraceOptions::default()).unwrap();
+    assert!(tr.closed, "{} points", tr.theta.len());
+    let np = sc.names.len();
+    let m = tr.theta.len();
+    for (p, q) in tr.points[..np].iter().zip(&tr.points[(m - 1) * np..]) {
+        assert!((p[0] - q[0]).abs() < 1e-9 && (p[1] - q[1]).abs() < 1e-9);
+    }
+    let fb = FourBar::new(r[0], r[1], r[2], r[3]).unwrap();
+    let toggles = fb.limits(Mode::Open).toggles;
+    assert_eq!(tr.turning_points.len(), 2, "{:?}", tr.turning_points);
+    for tp in &tr.turning_points {
+        let w = crate::wrap_angle(*tp);
+        assert!(toggles.iter().any(|t| (t - w).abs() < 1e-9), "{w} vs {toggles:?}");
+    }
+    let changes = tr.det.windows(2).filter(|w| w[0] * w[1] < 0.0).count();
+    assert_eq!(changes, 2);
+}
+
+#[test]
+fn crank_rocker_has_two_full_turn_circuits() {
+    let sc = Scene::new(fourbar(1.0)).unwrap();
+    let tracer = Tracer::new(&sc).unwrap();
+    let (asm, circuits) =
+        tracer.circuits(0.3, &crate::homotopy::HomotopyOptions::default(), &TraceOptions::default()).unwrap();
+    assert_eq!(asm.list.len(), 2);
+    assert_eq!(circuits.len(), 2);
+    for c in &circuits {
+        assert_eq!(c.assemblies.len(), 1);
+        assert!(c.turning_points.is_empty());
+        assert!((c.net_turn.abs() - std::f64::consts::TAU).abs() < 1e-9, "{}", c.net_turn);
+    }
+}
+
+#[test]
+fn double_butterfly_assemblies_close_their_loops() {
+    // the Stephenson group (4 links): 6 complex solutions
+    let sc = Scene::new(stephenson()).unwrap();
+    let plan = sc.plan(None).unwrap();
+    let a = plan.assemblies(sc.input_angle() + 0.1, &crate::homotopy::HomotopyOptions::default()).unwrap();
+    assert_eq!(a.complex_counts, vec![vec![6]]);
+    assert!(!a.list.is_empty() && a.list.len() <= 6 && a.list.len() % 2 == 0);
+    let d = |a: Xy, b: Xy| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+    let sp = stephenson();
+    let drawn = |name: &str| sp.points.iter().find(|p| p.0 == name).unwrap().1;
+    for asm in &a.list {
+        for (_, pts) in &sp.links {
+            for (i, p) in pts.iter().enumerate() {
+                for q in &pts[i + 1..] {
+                    let (ip, iq) = (sc.point_index(p).unwrap(), sc.point_index(q).unwrap());
+                    let err = (d(asm.points[ip], asm.points[iq]) - d(drawn(p), drawn(q))).abs();
+                    assert!(err < 1e-12, "{err}");
+                }
+            }
+        }
+    }
+}

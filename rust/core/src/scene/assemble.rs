@@ -1,0 +1,149 @@
+//! Every real assembly at one input angle: the plan's steps branched over all their
+//! solutions. A dyad has two sides (none where it cannot close); a group's real solutions
+//! come from the all-solutions homotopy on its loop equations ([`crate::homotopy`]), two
+//! runs with independent random gammas merged and polished by Newton.
+
+use super::dyad::DyadOut;
+use super::plan::{Op, Plan};
+use super::{perp, Xy};
+use crate::error::Error;
+use crate::homotopy::{unit_circle_solutions, HomotopyOptions};
+
+/// One real assembly.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Assembly {
+    /// Every point of the scene, scene coordinates (NaN for points the plan does not solve).
+    pub points: Vec<Xy>,
+    /// Signed conditioning of each step; `det` is their product.
+    pub step_det: Vec<f64>,
+    pub det: f64,
+    /// Mode label: one token per step, a dyad's side ("+" / "-"), a group's conditioning
+    /// sign and rank among its solutions of that sign by the first link's rotation ("+1").
+    pub label: String,
+}
+
+/// All real assemblies at one input angle, with the group steps' complex solution counts.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Assemblies {
+    pub list: Vec<Assembly>,
+    /// For each group step (in plan order): the finite complex solutions found, one entry
+    /// per homotopy call (a group below branching dyads is solved once per branch).
+    pub complex_counts: Vec<Vec<usize>>,
+    /// Homotopy paths that failed over all calls (0 when nothing was lost in tracking).
+    pub failed_paths: usize,
+}
+
+struct Walk<'p> {
+    plan: &'p Plan,
+    opts: HomotopyOptions,
+    u: Xy,
+    out: Assemblies,
+    /// group op index -> position in `out.complex_counts`
+    group_slot: Vec<usize>,
+}
+
+impl Plan {
+    /// Every real assembly at input angle `theta` (radians).
+    pub fn assemblies(&self, theta: f64, opts: &HomotopyOptions) -> Result<Assemblies, Error> {
+        if !theta.is_finite() {
+            return Err(Error::invalid("theta", "must be finite", theta));
+        }
+        let mut group_slot = vec![usize::MAX; self.ops.len()];
+        let mut groups = 0;
+        for (i, op) in self.ops.iter().enumerate() {
+            if matches!(op, Op::Group(_)) {
+                group_slot[i] = groups;
+                groups += 1;
+            }
+        }
+        let (s, c) = theta.sin_cos();
+        let mut w = Walk {
+            plan: self,
+            opts: *opts,
+            u: [c, s],
+            out: Assemblies { complex_counts: vec![Vec::new(); groups], ..Default::default() },
+            group_slot,
+        };
+        let mut pos = vec![[f64::NAN; 2]; self.npoints];
+        for &(p, xy) in &self.fixed {
+            pos[p] = xy;
+        }
+        w.walk(0, &mut pos, &mut Vec::new(), &mut Vec::new())?;
+        Ok(w.out)
+    }
+}
+
+impl Walk<'_> {
+    fn walk(&mut self, i: usize, pos: &mut [Xy], dets: &mut Vec<f64>, labels: &mut Vec<String>) -> Result<(), Error> {
+        let plan = self.plan;
+        let Some(op) = plan.ops.get(i) else {
+            self.emit(pos, dets, labels);
+            return Ok(());
+        };
+        match op {
+            Op::Input { q, lam, mu } => {
+                let (u, pu, p) = (self.u, perp(self.u), plan.pivot);
+                pos[*q] = [p[0] + lam * u[0] + mu * pu[0], p[1] + lam * u[1] + mu * pu[1]];
+                self.walk(i + 1, pos, dets, labels)
+            }
+            Op::Carry { q, a, b, m } => {
+                let (pa, pb) = (pos[*a], pos[*b]);
+                let d = [pb[0] - pa[0], pb[1] - pa[1]];
+                pos[*q] = [pa[0] + m[0] * d[0] - m[1] * d[1], pa[1] + m[1] * d[0] + m[0] * d[1]];
+                self.walk(i + 1, pos, dets, labels)
+            }
+            Op::Dyad(d) => {
+                for side in [1.0, -1.0] {
+                    if let DyadOut::Solved(p, det) = d.solve_side(pos[d.k1], pos[d.k2], side) {
+                        if det == 0.0 && side < 0.0 {
+                            continue; // a double root: one assembly, not two
+                        }
+                        pos[d.p] = p;
+                        dets.push(det);
+                        labels.push(if side > 0.0 { "+".into() } else { "-".into() });
+                        self.walk(i + 1, pos, dets, labels)?;
+                        dets.pop();
+                        labels.pop();
+                    }
+                }
+                Ok(())
+            }
+            Op::Group(g) => {
+                let nc = g.closures.len();
+                let delta = g.deltas(|p| pos[p]);
+                let (a, b) = g.linear_form(&delta[..nc]);
+                let sol = unit_circle_solutions(&a, &b, &self.opts)?;
+                self.out.complex_counts[self.group_slot[i]].push(sol.complex.len());
+                self.out.failed_paths += sol.failed;
+                let mut real: Vec<(f64, Vec<f64>)> =
+                    sol.real.into_iter().map(|phi| (g.conditioning_with(&phi, &delta[..nc]), phi)).collect();
+                real.sort_by(|x, y| x.1[0].total_cmp(&y.1[0]));
+                let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
+                let mut rank = [0usize; 2];
+                for (det, phi) in real {
+                    let r = &mut rank[usize::from(det < 0.0)];
+                    *r += 1;
+                    g.place(&phi, &anchors, |p, xy| pos[p] = xy);
+                    dets.push(det);
+                    labels.push(format!("{}{}", if det < 0.0 { '-' } else { '+' }, r));
+                    self.walk(i + 1, pos, dets, labels)?;
+                    dets.pop();
+                    labels.pop();
+                }
+                Ok(())
+            }
+        }
+    }
+
+    fn emit(&mut self, pos: &[Xy], dets: &[f64], labels: &[String]) {
+        let plan = self.plan;
+        let points =
+            pos.iter().map(|p| [p[0] * plan.scale + plan.origin[0], p[1] * plan.scale + plan.origin[1]]).collect();
+        self.out.list.push(Assembly {
+            points,
+            step_det: dets.to_vec(),
+            det: dets.iter().product(),
+            label: labels.concat(),
+        });
+    }
+}

@@ -1,0 +1,451 @@
+//! Tracing a circuit through its dead points: pseudo-arclength continuation in
+//! (configuration, input angle) space, and circuits as the classes of assemblies that
+//! tracing connects.
+//!
+//! The whole linkage is one [`Group`] over the ground points with the input link among its
+//! links: n rotations (the input's is theta - theta0), n - 1 loop-closure equations F = 0.
+//! Its solution set is a curve; each step predicts along the unit tangent (the null vector
+//! of dF) and corrects by Newton on [F; t . (x - x_pred)] = 0, so dead points, where
+//! theta turns back, are passed like any other point. Turning points are where the plan's
+//! signed conditioning (the product of its steps') changes sign, refined by bisection
+//! along the step.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::group::Group;
+use super::plan::Plan;
+use super::{Scene, Xy};
+use crate::error::{positive_finite, Error};
+use crate::homotopy::HomotopyOptions;
+use crate::wrap_angle;
+
+/// Tracing options.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TraceOptions {
+    /// Largest arclength step (radians of rotation, all links together).
+    pub step: f64,
+    /// At most this many points on a trace.
+    pub max_points: usize,
+}
+
+impl Default for TraceOptions {
+    fn default() -> Self {
+        Self { step: 0.05, max_points: 50_000 }
+    }
+}
+
+impl TraceOptions {
+    /// Validates `step` (finite, > 0) and `max_points` (>= 2).
+    pub fn new(step: f64, max_points: usize) -> Result<Self, Error> {
+        positive_finite("step", step)?;
+        if max_points < 2 {
+            return Err(Error::invalid("max_points", "must be >= 2", max_points));
+        }
+        Ok(Self { step, max_points })
+    }
+}
+
+/// A traced path.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Trace {
+    /// Input angle at each point, continuous along the path (not wrapped).
+    pub theta: Vec<f64>,
+    /// Every point of the scene at each path point, scene coordinates: (M, P) row-major.
+    pub points: Vec<Xy>,
+    /// The plan's signed conditioning at each path point.
+    pub det: Vec<f64>,
+    /// Input angles (continuous, as `theta`) of the dead points passed, in path order.
+    pub turning_points: Vec<f64>,
+    /// The path came back to its start (the last point is the start again).
+    pub closed: bool,
+}
+
+/// One circuit at an input angle.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Circuit {
+    /// Indices into the assemblies at that angle, in the order the trace meets them.
+    pub assemblies: Vec<usize>,
+    /// Turning points, wrapped to (-pi, pi], in path order.
+    pub turning_points: Vec<f64>,
+    /// Net change of the input angle once round the circuit (a multiple of 2 pi when
+    /// closed: nonzero means the input turns fully round on it).
+    pub net_turn: f64,
+    /// Smallest and largest input angle on the path (continuous).
+    pub range: (f64, f64),
+    /// The path.
+    pub trace: Trace,
+}
+
+/// The whole linkage as one curve.
+pub struct Tracer<'s> {
+    chain: Group,
+    /// Unknown index of the input link.
+    input: usize,
+    plan: Plan,
+    scene: &'s Scene,
+}
+
+impl<'s> Tracer<'s> {
+    /// The chain of every non-ground link over the ground points.
+    pub fn new(scene: &'s Scene) -> Result<Self, Error> {
+        let links: Vec<usize> = (0..scene.links.len()).filter(|&l| l != scene.ground).collect();
+        let pts: Vec<&[usize]> = links.iter().map(|&l| scene.links[l].points.as_slice()).collect();
+        let mut known = vec![false; scene.names.len()];
+        for &p in &scene.links[scene.ground].points {
+            known[p] = true;
+        }
+        let chain = Group::tree(&links, &pts, &known, &scene.xy, 1)
+            .ok_or_else(|| Error::scene("trace", "the links do not form one connected linkage over the ground"))?;
+        let input = links.iter().position(|&l| l == scene.input.link).expect("the input is not ground");
+        Ok(Tracer { chain, input, plan: scene.plan(None)?, scene })
+    }
+
+    fn n(&self) -> usize {
+        self.chain.n()
+    }
+
+    fn anchors(&self) -> Vec<Xy> {
+        self.chain.anchors.iter().map(|&p| self.scene.xy[p]).collect()
+    }
+
+    fn delta(&self) -> Vec<Xy> {
+        let d = self.chain.deltas(|p| self.scene.xy[p]);
+        d[..self.chain.closures.len()].to_vec()
+    }
+
+    /// F and dF at rotations x.
+    fn eval(&self, x: &[f64], delta: &[Xy]) -> (DVector<f64>, DMatrix<f64>) {
+        let m = 2 * self.chain.closures.len();
+        let mut f = DVector::zeros(m);
+        let mut j = DMatrix::zeros(m, self.n());
+        self.chain.closure_terms(x, delta, |r, v| f[r] = v, |r, c, v| j[(r, c)] = v);
+        (f, j)
+    }
+
+    /// Unit tangent at x (the null vector of dF, from [dF; c^T] t = e_n with c the previous
+    /// tangent, or a coordinate axis at the start), oriented along `prev` (or with the
+    /// input angle increasing).
+    fn tangent(&self, x: &[f64], delta: &[Xy], prev: Option<&DVector<f64>>) -> Option<DVector<f64>> {
+        let (_, j) = self.eval(x, delta);
+        let n = self.n();
+        let axis = |k: usize| {
+            let mut e = DVector::zeros(n);
+            e[k] = 1.0;
+            e
+        };
+        let cands: Vec<DVector<f64>> = match prev {
+            Some(p) => vec![p.clone()],
+            None => std::iter::once(self.input).chain((0..n).filter(|&k| k != self.input)).map(axis).collect(),
+        };
+        let mut best: Option<DVector<f64>> = None;
+        for c in cands {
+            let mut a = DMatrix::zeros(n, n);
+            a.view_mut((0, 0), (n - 1, n)).copy_from(&j);
+            a.row_mut(n - 1).copy_from(&c.transpose());
+            if let Some(t) = a.lu().solve(&axis(n - 1)) {
+                let norm = t.norm();
+                if norm.is_finite() && norm > 0.0 {
+                    let t = t / norm;
+                    let align = t.dot(&c).abs();
+                    // prefer the candidate best aligned with the tangent (least ill-posed)
+                    if best.as_ref().is_none_or(|b: &DVector<f64>| align > b.dot(&c).abs()) {
+                        best = Some(t);
+                    }
+                    if align > 0.1 {
+                        break;
+                    }
+                }
+            }
+        }
+        let mut t = best?;
+        let flip = match prev {
+            Some(p) => t.dot(p) < 0.0,
+            None => t[self.input] < 0.0,
+        };
+        if flip {
+            t = -t;
+        }
+        Some(t)
+    }
+
+    /// Newton on [F(y); t . (y - xp)] = 0 from xp.
+    fn correct(&self, xp: &DVector<f64>, t: &DVector<f64>, delta: &[Xy]) -> Option<(DVector<f64>, u32)> {
+        let n = self.n();
+        let mut y = xp.clone();
+        for it in 0..12u32 {
+            let (f, j) = self.eval(y.as_slice(), delta);
+            let mut a = DMatrix::zeros(n, n);
+            a.view_mut((0, 0), (n - 1, n)).copy_from(&j);
+            a.row_mut(n - 1).copy_from(&t.transpose());
+            let mut r = DVector::zeros(n);
+            r.rows_mut(0, n - 1).copy_from(&(-&f));
+            r[n - 1] = -t.dot(&(&y - xp));
+            let dx = a.lu().solve(&r)?;
+            y += &dx;
+            let step = dx.amax();
+            if !step.is_finite() {
+                return None;
+            }
+            if step < 1e-13 && f.amax() < 1e-12 {
+                return Some((y, it + 1));
+            }
+        }
+        let (f, _) = self.eval(y.as_slice(), delta);
+        (f.amax() < 1e-11).then_some((y, 12))
+    }
+
+    /// Positions of every point (solving frame) at rotations x.
+    fn positions(&self, x: &[f64]) -> Vec<Xy> {
+        let mut pos = vec![[f64::NAN; 2]; self.scene.names.len()];
+        for &(p, xy) in &self.plan.fixed {
+            pos[p] = xy;
+        }
+        let anchors = self.anchors();
+        self.chain.place(x, &anchors, |p, xy| pos[p] = xy);
+        pos
+    }
+
+    fn det(&self, x: &[f64]) -> f64 {
+        self.plan.dets_at(&self.positions(x)).0
+    }
+
+    fn theta(&self, x: &[f64]) -> f64 {
+        self.scene.theta0 + x[self.input]
+    }
+
+    /// Rotations of an assembly given by its positions (solving frame), polished by Newton
+    /// at its input angle.
+    fn start(&self, pos: &[Xy], delta: &[Xy]) -> Option<DVector<f64>> {
+        let x = DVector::from_vec(self.chain.rotations_from(|p| pos[p]));
+        let mut e = DVector::zeros(self.n());
+        e[self.input] = 1.0;
+        self.correct(&x, &e, delta).map(|(y, _)| y)
+    }
+
+    /// Traces the circuit through the assembly `pos` (solving frame, every point), in the
+    /// direction of increasing input angle (or along its tangent at a dead point).
+    pub fn trace_from(&self, pos: &[Xy], opts: &TraceOptions) -> Result<Trace, Error> {
+        Ok(self.trace_watching(pos, opts, None)?.0)
+    }
+
+    /// [`Tracer::trace_from`], also returning the poses (solving frame) where the path
+    /// crosses the input angle `watch` (modulo 2 pi), the start excluded.
+    fn trace_watching(
+        &self,
+        pos: &[Xy],
+        opts: &TraceOptions,
+        watch: Option<f64>,
+    ) -> Result<(Trace, Vec<Vec<Xy>>), Error> {
+        let mut crossings = Vec::new();
+        let delta = self.delta();
+        let x0 = self
+            .start(pos, &delta)
+            .ok_or_else(|| Error::scene("trace", "the given pose is not an assembly of the scene"))?;
+        let mut t = self
+            .tangent(x0.as_slice(), &delta, None)
+            .ok_or_else(|| Error::scene("trace", "no tangent at the start"))?;
+        let mut out = Trace::default();
+        let mut x = x0.clone();
+        let mut d = self.det(x.as_slice());
+        self.record(&mut out, x.as_slice(), d);
+        let mut h = opts.step;
+        let hmin = opts.step * 1e-7;
+        let mut travelled = 0.0;
+        while out.theta.len() < opts.max_points {
+            let xp = &x + &t * h;
+            let Some((y, it)) = self.correct(&xp, &t, &delta) else {
+                h *= 0.5;
+                if h < hmin {
+                    break;
+                }
+                continue;
+            };
+            let Some(tn) = self.tangent(y.as_slice(), &delta, Some(&t)) else { break };
+            // a step that turns the tangent by more than ~30 degrees may have jumped branch
+            if tn.dot(&t) < 0.85 && h > hmin {
+                h *= 0.5;
+                continue;
+            }
+            let dn = self.det(y.as_slice());
+            if d * dn < 0.0 {
+                let tp = self.turning_point(&x, &t, h, d, &delta);
+                out.turning_points.push(tp);
+            }
+            if let Some(w) = watch {
+                let (wa, wb) = (wrap_angle(self.theta(x.as_slice()) - w), wrap_angle(self.theta(y.as_slice()) - w));
+                if wa != 0.0 && wa * wb <= 0.0 && (wa - wb).abs() < std::f64::consts::PI {
+                    if let Some(p) = self.crossing(&x, &t, h, w, &delta) {
+                        crossings.push(p);
+                    }
+                }
+            }
+            travelled += h;
+            // back at the start (all rotations equal modulo 2 pi)?
+            if travelled > 4.0 * opts.step {
+                let gap = wrapped_gap(&y, &x0);
+                if gap < h {
+                    let unwrapped = unwrap_like(&x0, &y);
+                    if let Some((z, _)) = self.correct(&unwrapped, &t, &delta) {
+                        if wrapped_gap(&z, &x0) < 1e-9 {
+                            self.record(&mut out, z.as_slice(), self.det(z.as_slice()));
+                            out.closed = true;
+                            break;
+                        }
+                    }
+                }
+            }
+            self.record(&mut out, y.as_slice(), dn);
+            x = y;
+            t = tn;
+            d = dn;
+            h = if it <= 3 {
+                (h * 1.5).min(opts.step)
+            } else if it >= 6 {
+                h * 0.5
+            } else {
+                h
+            };
+        }
+        Ok((out, crossings))
+    }
+
+    fn record(&self, out: &mut Trace, x: &[f64], det: f64) {
+        let plan = &self.plan;
+        out.theta.push(self.theta(x));
+        out.det.push(det);
+        out.points.extend(
+            self.positions(x).iter().map(|p| [p[0] * plan.scale + plan.origin[0], p[1] * plan.scale + plan.origin[1]]),
+        );
+    }
+
+    /// Bisection on the conditioning's sign along the step from x (where it is `d0`).
+    fn turning_point(&self, x: &DVector<f64>, t: &DVector<f64>, h: f64, d0: f64, delta: &[Xy]) -> f64 {
+        let (mut lo, mut hi) = (0.0, h);
+        let mut best = self.theta(x.as_slice());
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            let Some((y, _)) = self.correct(&(x + t * mid), t, delta) else { break };
+            best = self.theta(y.as_slice());
+            if self.det(y.as_slice()) * d0 > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo < 1e-13 {
+                break;
+            }
+        }
+        best
+    }
+
+    /// The point of the step from x along t (length h) where the input angle is `target`
+    /// modulo 2 pi, by bisection; positions in the solving frame.
+    fn crossing(&self, x: &DVector<f64>, t: &DVector<f64>, h: f64, target: f64, delta: &[Xy]) -> Option<Vec<Xy>> {
+        let g = |y: &DVector<f64>| wrap_angle(self.theta(y.as_slice()) - target);
+        let (mut lo, mut hi) = (0.0, h);
+        let g0 = g(x);
+        let mut y = x.clone();
+        for _ in 0..80 {
+            let mid = 0.5 * (lo + hi);
+            y = self.correct(&(x + t * mid), t, delta)?.0;
+            let gm = g(&y);
+            if gm == 0.0 {
+                break;
+            }
+            if gm * g0 > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo < 1e-14 {
+                break;
+            }
+        }
+        // land exactly on the target angle
+        let mut e = DVector::zeros(self.n());
+        e[self.input] = 1.0;
+        let mut z = y.clone();
+        z[self.input] += g(&y) * -1.0;
+        let (z, _) = self.correct(&z, &e, delta)?;
+        Some(self.positions(z.as_slice()))
+    }
+
+    /// Circuits through the assemblies at `theta`: each traced once; the assemblies a
+    /// trace meets at `theta` (modulo 2 pi) belong to its circuit.
+    pub fn circuits(
+        &self,
+        theta: f64,
+        hopts: &HomotopyOptions,
+        opts: &TraceOptions,
+    ) -> Result<(super::Assemblies, Vec<Circuit>), Error> {
+        let mut found = self.plan.assemblies(theta, hopts)?;
+        let plan = &self.plan;
+        let to_frame = |p: &Xy| [(p[0] - plan.origin[0]) / plan.scale, (p[1] - plan.origin[1]) / plan.scale];
+        let mut frames: Vec<Vec<Xy>> = found.list.iter().map(|a| a.points.iter().map(to_frame).collect()).collect();
+        let mut owner: Vec<Option<usize>> = vec![None; frames.len()];
+        let mut circuits = Vec::new();
+        let mut k = 0;
+        while k < frames.len() {
+            if owner[k].is_some() {
+                k += 1;
+                continue;
+            }
+            let id = circuits.len();
+            let (tr, crossings) = self.trace_watching(&frames[k], opts, Some(theta))?;
+            owner[k] = Some(id);
+            let mut members = vec![k];
+            for pos in crossings {
+                let j = match frames.iter().position(|f| max_gap(f, &pos) < 1e-7) {
+                    Some(j) => j,
+                    None => {
+                        // met by tracing but missed by the homotopy: keep it, marked
+                        let (det, step_det) = plan.dets_at(&pos);
+                        let points = pos
+                            .iter()
+                            .map(|p| [p[0] * plan.scale + plan.origin[0], p[1] * plan.scale + plan.origin[1]])
+                            .collect();
+                        found.list.push(super::Assembly { points, step_det, det, label: "traced".into() });
+                        frames.push(pos);
+                        owner.push(None);
+                        frames.len() - 1
+                    }
+                };
+                if owner[j].is_none() {
+                    owner[j] = Some(id);
+                    members.push(j);
+                }
+            }
+            let lo = tr.theta.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = tr.theta.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let net = if tr.closed { tr.theta[tr.theta.len() - 1] - tr.theta[0] } else { f64::NAN };
+            circuits.push(Circuit {
+                assemblies: members,
+                turning_points: tr.turning_points.iter().map(|&a| wrap_angle(a)).collect(),
+                net_turn: net,
+                range: (lo, hi),
+                trace: tr,
+            });
+            k += 1;
+        }
+        Ok((found, circuits))
+    }
+}
+
+/// Largest |wrap(a_i - b_i)|.
+fn wrapped_gap(a: &DVector<f64>, b: &DVector<f64>) -> f64 {
+    a.iter().zip(b.iter()).map(|(x, y)| wrap_angle(x - y).abs()).fold(0.0, f64::max)
+}
+
+/// `a` shifted by whole turns, component by component, to lie next to `b`.
+fn unwrap_like(a: &DVector<f64>, b: &DVector<f64>) -> DVector<f64> {
+    DVector::from_iterator(a.len(), a.iter().zip(b.iter()).map(|(x, y)| y + wrap_angle(x - y)))
+}
+
+/// Largest distance between corresponding points (NaN-free points only).
+fn max_gap(a: &[Xy], b: &[Xy]) -> f64 {
+    a.iter()
+        .zip(b)
+        .filter(|(p, q)| p[0].is_finite() && q[0].is_finite())
+        .map(|(p, q)| (p[0] - q[0]).abs().max((p[1] - q[1]).abs()))
+        .fold(0.0, f64::max)
+}
