@@ -3,6 +3,6 @@
 rigid groups compiled for the outputs asked for."""
 
 from ._model import Scene
-from ._results import Plan, SceneSweep, Step
+from ._results import Assemblies, Assembly, Circuit, Plan, SceneSweep, Step, Trace
 
-__all__ = ["Plan", "Scene", "SceneSweep", "Step"]
+__all__ = ["Assemblies", "Assembly", "Circuit", "Plan", "Scene", "SceneSweep", "Step", "Trace"]

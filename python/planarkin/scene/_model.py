@@ -13,7 +13,8 @@ import numpy as np
 
 from .. import _core
 from .._types import as_angles, as_float, check_options
-from ._results import Plan, SceneSweep, Step
+from .._types import as_int as as_int_arg
+from ._results import Assemblies, Assembly, Circuit, Plan, SceneSweep, Step, Trace
 from ._toml import dumps as toml_dumps
 
 #: Keys a scene may have; the first five are required (``output`` is optional).
@@ -22,6 +23,10 @@ REQUIRED = ("points", "links", "ground", "input")
 #: Default largest continuation step of a group (3 degrees).
 MAX_STEP = math.radians(3.0)
 TAU = 2.0 * math.pi
+#: Default seed of the homotopy's random gammas (results are reproducible).
+SEED = 0x5EED_2026
+#: Default largest arclength step of a trace (radians of rotation, all links together).
+TRACE_STEP = 0.05
 
 
 def _entry(cond: bool, entry: str, message: str) -> None:
@@ -302,3 +307,131 @@ class Scene:
         w = None if omega is None else as_float("omega", omega)
         arrays = core.sweep(t, tol, max_iter, ms, w)
         return SceneSweep.build(plan, t, *arrays)
+
+    # --- every assembly, circuits, tracing ------------------------------------------------
+
+    def _assembly(self, pts: np.ndarray, label: str, det: float, step_det: list[float]) -> Assembly:
+        names = self._data["points"]
+        return Assembly(
+            {n: (float(x), float(y)) for n, (x, y) in zip(names, pts, strict=True)},
+            det,
+            tuple(step_det),
+            label,
+        )
+
+    def _assemblies(self, theta: float, raw: tuple) -> Assemblies:
+        items, counts, failed, continua = raw
+        return Assemblies([self._assembly(*a) for a in items], theta, counts, failed, continua)
+
+    def assemblies(self, theta: float | None = None, *, seed: int = SEED, runs: int = 2) -> Assemblies:
+        """Every real assembly at input angle ``theta`` (radians; default the drawn angle).
+
+        Dyad steps contribute both sides; a group's solutions come from a total-degree
+        homotopy on its loop equations (linear in the links' (cos, sin), with the unit
+        circles), tracked ``runs`` times with independent random gammas (``seed``) and
+        merged, then polished by Newton. ``complex_counts`` on the result is the number of
+        finite complex solutions of each group (a self-check: 6 for a Stephenson triad,
+        16 or 18 for the double butterfly's group)."""
+        t = self.input_angle if theta is None else as_float("theta", theta)
+        raw = self._core.assemblies(t, _seed(seed), _runs(runs))
+        return self._assemblies(t, raw)
+
+    def _trace(self, raw: tuple) -> Trace:
+        theta, coords, det, turning, closed = raw
+        names = list(self._data["points"])
+        return Trace(
+            theta=theta,
+            points={n: coords[:, j] for j, n in enumerate(names)},
+            det=det,
+            turning_points=np.asarray(turning, dtype=np.float64),
+            closed=bool(closed),
+            coords=coords,
+        )
+
+    def trace(
+        self,
+        start: Mapping[str, Any] | None = None,
+        *,
+        step: float = TRACE_STEP,
+        max_points: int = 50_000,
+    ) -> Trace:
+        """Traces the circuit through ``start`` (an assembly: dict point -> (x, y); default
+        the drawn pose) by pseudo-arclength continuation, through dead points, until it
+        comes back to its start or ``max_points`` points are made. The input angle starts
+        increasing. ``step`` is the largest arclength step (radians of rotation)."""
+        st = None if start is None else self._pose(start, "start")
+        ms = as_int_arg("max_points", max_points)
+        return self._trace(self._core.trace(st, as_float("step", step), ms))
+
+    def circuits(
+        self,
+        theta: float | None = None,
+        *,
+        seed: int = SEED,
+        runs: int = 2,
+        step: float = TRACE_STEP,
+        max_points: int = 50_000,
+    ) -> list[Circuit]:
+        """The assemblies at ``theta`` (default the drawn angle) grouped by circuit: each
+        unassigned assembly is traced once round its circuit; the assemblies the trace
+        meets at ``theta`` (modulo 2 pi) are on it. Each circuit has its turning points
+        and whether the input turns fully round on it."""
+        t = self.input_angle if theta is None else as_float("theta", theta)
+        raw_a, raw_c = self._core.circuits(
+            t, _seed(seed), _runs(runs), as_float("step", step), as_int_arg("max_points", max_points)
+        )
+        found = self._assemblies(t, raw_a)
+        out = []
+        for idx, turning, net, rng, tr in raw_c:
+            out.append(
+                Circuit(
+                    assemblies=[found[i] for i in idx],
+                    turning_points=np.asarray(turning, dtype=np.float64),
+                    full_turn=bool(math.isfinite(net) and abs(net) > math.pi),
+                    net_turn=float(net),
+                    range=(float(rng[0]), float(rng[1])),
+                    trace=self._trace(tr),
+                )
+            )
+        return out
+
+    def _pose(self, pose: Mapping[str, Any], what: str) -> np.ndarray:
+        names = list(self._data["points"])
+        missing = [n for n in names if n not in pose]
+        _entry(isinstance(pose, Mapping) and not missing, what,
+               f"must give every point of the scene; missing {missing}")  # fmt: skip
+        arr = np.array([_xy(n, pose[n]) for n in names], dtype=np.float64)
+        # the pose must be this linkage: every link's distances as drawn
+        drawn = self._data["points"]
+        size = max(np.ptp(np.array(list(drawn.values())), axis=0).max(), 1e-300)
+        for link, pts in self._data["links"].items():
+            for i, a in enumerate(pts):
+                for b in pts[i + 1 :]:
+                    d0 = math.dist(drawn[a], drawn[b])
+                    d1 = math.dist(arr[names.index(a)], arr[names.index(b)])
+                    _entry(abs(d1 - d0) <= 1e-9 * size, what,
+                           f"is not an assembly of this scene: link {link!r} has |{a}{b}| = "
+                           f"{d1!r}, drawn {d0!r}")  # fmt: skip
+        return arr
+
+    def at(self, assembly: Mapping[str, Any]) -> Scene:
+        """A new scene drawn in ``assembly`` (e.g. one of :meth:`assemblies`): its sweeps
+        follow that assembly's circuit."""
+        arr = self._pose(assembly, "assembly")
+        d = self.to_dict()
+        d["points"] = {n: [float(x), float(y)] for n, (x, y) in zip(d["points"], arr, strict=True)}
+        return Scene(d)
+
+
+def _seed(seed: object) -> int:
+    s = as_int_arg("seed", seed)
+    if not 0 <= s < 2**64:
+        raise ValueError(f"seed must be in 0..2**64, got {s}")
+    return s
+
+
+def _runs(runs: object) -> int:
+    r = as_int_arg("runs", runs)
+    if not 1 <= r <= 16:
+        raise ValueError(f"runs must be in 1..16, got {r}")
+    return r

@@ -131,3 +131,94 @@ class SceneSweep:
             f"SceneSweep({n} angles, {ok} converged, {len(self.plan)} steps, "
             f"points {list(self.points)[:6]}{'...' if len(self.points) > 6 else ''})"
         )
+
+
+class Assembly(dict):
+    """One real assembly: a dict point name -> (x, y) holding every point of the scene,
+    with its signed, scale-free conditioning ``det`` (the product of ``step_det``) and a
+    mode ``label`` (one token per plan step: a dyad's side "+"/"-", a group's conditioning
+    sign and rank among its same-sign solutions, e.g. "+1")."""
+
+    det: float
+    step_det: tuple[float, ...]
+    label: str
+
+    def __init__(self, points: dict, det: float, step_det: tuple[float, ...], label: str) -> None:
+        super().__init__(points)
+        self.det = det
+        self.step_det = step_det
+        self.label = label
+
+    def __repr__(self) -> str:
+        return f"Assembly({self.label!r}, det={self.det:.3g}, {len(self)} points)"
+
+
+class Assemblies(list):
+    """Every real assembly at one input angle (a list of :class:`Assembly`), with the
+    number of finite complex solutions each group step has (``complex_counts``: one list
+    per group step, one entry per homotopy call), the homotopy paths that failed, and
+    ``continua``: branches where a dyad's two known points coincide with equal links, so
+    its point can be anywhere on a circle (not listed: no finite set of assemblies)."""
+
+    theta: float
+    complex_counts: list[list[int]]
+    failed_paths: int
+    continua: int
+
+    def __init__(self, items, theta: float, complex_counts, failed_paths: int, continua: int) -> None:  # noqa: ANN001, E501
+        super().__init__(items)
+        self.theta = theta
+        self.complex_counts = complex_counts
+        self.failed_paths = failed_paths
+        self.continua = continua
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Trace:
+    """A path traced through dead points (pseudo-arclength continuation)."""
+
+    #: (M,) input angle at each path point, continuous (not wrapped).
+    theta: np.ndarray
+    #: name -> (M, 2) positions (views of ``coords``).
+    points: dict[str, np.ndarray]
+    #: (M,) the plan's signed conditioning along the path.
+    det: np.ndarray
+    #: Input angles (continuous, like ``theta``) of the dead points passed, refined by
+    #: bisection on the conditioning's sign, in path order.
+    turning_points: np.ndarray
+    #: The path came back to its start (its last point is the start again).
+    closed: bool
+    #: (M, P, 2) every point at every path point.
+    coords: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.theta)
+
+    def __repr__(self) -> str:
+        return (
+            f"Trace({len(self.theta)} points, {'closed' if self.closed else 'open'}, "
+            f"{len(self.turning_points)} turning points)"
+        )
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Circuit:
+    """The assemblies at one input angle that a traced circuit connects."""
+
+    #: The assemblies at that angle on this circuit, in the order the trace meets them.
+    assemblies: list[Assembly]
+    #: Input angles (radians, wrapped to (-pi, pi]) of its dead points, in path order.
+    turning_points: np.ndarray
+    #: The input angle changes by a net +-2 pi (or more) once round: the input is a crank.
+    full_turn: bool
+    #: Net change of the input angle once round (NaN when the trace did not close).
+    net_turn: float
+    #: (lowest, highest) input angle on the path (continuous).
+    range: tuple[float, float]
+    trace: Trace
+
+    def __repr__(self) -> str:
+        return (
+            f"Circuit({len(self.assemblies)} assemblies, {len(self.turning_points)} turning "
+            f"points, {'full turn' if self.full_turn else 'rocking'})"
+        )

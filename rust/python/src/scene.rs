@@ -1,8 +1,11 @@
 //! Bindings of the scene solver: convert, release the GIL, map errors.
 
 use numpy::ndarray::{Array2, Array3};
-use numpy::{IntoPyArray, PyArray2, PyArray3, PyReadonlyArray1};
-use planarkin_core::scene::{Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut};
+use numpy::{IntoPyArray, PyArray2, PyArray3, PyReadonlyArray1, PyReadonlyArray2};
+use planarkin_core::homotopy::HomotopyOptions;
+use planarkin_core::scene::{
+    Assemblies, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace, TraceOptions,
+};
 use planarkin_core::NewtonOptions;
 use pyo3::prelude::*;
 
@@ -53,6 +56,54 @@ impl PyScene {
     #[getter]
     fn joints(&self) -> usize {
         self.inner.joints()
+    }
+
+    /// Every real assembly at `theta`: ([(points (P,2), label, det, step_det)],
+    /// complex counts per group step, failed homotopy paths).
+    #[pyo3(signature = (theta, seed, runs))]
+    fn assemblies<'py>(&self, py: Python<'py>, theta: f64, seed: u64, runs: u32) -> PyResult<AssembliesOut<'py>> {
+        let opts = homotopy_options(seed, runs)?;
+        let a = py.detach(|| self.inner.assemblies(theta, &opts)).map_err(err)?;
+        Ok(assemblies_out(py, a))
+    }
+
+    /// Trace from `start` ((P,2) scene coordinates; None: the drawn pose):
+    /// (theta, points (M,P,2), det, turning_points, closed).
+    #[pyo3(signature = (start, step, max_points))]
+    fn trace<'py>(
+        &self,
+        py: Python<'py>,
+        start: Option<PyReadonlyArray2<'py, f64>>,
+        step: f64,
+        max_points: usize,
+    ) -> PyResult<TraceOut<'py>> {
+        let opts = TraceOptions::new(step, max_points).map_err(err)?;
+        let start = start.map(|a| points_of("start", &a)).transpose()?;
+        let t = py.detach(|| self.inner.trace(start.as_deref(), &opts)).map_err(err)?;
+        Ok(trace_out(py, t, self.inner.point_names().len()))
+    }
+
+    /// Circuits at `theta`: (assemblies as in `assemblies`, counts, failed,
+    /// [(assembly indices, turning points, net turn, (lo, hi), trace)]).
+    #[pyo3(signature = (theta, seed, runs, step, max_points))]
+    fn circuits<'py>(
+        &self,
+        py: Python<'py>,
+        theta: f64,
+        seed: u64,
+        runs: u32,
+        step: f64,
+        max_points: usize,
+    ) -> PyResult<(AssembliesOut<'py>, Vec<CircuitOut<'py>>)> {
+        let hopts = homotopy_options(seed, runs)?;
+        let topts = TraceOptions::new(step, max_points).map_err(err)?;
+        let (a, cs) = py.detach(|| self.inner.circuits(theta, &hopts, &topts)).map_err(err)?;
+        let np = self.inner.point_names().len();
+        let circuits = cs
+            .into_iter()
+            .map(|c| (c.assemblies, c.turning_points, c.net_turn, c.range, trace_out(py, c.trace, np)))
+            .collect();
+        Ok((assemblies_out(py, a), circuits))
     }
 
     /// Compiles the plan for `outputs` (None: every point and link).
@@ -160,6 +211,44 @@ impl PyPlan {
             vel.map(|(v, w)| (a3(v), a2(n, nl, w))),
         ))
     }
+}
+
+type AssemblyOut<'py> = (Arr2<'py, f64>, String, f64, Vec<f64>);
+type AssembliesOut<'py> = (Vec<AssemblyOut<'py>>, Vec<Vec<usize>>, usize, usize);
+type TraceOut<'py> = (Arr1<'py, f64>, Arr3<'py, f64>, Arr1<'py, f64>, Vec<f64>, bool);
+type CircuitOut<'py> = (Vec<usize>, Vec<f64>, f64, (f64, f64), TraceOut<'py>);
+
+fn homotopy_options(seed: u64, runs: u32) -> PyResult<HomotopyOptions> {
+    if runs == 0 {
+        return Err(pyo3::exceptions::PyValueError::new_err("runs must be >= 1, got 0"));
+    }
+    Ok(HomotopyOptions { seed, runs, ..HomotopyOptions::default() })
+}
+
+fn xy_array(py: Python<'_>, pts: Vec<[f64; 2]>) -> Arr2<'_, f64> {
+    let n = pts.len();
+    Array2::from_shape_vec((n, 2), pts.into_iter().flatten().collect()).expect("n * 2 values").into_pyarray(py)
+}
+
+fn assemblies_out(py: Python<'_>, a: Assemblies) -> AssembliesOut<'_> {
+    let list = a.list.into_iter().map(|x| (xy_array(py, x.points), x.label, x.det, x.step_det)).collect();
+    (list, a.complex_counts, a.failed_paths, a.continua)
+}
+
+fn trace_out(py: Python<'_>, t: Trace, np: usize) -> TraceOut<'_> {
+    let m = t.theta.len();
+    let pts = Array3::from_shape_vec((m, np, 2), t.points.into_iter().flatten().collect())
+        .expect("m * np * 2 values")
+        .into_pyarray(py);
+    (t.theta.into_pyarray(py), pts, t.det.into_pyarray(py), t.turning_points, t.closed)
+}
+
+fn points_of(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<[f64; 2]>> {
+    let v = a.as_array();
+    if v.ncols() != 2 {
+        return Err(pyo3::exceptions::PyValueError::new_err(format!("{name} must have shape (P, 2)")));
+    }
+    Ok(v.rows().into_iter().map(|r| [r[0], r[1]]).collect())
 }
 
 /// Adds the scene classes to the extension module.

@@ -31,6 +31,9 @@ pub struct Assemblies {
     pub complex_counts: Vec<Vec<usize>>,
     /// Homotopy paths that failed over all calls (0 when nothing was lost in tracking).
     pub failed_paths: usize,
+    /// Branches where a dyad's known points coincide with equal links: a continuum of
+    /// assemblies (the point anywhere on a circle), not listed.
+    pub continua: usize,
 }
 
 struct Walk<'p> {
@@ -94,7 +97,11 @@ impl Walk<'_> {
             }
             Op::Dyad(d) => {
                 for side in [1.0, -1.0] {
-                    if let DyadOut::Solved(p, det) = d.solve_side(pos[d.k1], pos[d.k2], side) {
+                    let out = d.solve_side(pos[d.k1], pos[d.k2], side);
+                    if out == DyadOut::Indeterminate && side > 0.0 {
+                        self.out.continua += 1;
+                    }
+                    if let DyadOut::Solved(p, det) = out {
                         if det == 0.0 && side < 0.0 {
                             continue; // a double root: one assembly, not two
                         }

@@ -3,6 +3,9 @@
 
 use super::{cross, dot, perp, sub, Xy};
 
+/// Known points closer than this fraction of r1 + r2 coincide.
+const COINCIDENT: f64 = 1e-12;
+
 /// Point `p` at distance `r1` from known point `k1` and `r2` from `k2`, on side `side`
 /// (+1: left of k1 -> k2) — the side of the drawn pose.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,7 +28,7 @@ pub(super) enum DyadOut {
     Solved(Xy, f64),
     /// |r1 - r2| <= |k1 k2| <= r1 + r2 fails.
     NotAssemblable,
-    /// k1 = k2 with r1 = r2: every point of the circle closes the dyad.
+    /// k1 = k2 with r1 = r2 (to rounding): every point of the circle closes the dyad.
     Indeterminate,
 }
 
@@ -45,8 +48,11 @@ impl Dyad {
         let u = sub(b, a);
         let d2 = dot(u, u);
         let d = d2.sqrt();
-        if d == 0.0 {
-            return if r1 == r2 { DyadOut::Indeterminate } else { DyadOut::NotAssemblable };
+        // known points that coincide to rounding: with equal links every point of the
+        // circle closes the dyad (a continuum, not two assemblies)
+        let tiny = COINCIDENT * (r1 + r2);
+        if d <= tiny {
+            return if (r1 - r2).abs() <= tiny { DyadOut::Indeterminate } else { DyadOut::NotAssemblable };
         }
         let q1 = d + r1 - r2;
         let q2 = d - r1 + r2;

@@ -20,6 +20,7 @@ pub use sweep::{SceneSweepOptions, SceneSweepOut};
 pub use trace::{Circuit, Trace, TraceOptions, Tracer};
 
 use crate::error::Error;
+use crate::homotopy::HomotopyOptions;
 
 /// A 2-D point or vector.
 pub type Xy = [f64; 2];
@@ -170,6 +171,41 @@ impl Scene {
             Some(names) => self.resolve(names)?,
         };
         plan::compile(self, &points, &links)
+    }
+
+    /// Every real assembly at input angle `theta` (every point solved).
+    pub fn assemblies(&self, theta: f64, opts: &HomotopyOptions) -> Result<Assemblies, Error> {
+        self.plan(None)?.assemblies(theta, opts)
+    }
+
+    /// Traces the circuit through `start` (every point, scene coordinates; default the
+    /// drawn pose) through its dead points until it closes or `opts.max_points` is reached.
+    pub fn trace(&self, start: Option<&[Xy]>, opts: &TraceOptions) -> Result<Trace, Error> {
+        let pos = match start {
+            None => self.xy.clone(),
+            Some(p) => {
+                if p.len() != self.names.len() {
+                    return Err(Error::Shape { name: "start".into(), got: p.len(), expected: self.names.len() });
+                }
+                p.iter().map(|&q| self.to_frame(q)).collect()
+            }
+        };
+        Tracer::new(self)?.trace_from(&pos, opts)
+    }
+
+    /// The assemblies at `theta` grouped by circuit.
+    pub fn circuits(
+        &self,
+        theta: f64,
+        hopts: &HomotopyOptions,
+        topts: &TraceOptions,
+    ) -> Result<(Assemblies, Vec<Circuit>), Error> {
+        Tracer::new(self)?.circuits(theta, hopts, topts)
+    }
+
+    /// Solving-frame coordinates of a point in scene coordinates.
+    pub(crate) fn to_frame(&self, p: Xy) -> Xy {
+        [(p[0] - self.origin[0]) / self.scale, (p[1] - self.origin[1]) / self.scale]
     }
 
     fn resolve(&self, names: &[String]) -> Result<(Vec<usize>, Vec<usize>), Error> {

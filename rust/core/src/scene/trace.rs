@@ -318,6 +318,13 @@ impl<'s> Tracer<'s> {
         );
     }
 
+    fn record_pose(&self, out: &mut Trace, pos: &[Xy], theta: f64) {
+        let plan = &self.plan;
+        out.theta.push(theta);
+        out.det.push(plan.dets_at(pos).0);
+        out.points.extend(pos.iter().map(|p| [p[0] * plan.scale + plan.origin[0], p[1] * plan.scale + plan.origin[1]]));
+    }
+
     /// Bisection on the conditioning's sign along the step from x (where it is `d0`).
     fn turning_point(&self, x: &DVector<f64>, t: &DVector<f64>, h: f64, d0: f64, delta: &[Xy]) -> f64 {
         let (mut lo, mut hi) = (0.0, h);
@@ -391,7 +398,15 @@ impl<'s> Tracer<'s> {
                 continue;
             }
             let id = circuits.len();
-            let (tr, crossings) = self.trace_watching(&frames[k], opts, Some(theta))?;
+            let (tr, crossings) = match self.trace_watching(&frames[k], opts, Some(theta)) {
+                Ok(r) => r,
+                Err(_) => {
+                    // a singular assembly Newton cannot start from: a circuit of its own
+                    let mut tr = Trace::default();
+                    self.record_pose(&mut tr, &frames[k], theta);
+                    (tr, Vec::new())
+                }
+            };
             owner[k] = Some(id);
             let mut members = vec![k];
             for pos in crossings {
