@@ -233,6 +233,23 @@ def build_parser() -> argparse.ArgumentParser:
     sc = sub.add_parser("scenes", help="list the built-in scenes")
     sc.set_defaults(func=run_scenes)
 
+    c = sub.add_parser(
+        "circuits",
+        help="every assembly of a scene at an input angle, grouped by circuit",
+        description="Find every real assembly of SCENE at --theta (default: as drawn), trace "
+        "each circuit through its dead points, and write circuits.json and circuits.png "
+        "(input angle against the output angle for every circuit, turning points marked, "
+        "and the linkage drawn in each assembly).",
+    )
+    c.add_argument("scene", metavar="SCENE", help="a scene file (.json/.toml) or built-in name")
+    c.add_argument("--theta", type=float, default=None, metavar="DEG", help="input angle")
+    c.add_argument("--out", type=Path, default=Path("figures"), metavar="DIR",
+                   help="output folder (default: %(default)s)")  # fmt: skip
+    c.add_argument("--dpi", type=float, default=150.0, help="figure resolution")
+    c.add_argument("--no-figures", action="store_true", help="write circuits.json only")
+    c.add_argument("--json", action="store_true", help="print the JSON instead of the table")
+    c.set_defaults(func=run_circuits)
+
     t = sub.add_parser("tradeoff", help="measure the speed/accuracy trade-off")
     tradeoff.add_arguments(t)
     t.set_defaults(func=tradeoff.run)
@@ -624,6 +641,12 @@ def format_table(summary: dict) -> str:
     width = max(len(k) for k, _ in rows) + 2
     head = f"planarkin analyze: four-bar ({L['r1']:g}, {L['r2']:g}, {L['r3']:g}, {L['r4']:g})"
     return head + "\n" + "\n".join(f"  {k:<{width}}{v}" for k, v in rows)
+
+
+def run_circuits(args: argparse.Namespace) -> int:
+    from .scene import cli as scene_cli
+
+    return scene_cli.run_circuits(args)
 
 
 def run_scenes(args: argparse.Namespace) -> int:
