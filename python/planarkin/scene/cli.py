@@ -190,12 +190,14 @@ def run_analyze(args: argparse.Namespace) -> int:
     _write_csv(out / RESULTS_CSV, sw)
     files = [RESULTS_CSV, SUMMARY_JSON]
     if not args.no_figures:
-        for name, draw in (
-            ("scene_linkage.png", linkage),
-            ("scene_conditioning.png", conditioning),
-            ("scene_tracers.png", tracers),
+        # the figures draw every link: sweep the whole scene for them
+        whole = sc.sweep(theta, outputs="all", tol=args.tol, max_iter=args.max_iter, omega=omega)
+        for name, draw, data in (
+            ("scene_linkage.png", linkage, whole),
+            ("scene_conditioning.png", conditioning, sw),
+            ("scene_tracers.png", tracers, sw),
         ):
-            draw(sc, sw).savefig(out / name, dpi=args.dpi)
+            draw(sc, data).savefig(out / name, dpi=args.dpi)
             files.append(name)
     summary = summarize(
         sc, sw, {"sweep_median": float(np.median(times)), "total": time.perf_counter() - t_start}

@@ -338,6 +338,9 @@ fn prune(sc: &Scene, ops: Vec<Op>, want_points: &[usize], want_links: &[usize]) 
             }
         }
     }
+    if ops.iter().zip(&keep).any(|(o, &k)| k && matches!(o, Op::Input { .. })) {
+        need[sc.input.pivot] = true; // the input link's points hang from it
+    }
     let mut kept = Vec::new();
     for (op, k) in ops.into_iter().zip(keep) {
         if !k {
