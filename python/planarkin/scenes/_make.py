@@ -482,6 +482,7 @@ def stephenson3():
         )
     )
     sc["units"] = "arbitrary length units"
+    sc["output"] = {"link": "T1", "pivot": "j3"}  # the ground-pivoted ternary
     sc["outputs"] = ["j4", "j5"]
     return sc, lo, hi, full
 
@@ -619,14 +620,18 @@ def main():
         inp = (
             "the adjacent ternary A-B-C, pivoted at A; output the ternary K-H-I pivoted at K"
             if kind == 1
-            else "its butterfly partner, the ternary B-A-C hinged to it at B and pivoted there"
+            else "its butterfly partner, the ternary B-A-C hinged to it at B and pivoted "
+            "there; output the bar D-G pivoted at D"
         )
+        t0 = ref._System(sc).theta0
         sc["description"] = (
             f"The eight-bar double butterfly (4 ternaries, 4 binaries, 10 joints, no "
             f"four-bar sub-loop), inversion {'I' if kind == 1 else 'II'}: ground {ground}, "
             f"input {inp}. With ground and input fixed the other six links form one rigid "
-            "group with no dyad. Joint letters as in DESIGN.md's type I: ternaries A-B-C, "
-            "B-D-E, H-I-K, F-G-I; binaries A-K, E-H, D-G, C-F. Geometry: the best of "
+            "group with no dyad. Joint letters and link numbers (bar1, T3, ...) as in "
+            "DESIGN.md's type I: ternaries A-B-C (2), B-D-E (3), H-I-K (5), F-G-I (7); "
+            "binaries A-K (1), E-H (4), D-G (6), C-F (8). "
+            "Geometry: the best of "
             f"{N_DB} seeded random perturbations (numpy default_rng({seed}), sigma 0.35) of a "
             "mirror-symmetric starting design (_make.py, DB_BASE), ranked by the input "
             "range of the drawn circuit as swept by the NumPy reference (10 deg bins up to 150 "
@@ -635,13 +640,18 @@ def main():
             + (
                 "The input turns fully."
                 if full
-                else f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead points; "
-                "drawn 5 deg inside the lower one, so the default sweep runs through the "
-                "range and then fails past the upper dead point."
+                else f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead "
+                f"points, input angle {(t0 + lo) / DEG:.2f} to {(t0 + hi) / DEG:.2f} deg "
+                "(unwrapped); drawn 5 deg inside the lower one, so the default sweep runs "
+                "through the range and then fails past the upper dead point."
             )
         )
         sc["units"] = "arbitrary length units"
-        sc["outputs"] = ["F", "G"] if kind == 1 else ["H", "K"]
+        if kind == 1:
+            sc["outputs"] = ["H", "I"]  # the output ternary's moving joints
+        else:  # a ground-pivoted bar as the output, as in the seed's type II
+            sc["output"] = {"link": "bar6", "pivot": "D"}
+            sc["outputs"] = ["G"]
         made[f"double-butterfly-{kind}"] = sc
     print()
     for name, sc in sorted(made.items()):
