@@ -306,16 +306,16 @@ def scene_sweep(
     translations are divided by the scene's size (its longest link); a solve converges
     when the largest residual and the largest Newton correction are both below ``tol``.
 
-    Continuation: from the drawn pose at the drawn angle to ``theta[0]`` along the wrapped
-    shortest difference, then along ``theta`` in order (the raw differences: a jump of k
-    turns is marched through, k turns of substeps), in substeps no larger than
+    Continuation: from the drawn pose at the drawn angle to ``theta[0]`` along the
+    wrapped shortest difference, then along ``theta`` in order (the raw differences: a
+    jump of k turns is marched through, k turns of substeps), in substeps no larger than
     ``max_step``, each predicted linearly from the last two converged states. A
-    non-finite theta is NON_FINITE and skipped. An angle that fails gets NaN points and angles and status MAX_ITERATIONS,
-    SINGULAR (reciprocal condition number of the Jacobian below 1e-10), NON_FINITE, or
-    BRANCH_JUMP (a substep converged where det J has the other sign than at the drawn
-    pose, i.e. past a dead point, or farther than 0.5 from its prediction); the next
-    angle marches again from the last converged pose and its angle. Default
-    ``theta``: the drawn angle + 0, 1, ..., 360 degrees.
+    non-finite theta is NON_FINITE and skipped. An angle that fails gets NaN points and
+    angles and status MAX_ITERATIONS, SINGULAR (reciprocal condition number of the
+    Jacobian below 1e-10), NON_FINITE, or BRANCH_JUMP (a substep converged where det J
+    has the other sign than at the drawn pose, i.e. past a dead point, or farther than
+    0.5 from its prediction); the next angle marches again from the last converged pose
+    and its angle. Default ``theta``: the drawn angle + 0, 1, ..., 360 degrees.
     """
     sys_ = _System(scene)
     if theta is None:
