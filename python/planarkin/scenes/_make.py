@@ -598,7 +598,16 @@ def write(name, scene):
     )
     out = {k: scene[k] for k in order if k in scene}
     out["points"] = {k: [float(v[0]), float(v[1])] for k, v in scene["points"].items()}
-    (HERE / f"{name}.json").write_text(json.dumps(out, indent=2) + "\n")
+    rows = []
+    for key, value in out.items():
+        if key in ("points", "links"):  # one entry a line
+            inner = ",\n".join(f"    {json.dumps(k)}: {json.dumps(v)}" for k, v in value.items())
+            rows.append(f"  {json.dumps(key)}: {{\n{inner}\n  }}")
+        else:
+            rows.append(f"  {json.dumps(key)}: {json.dumps(value)}")
+    text = "{\n" + ",\n".join(rows) + "\n}\n"
+    assert json.loads(text) == out
+    (HERE / f"{name}.json").write_text(text)
 
 
 def main():
