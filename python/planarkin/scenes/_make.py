@@ -350,7 +350,7 @@ def chebyshev_lambda():
     a = np.array([1.0, 0.0])  # crank angle 0
     b = pick(a, 2.5, o4, 2.5, key=lambda p: -p[1])
     p = a + 2.0 * (b - a)  # on the line A -> B at 5 from A
-    return {
+    sc = {
         "name": "Chebyshev's lambda linkage",
         "description": (
             "Chebyshev's lambda mechanism: ground O2-O4 2, crank O2-A 1, coupler A-B 2.5 "
@@ -373,6 +373,14 @@ def chebyshev_lambda():
         "output": {"link": "rocker", "pivot": "O4"},
         "outputs": ["P"],
     }
+    # the straight stretch, measured by the reference: crank angles 90 to 270 deg
+    sw = ref.scene_sweep(sc, np.arange(90, 271) * DEG)
+    y, x = sw.points["P"][:, 1], sw.points["P"][:, 0]
+    sc["description"] += (
+        f" Reference sweep: for crank angles 90 to 270 deg P stays between y = {y.min():.6f} "
+        f"and {y.max():.6f} while x runs over {np.ptp(x):.6f}."
+    )
+    return sc
 
 
 # --- searched geometries ---------------------------------------------------------------
