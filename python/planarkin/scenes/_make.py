@@ -313,7 +313,7 @@ def peaucellier():
     c = q + r * np.array([math.cos(phi), math.sin(phi)])
     a, b = circles(o, big, c, s)  # A left of O -> C, B right
     p = a + b - c  # the rhombus A-C-B-P
-    half = 2 * math.acos((big - s) / (2 * r)) / DEG / 2  # |OC| = 2 r cos(phi/2) >= big - s
+    limit = 2 * math.acos((big - s) / (2 * r)) / DEG  # |OC| = 2 r cos(phi/2) >= big - s
     return {
         "name": "Peaucellier-Lipkin inversor, crank driven",
         "description": (
@@ -322,10 +322,10 @@ def peaucellier():
             f"{big * big - s * s}. C is driven by the crank Q-C of length {r} pivoted at "
             f"Q = ({r}, 0), so C's circle passes through O and P moves on the exact "
             f"straight line x = {(big * big - s * s) / (2 * r)}. The crank does not turn "
-            f"fully: |OC| = 2 {r} cos(phi/2) >= {big} - {s} limits its angle phi (from +x) "
-            f"to |phi| <= 2 acos({(big - s) / (2 * r)}) = {half:.4f} deg, where A and B "
-            f"meet. Dimensions are ours; drawn at phi = {PEAUCELLIER['drawn']} deg, A on "
-            "the left of O -> C."
+            f"fully: |OC| = 2 r cos(phi/2) >= {big} - {s} limits its angle phi (from +x, "
+            f"at Q) to |phi| <= 2 acos({(big - s) / (2 * r)}) = {limit:.4f} deg, dead points "
+            f"where A and B meet (a {2 * limit:.4f} deg range). Dimensions are ours; drawn "
+            f"at phi = {PEAUCELLIER['drawn']} deg, A on the left of O -> C."
         ),
         "units": "arbitrary length units",
         "points": {"O": o, "Q": q, "C": c, "A": a, "B": b, "P": p},
