@@ -262,6 +262,25 @@ def test_jansen_foot_against_circle_chain():
     assert np.ptp(flat) > 30
 
 
+# --- Chebyshev's lambda: exact points and the straight stretch --------------------------
+
+
+def test_chebyshev_lambda_points_and_straight_stretch():
+    d = scenes.data("chebyshev-lambda")
+    # crank at 180 deg: A = (-1, 0), |A O4| = 3, B = (0.5, 2) exactly, P = 2B - A = (2, 4);
+    # crank at 0: A = (1, 0), B = (1.5, sqrt 6), P = (2, 2 sqrt 6)
+    sw = scene_sweep(d, [0.0, math.pi])
+    assert np.all(sw.status == 0)
+    assert np.allclose(sw.points["P"][1], [2.0, 4.0], rtol=0, atol=1e-12)
+    assert np.allclose(sw.points["P"][0], [2.0, 2 * math.sqrt(6.0)], rtol=0, atol=1e-12)
+    # crank 90..270 deg: P within 0.01 of y = 4 over a stroke of length 4 (Chebyshev)
+    sw = scene_sweep(d, np.arange(90, 271) * DEG)
+    p = sw.points["P"]
+    assert np.all(sw.status == 0)
+    assert p[:, 1].min() > 4 - 1e-12 and p[:, 1].max() < 4.01
+    assert np.ptp(p[:, 0]) == pytest.approx(4.0, abs=1e-12)
+
+
 # --- the reference's own contract -------------------------------------------------------
 
 

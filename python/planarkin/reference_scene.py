@@ -306,15 +306,16 @@ def scene_sweep(
     translations are divided by the scene's size (its longest link); a solve converges
     when the largest residual and the largest Newton correction are both below ``tol``.
 
-    Continuation: from the drawn pose at the drawn angle to ``theta[0]`` along the wrapped
-    shortest difference, then along ``theta`` in order (the raw differences), in substeps
-    no larger than ``max_step``, each predicted linearly from the last two converged
-    states. An angle that fails gets NaN points and angles and status MAX_ITERATIONS,
-    SINGULAR (reciprocal condition number of the Jacobian below 1e-10), NON_FINITE, or
-    BRANCH_JUMP (a substep converged where det J has the other sign than at the drawn
-    pose, i.e. past a dead point, or farther than 0.5 from its prediction); the next
-    angle marches again from the last converged pose and its angle. Default
-    ``theta``: the drawn angle + 0, 1, ..., 360 degrees.
+    Continuation: from the drawn pose at the drawn angle to ``theta[0]`` along the
+    wrapped shortest difference, then along ``theta`` in order (the raw differences: a
+    jump of k turns is marched through, k turns of substeps), in substeps no larger than
+    ``max_step``, each predicted linearly from the last two converged states. A
+    non-finite theta is NON_FINITE and skipped. An angle that fails gets NaN points and
+    angles and status MAX_ITERATIONS, SINGULAR (reciprocal condition number of the
+    Jacobian below 1e-10), NON_FINITE, or BRANCH_JUMP (a substep converged where det J
+    has the other sign than at the drawn pose, i.e. past a dead point, or farther than
+    0.5 from its prediction); the next angle marches again from the last converged pose
+    and its angle. Default ``theta``: the drawn angle + 0, 1, ..., 360 degrees.
     """
     sys_ = _System(scene)
     if theta is None:
@@ -339,16 +340,15 @@ def scene_sweep(
     hist: list = []
     if st != Status.CONVERGED:
         status[:] = st  # the drawn pose itself does not solve
-    elif n:
-        # the drawn state, re-labelled theta[0] minus the wrapped shortest difference
-        t0 = float(th[0])
-        span = _wrap(t0 - sys_.theta0) if math.isfinite(t0) else 0.0
-        hist = [(t0 - span, x, sys_.sign(x, sys_.theta0))]
-    for i in range(n if hist else 0):
+    drawn = (x, sys_.sign(x, sys_.theta0)) if st == Status.CONVERGED else None
+    for i in range(n if drawn else 0):
         t = float(th[i])
         if not math.isfinite(t):
             status[i] = Status.NON_FINITE
             continue
+        if not hist:
+            # the drawn state, re-labelled t minus the wrapped shortest difference
+            hist = [(t - _wrap(t - sys_.theta0), *drawn)]
         x, s, k, h = _march(sys_, hist, t, tol, max_iter, max_step)
         nit[i] = k
         status[i] = s

@@ -313,7 +313,7 @@ def peaucellier():
     c = q + r * np.array([math.cos(phi), math.sin(phi)])
     a, b = circles(o, big, c, s)  # A left of O -> C, B right
     p = a + b - c  # the rhombus A-C-B-P
-    half = 2 * math.acos((big - s) / (2 * r)) / DEG / 2  # |OC| = 2 r cos(phi/2) >= big - s
+    limit = 2 * math.acos((big - s) / (2 * r)) / DEG  # |OC| = 2 r cos(phi/2) >= big - s
     return {
         "name": "Peaucellier-Lipkin inversor, crank driven",
         "description": (
@@ -322,10 +322,10 @@ def peaucellier():
             f"{big * big - s * s}. C is driven by the crank Q-C of length {r} pivoted at "
             f"Q = ({r}, 0), so C's circle passes through O and P moves on the exact "
             f"straight line x = {(big * big - s * s) / (2 * r)}. The crank does not turn "
-            f"fully: |OC| = 2 {r} cos(phi/2) >= {big} - {s} limits its angle phi (from +x) "
-            f"to |phi| <= 2 acos({(big - s) / (2 * r)}) = {half:.4f} deg, where A and B "
-            f"meet. Dimensions are ours; drawn at phi = {PEAUCELLIER['drawn']} deg, A on "
-            "the left of O -> C."
+            f"fully: |OC| = 2 r cos(phi/2) >= {big} - {s} limits its angle phi (from +x, "
+            f"at Q) to |phi| <= 2 acos({(big - s) / (2 * r)}) = {limit:.4f} deg, dead points "
+            f"where A and B meet (a {2 * limit:.4f} deg range). Dimensions are ours; drawn "
+            f"at phi = {PEAUCELLIER['drawn']} deg, A on the left of O -> C."
         ),
         "units": "arbitrary length units",
         "points": {"O": o, "Q": q, "C": c, "A": a, "B": b, "P": p},
@@ -350,7 +350,7 @@ def chebyshev_lambda():
     a = np.array([1.0, 0.0])  # crank angle 0
     b = pick(a, 2.5, o4, 2.5, key=lambda p: -p[1])
     p = a + 2.0 * (b - a)  # on the line A -> B at 5 from A
-    return {
+    sc = {
         "name": "Chebyshev's lambda linkage",
         "description": (
             "Chebyshev's lambda mechanism: ground O2-O4 2, crank O2-A 1, coupler A-B 2.5 "
@@ -373,6 +373,14 @@ def chebyshev_lambda():
         "output": {"link": "rocker", "pivot": "O4"},
         "outputs": ["P"],
     }
+    # the straight stretch, measured by the reference: crank angles 90 to 270 deg
+    sw = ref.scene_sweep(sc, np.arange(90, 271) * DEG)
+    y, x = sw.points["P"][:, 1], sw.points["P"][:, 0]
+    sc["description"] += (
+        f" Reference sweep: for crank angles 90 to 270 deg P stays between y = {y.min():.6f} "
+        f"and {y.max():.6f} while x runs over {np.ptp(x):.6f}."
+    )
+    return sc
 
 
 # --- searched geometries ---------------------------------------------------------------
@@ -482,6 +490,7 @@ def stephenson3():
         )
     )
     sc["units"] = "arbitrary length units"
+    sc["output"] = {"link": "T1", "pivot": "j3"}  # the ground-pivoted ternary
     sc["outputs"] = ["j4", "j5"]
     return sc, lo, hi, full
 
@@ -597,7 +606,16 @@ def write(name, scene):
     )
     out = {k: scene[k] for k in order if k in scene}
     out["points"] = {k: [float(v[0]), float(v[1])] for k, v in scene["points"].items()}
-    (HERE / f"{name}.json").write_text(json.dumps(out, indent=2) + "\n")
+    rows = []
+    for key, value in out.items():
+        if key in ("points", "links"):  # one entry a line
+            inner = ",\n".join(f"    {json.dumps(k)}: {json.dumps(v)}" for k, v in value.items())
+            rows.append(f"  {json.dumps(key)}: {{\n{inner}\n  }}")
+        else:
+            rows.append(f"  {json.dumps(key)}: {json.dumps(value)}")
+    text = "{\n" + ",\n".join(rows) + "\n}\n"
+    assert json.loads(text) == out
+    (HERE / f"{name}.json").write_text(text)
 
 
 def main():
@@ -619,14 +637,18 @@ def main():
         inp = (
             "the adjacent ternary A-B-C, pivoted at A; output the ternary K-H-I pivoted at K"
             if kind == 1
-            else "its butterfly partner, the ternary B-A-C hinged to it at B and pivoted there"
+            else "its butterfly partner, the ternary B-A-C hinged to it at B and pivoted "
+            "there; output the bar D-G pivoted at D"
         )
+        t0 = ref._System(sc).theta0
         sc["description"] = (
             f"The eight-bar double butterfly (4 ternaries, 4 binaries, 10 joints, no "
             f"four-bar sub-loop), inversion {'I' if kind == 1 else 'II'}: ground {ground}, "
             f"input {inp}. With ground and input fixed the other six links form one rigid "
-            "group with no dyad. Joint letters as in DESIGN.md's type I: ternaries A-B-C, "
-            "B-D-E, H-I-K, F-G-I; binaries A-K, E-H, D-G, C-F. Geometry: the best of "
+            "group with no dyad. Joint letters and link numbers (bar1, T3, ...) as in "
+            "DESIGN.md's type I: ternaries A-B-C (2), B-D-E (3), H-I-K (5), F-G-I (7); "
+            "binaries A-K (1), E-H (4), D-G (6), C-F (8). "
+            "Geometry: the best of "
             f"{N_DB} seeded random perturbations (numpy default_rng({seed}), sigma 0.35) of a "
             "mirror-symmetric starting design (_make.py, DB_BASE), ranked by the input "
             "range of the drawn circuit as swept by the NumPy reference (10 deg bins up to 150 "
@@ -635,13 +657,18 @@ def main():
             + (
                 "The input turns fully."
                 if full
-                else f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead points; "
-                "drawn 5 deg inside the lower one, so the default sweep runs through the "
-                "range and then fails past the upper dead point."
+                else f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead "
+                f"points, input angle {(t0 + lo) / DEG:.2f} to {(t0 + hi) / DEG:.2f} deg "
+                "(unwrapped); drawn 5 deg inside the lower one, so the default sweep runs "
+                "through the range and then fails past the upper dead point."
             )
         )
         sc["units"] = "arbitrary length units"
-        sc["outputs"] = ["F", "G"] if kind == 1 else ["H", "K"]
+        if kind == 1:
+            sc["outputs"] = ["H", "I"]  # the output ternary's moving joints
+        else:  # a ground-pivoted bar as the output, as in the seed's type II
+            sc["output"] = {"link": "bar6", "pivot": "D"}
+            sc["outputs"] = ["G"]
         made[f"double-butterfly-{kind}"] = sc
     print()
     for name, sc in sorted(made.items()):
