@@ -112,7 +112,9 @@ def test_stephenson_group_has_six_complex_solutions():
             assert closure_error(sc, asm) < 1e-12
 
 
-@pytest.mark.parametrize(("name", "count"), [("double-butterfly-1", 16), ("double-butterfly-2", 18)])
+@pytest.mark.parametrize(
+    ("name", "count"), [("double-butterfly-1", 16), ("double-butterfly-2", 18)]
+)
 def test_double_butterfly_counts_and_closure(name, count):
     # Waldron and Sreenivasan: 18 complex assemblies with the input at a butterfly hinge,
     # 16 with it at a ternary-bar joint
@@ -131,7 +133,9 @@ def test_double_butterfly_counts_on_random_geometries(seed):
     rng = np.random.default_rng(seed)
     for name, count in (("double-butterfly-1", 16), ("double-butterfly-2", 18)):
         d = pk.scenes.data(name)
-        d["points"] = {k: (np.array(v) + rng.normal(0, 0.3, 2)).tolist() for k, v in d["points"].items()}
+        d["points"] = {
+            k: (np.array(v) + rng.normal(0, 0.3, 2)).tolist() for k, v in d["points"].items()
+        }
         try:
             sc = pk.Scene.from_dict(d)
         except ValueError:
@@ -231,7 +235,9 @@ def test_every_newton_solution_is_among_the_assemblies(name):
 # --- tracing and circuits ------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("name", ["double-butterfly-1", "double-butterfly-2", "stephenson3", "jansen"])
+@pytest.mark.parametrize(
+    "name", ["double-butterfly-1", "double-butterfly-2", "stephenson3", "jansen"]
+)
 def test_circuits_partition_the_assemblies_and_traces_close(name):
     sc = pk.scenes.load(name)
     theta = sc.input_angle

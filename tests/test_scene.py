@@ -210,9 +210,7 @@ def test_jansen_foot_against_a_chain_of_circle_intersections():
     sw = sc.sweep(outputs=["foot"])
     assert [s.kind for s in sc.plan(["foot"])] == ["dyad"] * len(sc.plan(["foot"]))
     n = len(sw.theta)
-    known = {
-        k: np.repeat(pts[k][None], n, 0) for k in d["links"][d["ground"]]
-    }  # ground points
+    known = {k: np.repeat(pts[k][None], n, 0) for k in d["links"][d["ground"]]}  # ground points
     piv = d["input"]["pivot"]
     crank = [p for p in d["links"][d["input"]["link"]] if p != piv][0]
     rc = dist(pts[piv], pts[crank])
@@ -369,14 +367,32 @@ def test_results_are_views_and_shapes():
     ("edit", "message"),
     [
         (lambda d: d["links"]["coupler"].append("Q"), "links.coupler: unknown point 'Q'"),
-        (lambda d: d["links"].__setitem__("coupler", ["A"]), "links.coupler: a link needs at least 2"),
-        (lambda d: d["points"].__setitem__("B", [2.0, 0.0]), "links.coupler: points 'A' and 'B' coincide"),
-        (lambda d: d["points"].__setitem__("B", [math.nan, 1.0]), "points.B: coordinates must be finite"),
+        (
+            lambda d: d["links"].__setitem__("coupler", ["A"]),
+            "links.coupler: a link needs at least 2",
+        ),
+        (
+            lambda d: d["points"].__setitem__("B", [2.0, 0.0]),
+            "links.coupler: points 'A' and 'B' coincide",
+        ),
+        (
+            lambda d: d["points"].__setitem__("B", [math.nan, 1.0]),
+            "points.B: coordinates must be finite",
+        ),
         (lambda d: d.__setitem__("ground", "frame"), "ground: 'frame' is not a link"),
         (lambda d: d["input"].__setitem__("link", "crankk"), "input.link: 'crankk' is not a link"),
-        (lambda d: d["input"].__setitem__("pivot", "A"), "input.pivot: 'A' is not on the ground link"),
-        (lambda d: d["links"].__setitem__("brace", ["A", "O4"]), "mobility: Gruebler's count gives M = 0"),
-        (lambda d: (d["links"].pop("rocker"), d.pop("output")), "mobility: Gruebler's count gives M = 2"),
+        (
+            lambda d: d["input"].__setitem__("pivot", "A"),
+            "input.pivot: 'A' is not on the ground link",
+        ),
+        (
+            lambda d: d["links"].__setitem__("brace", ["A", "O4"]),
+            "mobility: Gruebler's count gives M = 0",
+        ),
+        (
+            lambda d: (d["links"].pop("rocker"), d.pop("output")),
+            "mobility: Gruebler's count gives M = 2",
+        ),
         (lambda d: d.__setitem__("ouputs", ["P"]), "scene: unknown keys ['ouputs']"),
         (lambda d: d.__setitem__("outputs", ["Z"]), "outputs[0]: 'Z' is not a point or link"),
         (lambda d: d["points"].__setitem__("Z", [1.0, 1.0]), "points.Z: is on no link"),

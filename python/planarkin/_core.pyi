@@ -12,6 +12,8 @@ STATUSES: list[tuple[int, str, str]]
 __all__ = [
     "BUILD_PROFILE",
     "FourBar",
+    "Plan",
+    "Scene",
     "SINGULAR_THRESHOLD",
     "STATUSES",
     "__version__",
@@ -97,3 +99,55 @@ def sweep_batch(
 def closed_form_batch(
     links: npt.NDArray[np.float64], theta2: _F64, mode: str, threads: int | None
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+
+_I8: TypeAlias = npt.NDArray[np.int8]
+_Assemblies: TypeAlias = tuple[
+    list[tuple[_F64, str, float, list[float]]], list[list[int]], int, int
+]
+_Trace: TypeAlias = tuple[_F64, _F64, _F64, list[float], bool]
+
+@final
+class Scene:
+    def __new__(
+        cls,
+        points: list[tuple[str, tuple[float, float]]],
+        links: list[tuple[str, list[str]]],
+        ground: str,
+        input: tuple[str, str],
+        output: tuple[str, str] | None = None,
+    ) -> Scene: ...
+    @property
+    def input_angle(self) -> float: ...
+    @property
+    def gruebler(self) -> int: ...
+    @property
+    def joints(self) -> int: ...
+    def assemblies(self, theta: float, seed: int, runs: int) -> _Assemblies: ...
+    def trace(self, start: _F64 | None, step: float, max_points: int) -> _Trace: ...
+    def circuits(
+        self, theta: float, seed: int, runs: int, step: float, max_points: int
+    ) -> tuple[
+        _Assemblies,
+        list[tuple[list[int], list[float], float, tuple[float, float], _Trace]],
+    ]: ...
+    def plan(self, outputs: list[str] | None = None) -> Plan: ...
+
+@final
+class Plan:
+    @property
+    def steps(self) -> list[tuple[str, list[int], list[int]]]: ...
+    @property
+    def points(self) -> list[int]: ...
+    @property
+    def links(self) -> list[int]: ...
+    def sweep(
+        self,
+        theta: _F64,
+        tol: float,
+        max_iter: int,
+        max_step: float,
+        omega: float | None,
+    ) -> tuple[
+        _F64, _F64, _I8, npt.NDArray[np.uint32], _F64, _F64, _I8, _F64, _I8,
+        tuple[_F64, _F64] | None,
+    ]: ...  # fmt: skip

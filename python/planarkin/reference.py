@@ -4,6 +4,8 @@ benchmarks can show what Rust buys. It imports nothing from the extension.
 
 Operation order follows the kernel's, so on the same machine the two agree bit for bit.
 Functions take any object with ``r1, r2, r3, r4`` attributes (e.g. ``planarkin.FourBar``).
+Scenes: ``scene_sweep`` (from ``planarkin.reference_scene``) solves any scene by a different
+route from the kernel's plan: all joint equations at once by Newton from the drawn pose.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from ._types import (
     motion_args,
     sweep_args,
 )
+from .reference_scene import SceneReference, scene_sweep  # noqa: E402, F401
 
 _NAN = float("nan")
 

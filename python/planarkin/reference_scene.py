@@ -348,7 +348,7 @@ def scene_sweep(
             continue
         if not hist:
             # the drawn state, re-labelled t minus the wrapped shortest difference
-            hist = [(t - _wrap(t - sys_.theta0), *drawn)]
+            hist = [(t - _wrap(t - sys_.theta0), *drawn)]  # type: ignore[misc]
         x, s, k, h = _march(sys_, hist, t, tol, max_iter, max_step)
         nit[i] = k
         status[i] = s

@@ -49,8 +49,8 @@ def _pivoted(d: Mapping[str, Any], key: str) -> tuple[str, str]:
 def _xy(name: str, v: object) -> tuple[float, float]:
     ok = isinstance(v, (list, tuple, np.ndarray)) and len(v) == 2
     _entry(ok, f"points.{name}", f"must be a pair [x, y], got {v!r}")
-    x, y = v  # type: ignore[misc]
-    return as_float(f"points.{name}[0]", x), as_float(f"points.{name}[1]", y)
+    seq: Any = v
+    return as_float(f"points.{name}[0]", seq[0]), as_float(f"points.{name}[1]", seq[1])
 
 
 class Scene:
@@ -323,7 +323,9 @@ class Scene:
         items, counts, failed, continua = raw
         return Assemblies([self._assembly(*a) for a in items], theta, counts, failed, continua)
 
-    def assemblies(self, theta: float | None = None, *, seed: int = SEED, runs: int = 2) -> Assemblies:
+    def assemblies(
+        self, theta: float | None = None, *, seed: int = SEED, runs: int = 2
+    ) -> Assemblies:
         """Every real assembly at input angle ``theta`` (radians; default the drawn angle).
 
         Dyad steps contribute both sides; a group's solutions come from a total-degree
@@ -378,7 +380,11 @@ class Scene:
         and whether the input turns fully round on it."""
         t = self.input_angle if theta is None else as_float("theta", theta)
         raw_a, raw_c = self._core.circuits(
-            t, _seed(seed), _runs(runs), as_float("step", step), as_int_arg("max_points", max_points)
+            t,
+            _seed(seed),
+            _runs(runs),
+            as_float("step", step),
+            as_int_arg("max_points", max_points),
         )
         found = self._assemblies(t, raw_a)
         out = []

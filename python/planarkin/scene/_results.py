@@ -88,7 +88,9 @@ class SceneSweep:
     coords: np.ndarray = field(default_factory=lambda: np.empty((0, 0, 2)))
 
     @classmethod
-    def build(cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel):  # noqa: ANN001, ANN206, E501
+    def build(
+        cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel
+    ):  # noqa: ANN001, ANN206, E501
         names, links = plan.points, plan.links
         v = w = None
         if vel is not None:
@@ -165,7 +167,9 @@ class Assemblies(list):
     failed_paths: int
     continua: int
 
-    def __init__(self, items, theta: float, complex_counts, failed_paths: int, continua: int) -> None:  # noqa: ANN001, E501
+    def __init__(
+        self, items, theta: float, complex_counts, failed_paths: int, continua: int
+    ) -> None:  # noqa: ANN001, E501
         super().__init__(items)
         self.theta = theta
         self.complex_counts = complex_counts

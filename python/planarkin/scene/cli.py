@@ -10,6 +10,7 @@ import json
 import math
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -108,8 +109,11 @@ def _table(s: dict) -> str:
         ("scene", s["scene"] or "(unnamed)"),
         ("links / joints / points", f"{s['links']} / {s['joints']} / {s['points']}"),
         ("mobility (Gruebler)", s["mobility"]),
-        ("input", f"{s['input']['link']} at {s['input']['pivot']}, drawn at "
-                  f"{s['drawn_input_deg']:.3f} deg"),  # fmt: skip
+        (
+            "input",
+            f"{s['input']['link']} at {s['input']['pivot']}, drawn at "
+            f"{s['drawn_input_deg']:.3f} deg",
+        ),  # fmt: skip
         ("outputs", ", ".join(s["outputs"]) if isinstance(s["outputs"], list) else "all"),
     ]
     for i, st in enumerate(s["plan"]):
@@ -118,12 +122,20 @@ def _table(s: dict) -> str:
     rows += [
         ("converged", f"{s['converged']} of {s['angles']} input angles"),
         ("statuses", ", ".join(f"{k}={v}" for k, v in s["statuses"].items())),
-        ("Newton iterations", f"{s['nit_total']} total"
-         + (f", {s['nit_mean_converged']:.3f} per solved angle"
-            if s["nit_mean_converged"] is not None else "")),  # fmt: skip
+        (
+            "Newton iterations",
+            f"{s['nit_total']} total"
+            + (
+                f", {s['nit_mean_converged']:.3f} per solved angle"
+                if s["nit_mean_converged"] is not None
+                else ""
+            ),
+        ),  # fmt: skip
     ]
     if s["conditioning_min"] is not None:
-        rows.append(("|conditioning|", f"{s['conditioning_min']:.3g} .. {s['conditioning_max']:.3g}"))
+        rows.append(
+            ("|conditioning|", f"{s['conditioning_min']:.3g} .. {s['conditioning_max']:.3g}")
+        )
     if s["motion_stops_deg"]:
         stops = ", ".join(f"{e['deg']:.1f}" for e in s["motion_stops_deg"])
         rows.append(("motion stops near (deg)", stops))
@@ -254,7 +266,7 @@ def run_circuits(args: argparse.Namespace) -> int:
     found = sc.circuits(theta)
     wall = time.perf_counter() - t0
     counts = sc.assemblies(theta).complex_counts
-    rows = []
+    rows: list[dict[str, Any]] = []
     for k, c in enumerate(found):
         rows.append({
             "circuit": k + 1,

@@ -59,8 +59,10 @@ def draw_pose(ax: Axes, scene: Scene, xy: dict[str, np.ndarray], *, alpha: float
             poly = Polygon(c, closed=True, fc=color, ec=color, alpha=0.3 * alpha, zorder=2)
             ax.add_patch(poly)
             artists.append(poly)
-        (ln,) = ax.plot(*np.vstack([c, c[:1]] if len(pts) > 2 else c).T, "-", color=color,
-                        lw=2.5, alpha=alpha, zorder=3)  # fmt: skip
+        outline = np.vstack([c, c[:1]]) if len(pts) > 2 else c
+        (ln,) = ax.plot(
+            outline[:, 0], outline[:, 1], "-", color=color, lw=2.5, alpha=alpha, zorder=3
+        )
         artists.append(ln)
     joints = [p for p in xy if p in scene.joints and np.isfinite(xy[p]).all()]
     if joints:
@@ -125,7 +127,12 @@ def conditioning(scene: Scene, sweep: SceneSweep) -> Figure:
     ax = fig.subplots()
     t = _unwrap_deg(sweep.theta)
     for s, step in enumerate(sweep.plan):
-        ax.plot(t, sweep.step_det[:, s], lw=1.2, label=f"step {s + 1} ({step.kind}: {', '.join(step.points[:2])})")
+        ax.plot(
+            t,
+            sweep.step_det[:, s],
+            lw=1.2,
+            label=f"step {s + 1} ({step.kind}: {', '.join(step.points[:2])})",
+        )
     ax.plot(t, sweep.det, "k-", lw=2, label="whole solve (product)")
     ax.axhline(0, color="0.5", lw=0.8)
     bad = ~sweep.success
@@ -254,5 +261,7 @@ def circuits(scene: Scene, found: list, theta: float) -> Figure:
         sub.set_aspect("equal")
         sub.set_xticks([])
         sub.set_yticks([])
-        sub.set_title(f"circuit {circuit_of[id(a)] + 1}, {a.label}, det {a.det:+.2g}", fontsize="small")
+        sub.set_title(
+            f"circuit {circuit_of[id(a)] + 1}, {a.label}, det {a.det:+.2g}", fontsize="small"
+        )
     return fig

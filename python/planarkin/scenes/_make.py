@@ -8,11 +8,8 @@ mobility 1, its range swept by the reference) and the checks are printed.
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import math
-import sys
-import types
 from pathlib import Path
 
 import numpy as np
@@ -20,19 +17,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 PKG = HERE.parent
 
-try:  # the installed package (extension built)
-    from planarkin import reference_scene as ref
-except ImportError:  # a source checkout with no extension: load the pure-Python modules
-    _pkg = types.ModuleType("planarkin")
-    _pkg.__path__ = [str(PKG)]
-    sys.modules["planarkin"] = _pkg
-    _spec = importlib.util.spec_from_file_location(
-        "planarkin.reference_scene", PKG / "reference_scene.py"
-    )
-    ref = importlib.util.module_from_spec(_spec)
-    sys.modules["planarkin.reference_scene"] = ref
-    _spec.loader.exec_module(ref)
-
+from planarkin import reference_scene as ref  # noqa: E402
 from planarkin._types import Status  # noqa: E402
 
 DEG = math.pi / 180

@@ -311,6 +311,7 @@ impl Reduced {
     /// Homotopy residual (rows 0..N, plus the patch row N) into `work.rhs` and, when
     /// `jac`, its Jacobian in X into `work.jac`; with `dtau`, `rhs` gets H_tau instead
     /// (patch row 0).
+    #[allow(clippy::too_many_arguments)]
     fn eval(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, jac: bool, dtau: bool) {
         let n = self.n;
         let m = work.m;
@@ -423,8 +424,8 @@ impl Reduced {
                     if !d.is_finite() || d > 0.1 || (it > 0 && d > 0.25 * last) {
                         break 'step false;
                     }
-                    for k in 0..m {
-                        y[k] += work.rhs[k];
+                    for (yk, r) in y.iter_mut().zip(&work.rhs).take(m) {
+                        *yk += r;
                     }
                     last = d;
                     if d < 1e-10 {
@@ -976,7 +977,7 @@ mod tests {
             let sol = solve(&a, &b);
             assert_eq!(sol.complex.len(), 6, "seed {seed}: {:?}", sol.per_run_found);
             assert!(contains(&sol.real, &[0.0; 4], 1e-12), "drawn pose missing");
-            assert!(sol.real.len() % 2 == 0);
+            assert!(sol.real.len().is_multiple_of(2));
             check_real::<4>(&a, &b, &sol, 2000, seed);
         }
     }
@@ -1138,13 +1139,9 @@ mod tests {
     /// `spread`: joint coordinates scaled per joint by 10^U(-spread, spread) (links of
     /// disparate lengths: harder). Prints the statistics; asserts that the drawn pose is
     /// found every time.
-    fn stats(
-        name: &str,
-        build: fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>),
-        expected: usize,
-        spread: f64,
-        seed: u64,
-    ) {
+    type Build = fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>);
+
+    fn stats(name: &str, build: Build, expected: usize, spread: f64, seed: u64) {
         let count = 1000;
         let mut rng = SplitMix64(seed);
         let (mut fail_runs, mut short_runs, mut short_merged) = ([0usize; 2], [0usize; 2], 0usize);

@@ -378,16 +378,14 @@ fn solve_n<const N: usize>(
     let mut dphi = [f64::NAN; MAX];
     let det = hadamard_ratio(&out.jacobian);
     if out.status == Status::Converged {
-        for k in 0..N {
-            phi[k] = wrap_angle(out.x[k]);
+        for (p, x) in phi.iter_mut().zip(out.x.iter()) {
+            *p = wrap_angle(*x);
         }
         if let Some(dd) = ddelta {
             // J dphi = -dF/dtheta, with dF/dtheta = v_plus - v_minus
             let rhs = SVector::<f64, N>::from_fn(|r, _| -dd[r / 2][r % 2]);
             if let Some(t) = newton::eliminate(out.jacobian, rhs, &mut 1.0) {
-                for k in 0..N {
-                    dphi[k] = t[k];
-                }
+                dphi[..N].copy_from_slice(t.as_slice());
             }
         }
     }

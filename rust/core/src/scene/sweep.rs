@@ -103,13 +103,13 @@ impl GroupState {
         }
         if let Some(t1) = self.tangent {
             let curv = self.previous.filter(|t0| t0.theta != t1.theta);
-            for k in 0..n {
+            for (k, xk) in x.iter_mut().enumerate().take(n) {
                 let mut dx = t1.dphi[k] * h;
                 if let Some(t0) = curv {
                     dx += 0.5 * (t1.dphi[k] - t0.dphi[k]) / (t1.theta - t0.theta) * h * h;
                 }
                 if dx.is_finite() {
-                    x[k] += dx;
+                    *xk += dx;
                 }
             }
         }

@@ -240,7 +240,7 @@ fn double_butterfly_assemblies_close_their_loops() {
     let plan = sc.plan(None).unwrap();
     let a = plan.assemblies(sc.input_angle() + 0.1, &crate::homotopy::HomotopyOptions::default()).unwrap();
     assert_eq!(a.complex_counts, vec![vec![6]]);
-    assert!(!a.list.is_empty() && a.list.len() <= 6 && a.list.len() % 2 == 0);
+    assert!(!a.list.is_empty() && a.list.len() <= 6 && a.list.len().is_multiple_of(2));
     let d = |a: Xy, b: Xy| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
     let sp = stephenson();
     let drawn = |name: &str| sp.points.iter().find(|p| p.0 == name).unwrap().1;

@@ -372,7 +372,7 @@ impl<'s> Tracer<'s> {
         let mut e = DVector::zeros(self.n());
         e[self.input] = 1.0;
         let mut z = y.clone();
-        z[self.input] += g(&y) * -1.0;
+        z[self.input] -= g(&y);
         let (z, _) = self.correct(&z, &e, delta)?;
         Some(self.positions(z.as_slice()))
     }
