@@ -6,7 +6,9 @@
 //! outside the tree closes a loop. A point reached through links j_1 .. j_m from anchor a
 //! sits at a + sum R(phi_j) v_j, so every loop-closure equation has the form
 //!
-//!     F_c = (a_plus - a_minus) + sum_j R(phi_j) u_cj = 0,
+//! ```text
+//! F_c = (a_plus - a_minus) + sum_j R(phi_j) u_cj = 0,
+//! ```
 //!
 //! linear in (cos phi_j, sin phi_j): the same coefficients feed Newton here and the
 //! all-solutions homotopy. dF_c/dphi_j = perp(R(phi_j) u_cj); at fixed phi,
