@@ -233,6 +233,9 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as e:
         print(f"planarkin: error: {e}", file=sys.stderr)
         return 1
+    except MemoryError as e:
+        print(f"planarkin: error: out of memory: {e}", file=sys.stderr)
+        return 1
 
 
 # --- shared ------------------------------------------------------------------------------
@@ -244,13 +247,23 @@ def _finite(name: str, value: float, *, positive: bool = False) -> float:
     return value
 
 
+#: Most crank angles a command sweeps: every one becomes a CSV row and plotted points.
+MAX_POINTS = 10_000_000
+
+
 def crank_angles(step_deg: float) -> np.ndarray:
     """0..360 deg in ``step_deg`` steps (360 included when the step divides it), radians.
-    With the default 1 deg step this is exactly ``planarkin.DEFAULT_THETA2``."""
+    With the default 1 deg step this is exactly ``planarkin.DEFAULT_THETA2``. At most
+    :data:`MAX_POINTS` angles (ValueError naming ``--step`` beyond)."""
     step = _finite("--step", step_deg, positive=True)
     if step > 360:
         raise ValueError(f"--step must be <= 360 deg, got {step}")
     n = math.floor(360.0 / step + 1e-9) + 1
+    if n > MAX_POINTS:
+        raise ValueError(
+            f"--step {step:g} deg gives {n} crank angles; at most {MAX_POINTS} "
+            f"(--step >= {360 / (MAX_POINTS - 1):.3g})"
+        )
     return np.arange(n) * (step * math.tau / 360)
 
 

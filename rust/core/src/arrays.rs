@@ -26,8 +26,28 @@ pub fn closed_form_into(
     theta4: &mut [f64],
     status: &mut [i8],
 ) {
-    let trig: Vec<(f64, f64)> = theta2.iter().map(|t| t.sin_cos()).collect();
-    closed_form_trig(fb, theta2, &trig, mode, singular, theta3, theta4, Some(status));
+    for (i, &t2) in theta2.iter().enumerate() {
+        let (s2, c2) = t2.sin_cos();
+        let st;
+        (theta3[i], theta4[i], st) = closed_point(fb, t2, s2, c2, mode, singular);
+        status[i] = st.code();
+    }
+}
+
+/// One closed-form point from the crank angle and its sin and cos.
+#[inline]
+fn closed_point(fb: &FourBar, t2: f64, s2: f64, c2: f64, mode: Mode, singular: f64) -> (f64, f64, Status) {
+    if !t2.is_finite() {
+        return (f64::NAN, f64::NAN, Status::NonFinite);
+    }
+    match fb.closed_form_cs(c2, s2, mode) {
+        Assembly::Closed { theta3, theta4, sin34 } => {
+            let st = if fb.conditioning(sin34) < singular { Status::Singular } else { Status::Converged };
+            (theta3, theta4, st)
+        }
+        Assembly::NotAssemblable => (f64::NAN, f64::NAN, Status::NotAssemblable),
+        Assembly::Indeterminate => (f64::NAN, f64::NAN, Status::Singular),
+    }
 }
 
 /// [`closed_form_into`] from precomputed (sin, cos) of the crank angles (shared across a
@@ -44,18 +64,7 @@ pub(crate) fn closed_form_trig(
     mut status: Option<&mut [i8]>,
 ) {
     for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
-        let (t3, t4, st) = if !t2.is_finite() {
-            (f64::NAN, f64::NAN, Status::NonFinite)
-        } else {
-            match fb.closed_form_cs(c2, s2, mode) {
-                Assembly::Closed { theta3, theta4, sin34 } => {
-                    let st = if fb.conditioning(sin34) < singular { Status::Singular } else { Status::Converged };
-                    (theta3, theta4, st)
-                }
-                Assembly::NotAssemblable => (f64::NAN, f64::NAN, Status::NotAssemblable),
-                Assembly::Indeterminate => (f64::NAN, f64::NAN, Status::Singular),
-            }
-        };
+        let (t3, t4, st) = closed_point(fb, t2, s2, c2, mode, singular);
         theta3[i] = t3;
         theta4[i] = t4;
         if let Some(s) = status.as_deref_mut() {
