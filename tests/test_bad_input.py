@@ -296,7 +296,7 @@ def test_alpha2_without_omega2_reference(fb):
         ref.sweep(fb, alpha2=1.0)
 
 
-@pytest.mark.parametrize("bad", ["x", 1j, [1.0, 2.0]], ids=repr)
+@pytest.mark.parametrize("bad", ["x", 1j, [1.0, 2.0], math.nan, math.inf, -math.inf], ids=repr)
 def test_bad_omega2_alpha2(fb, bad):
     with raises_named("omega2"):
         fb.sweep(omega2=bad)
@@ -333,3 +333,26 @@ def test_velocity_arrays_not_real(fb, bad):
         fb.velocity(0.1, bad, 0.2, 1.0)
     with raises_named("omega2"):
         fb.velocity(0.1, 0.2, 0.3, bad)
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf], ids=repr)
+def test_non_finite_crank_rates_at_given_positions(fb, bad):
+    """NaN omega2 used to give NaN rates on CONVERGED points: ValueError, as for lengths."""
+    with raises_named("omega2"):
+        fb.velocity(0.3, 1.2, 2.0, [1.0, bad])
+    with raises_named("omega2"):
+        fb.acceleration(0.3, 1.2, 2.0, bad, 0.0)
+    with raises_named("alpha2"):
+        fb.acceleration(0.3, 1.2, 2.0, 1.0, bad)
+
+
+def test_coupler_curve_needs_a_sweep_of_this_linkage(fb):
+    """Another linkage's sweep was used silently; a non-Sweep raised AttributeError."""
+    other = pk.FourBar(6, 2, 5, 4.5).sweep()
+    with raises_named("sweep"):
+        fb.coupler_curve(other, 3.0, 0.5)
+    for bad in (np.zeros(3), None, (1.0, 2.0)):
+        with raises_named("sweep"):
+            fb.coupler_curve(bad, 3.0, 0.5)
+    x, y = fb.coupler_curve(fb.sweep(), 3.0, 0.5)  # its own sweep: accepted
+    assert x.shape == y.shape == (361,)

@@ -71,6 +71,15 @@ def wrap(a: float) -> float:
     return math.pi if r <= -math.pi else r
 
 
+#: As the kernel: sides that close within this many ulp of the longest link are flat.
+FLAT_ULPS = 8.0
+EPS = 2.220446049250313e-16
+
+
+def _flat(q: float, slack: float) -> float:
+    return 0.0 if -slack <= q < 0.0 else q
+
+
 def _closed(r: tuple, c2: float, s2: float, sign: float):
     """(theta3, theta4, sin34) or the strings 'not-assemblable' / 'indeterminate'.
 
@@ -86,9 +95,11 @@ def _closed(r: tuple, c2: float, s2: float, sign: float):
     d = math.sqrt(d2)
     if d == 0.0:
         return "indeterminate" if r3 == r4 else "not-assemblable"
-    q1 = d + r3 - r4
-    q2 = d - r3 + r4
-    q3 = r3 + r4 - d
+    # a triangle that closes within a few ulp of the longest link is flat (a dead point)
+    slack = FLAT_ULPS * EPS * max(r)
+    q1 = _flat(d + r3 - r4, slack)
+    q2 = _flat(d - r3 + r4, slack)
+    q3 = _flat(r3 + r4 - d, slack)
     if not (q1 >= 0.0 and q2 >= 0.0 and q3 >= 0.0):
         return "not-assemblable"
     two_dh = math.sqrt((r3 + r4 + d) * q1 * q2 * q3)

@@ -131,6 +131,10 @@ pub struct FourBar {
     cond_scale: f64,
 }
 
+/// A triangle A-B-O4 whose sides close within this many ulp of the longest link is
+/// taken as flat (the rounding of |A O4| and of the sums of lengths).
+pub const FLAT_ULPS: f64 = 8.0;
+
 /// Why a length is refused when the unit problem cannot hold it.
 const TOO_SHORT: &str = "is too short relative to the longest link to be represented (ratio below ~1e-308)";
 
@@ -248,9 +252,14 @@ impl FourBar {
         if d == 0.0 {
             return if r3 == r4 { Geometry::Indeterminate } else { Geometry::NotAssemblable };
         }
-        let q1 = d + r3 - r4;
-        let q2 = d - r3 + r4;
-        let q3 = r3 + r4 - d;
+        // d and the sums are rounded by a few ulp of the longest link: a triangle that
+        // closes within that is flat (a dead point: SINGULAR), not one that cannot close
+        // (e.g. the fold of the change point (1.8, 0.6, 1.8, 0.6) at theta2 = 0)
+        let slack = FLAT_ULPS * f64::EPSILON * self.longest;
+        let flat = |q: f64| if q < 0.0 && q >= -slack { 0.0 } else { q };
+        let q1 = flat(d + r3 - r4);
+        let q2 = flat(d - r3 + r4);
+        let q3 = flat(r3 + r4 - d);
         if !(q1 >= 0.0 && q2 >= 0.0 && q3 >= 0.0) {
             return Geometry::NotAssemblable;
         }
