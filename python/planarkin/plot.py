@@ -12,6 +12,7 @@ from __future__ import annotations
 import html
 import math
 import re
+import textwrap
 from collections.abc import Sequence
 from typing import Any
 
@@ -158,6 +159,32 @@ def _mark_status(ax: Axes, sweep: Sweep, limits: object) -> None:
             ax.axvline(x, color="tab:red", ls="--", lw=1.0, label=label if n == 0 else None)
 
 
+def _fit_titles(fig: Figure) -> Figure:
+    """Wraps every title (of the figure and of its axes) onto more lines wherever it
+    would leave the canvas; constrained layout then makes room for the lines. Text and
+    canvas both scale with the resolution, so what fits at one dpi fits at any."""
+    titles = [fig._suptitle, *(ax.title for ax in fig.axes)]
+    for _ in range(4):
+        fig.draw_without_rendering()  # lays out (constrained layout) without drawing
+        page = fig.bbox
+        changed = False
+        for t in titles:
+            if t is None or not t.get_text():
+                continue
+            e = t.get_window_extent()
+            centre = 0.5 * (e.x0 + e.x1)
+            room = 0.96 * 2.0 * min(centre - page.x0, page.x1 - centre)
+            if e.width <= room:
+                continue
+            lines = t.get_text().split("\n")
+            chars = max(12, int(max(map(len, lines)) * room / e.width))
+            t.set_text("\n".join(textwrap.fill(line, chars) for line in lines))
+            changed = True
+        if not changed:
+            break
+    return fig
+
+
 def _figure(nrows: int = 1, *, figsize: tuple[float, float] = (8.0, 5.0), sharex: bool = True):
     fig = Figure(figsize=figsize, layout="constrained")
     axes = fig.subplots(nrows, 1, sharex=sharex, squeeze=False)[:, 0]
@@ -191,7 +218,7 @@ def position(sweep: Sweep, *, limits: object = None) -> Figure:
         ax.legend(loc="best", fontsize="small")
     a4.set_xlabel("crank angle θ2 [deg]")
     fig.suptitle(f"Position analysis: {_title(sweep)}")
-    return fig
+    return _fit_titles(fig)
 
 
 def positions_combined(sweep: Sweep, *, limits: object = None) -> Figure:
@@ -206,7 +233,7 @@ def positions_combined(sweep: Sweep, *, limits: object = None) -> Figure:
     ax.set_ylabel("angle [deg]")
     ax.legend(loc="best", fontsize="small")
     ax.set_title(f"Link angles: {_title(sweep)}")
-    return fig
+    return _fit_titles(fig)
 
 
 def velocity(sweep: Sweep, *, limits: object = None) -> Figure:
@@ -233,12 +260,12 @@ def _rates(sweep, y3, y4, sym, unit, what, limits) -> Figure:
     ax.set_ylabel(f"{what.lower()} [{unit}]")
     ax.legend(loc="best", fontsize="small")
     crank = ""
-    if sweep.omega2 is not None:
-        crank = f", ω2 = {sweep.omega2:.4g} rad/s ({sweep.omega2 * 60 / math.tau:.4g} rpm)"
+    if sweep.omega2 is not None:  # the crank's motion on a line of its own
+        crank = f"\nω2 = {sweep.omega2:.4g} rad/s ({sweep.omega2 * 60 / math.tau:.4g} rpm)"
         if sym == "α" and sweep.alpha2 is not None:
             crank += f", α2 = {sweep.alpha2:.4g} rad/s²"
     ax.set_title(f"{what}: {_title(sweep)}{crank}")
-    return fig
+    return _fit_titles(fig)
 
 
 def transmission(sweep: Sweep, *, limits: object = None, guideline_deg: float = 40.0) -> Figure:
@@ -267,7 +294,7 @@ def transmission(sweep: Sweep, *, limits: object = None, guideline_deg: float = 
         _deg_axis(ax, sweep)
         ax.legend(loc="best", fontsize="small")
     fig.suptitle(f"Transmission angle and branch: {_title(sweep)}")
-    return fig
+    return _fit_titles(fig)
 
 
 def convergence(
@@ -303,7 +330,7 @@ def convergence(
     if len(e) == 0 or not np.isfinite(shown).any():
         ax.text(0.5, 0.5, solution.status.message, transform=ax.transAxes, ha="center")
     ax.legend(loc="best", fontsize="small")
-    return fig
+    return _fit_titles(fig)
 
 
 # --- geometry: coupler curve, linkage drawing, animation ---------------------------------
@@ -370,7 +397,7 @@ def coupler_curve(sweep: Sweep, p: float, delta: float, *, limits: object = None
     if ok.size:
         ax.legend(loc="best", fontsize="small")
     _frame_limits(ax, pt, ground)
-    return fig
+    return _fit_titles(fig)
 
 
 def _pose_indices(sweep: Sweep, n: int) -> np.ndarray:
@@ -422,7 +449,7 @@ def linkage(sweep: Sweep, p: float, delta: float, *, poses: int = 6) -> Figure:
     ax.grid(True, alpha=0.35)
     fig.legend(loc="outside right center", fontsize="small")
     _frame_limits(ax, a, b, pt, ground)
-    return fig
+    return _fit_titles(fig)
 
 
 def animation_frames(sweep: Sweep, frames: int) -> np.ndarray:
