@@ -10,6 +10,7 @@ from unittest import mock
 import numpy as np
 import planarkin as pk
 import pytest
+from conftest import angdiff, mp_solve, mp_toggles
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.text import Text
@@ -195,3 +196,48 @@ def test_figures_use_constrained_layout():
     _, figures = cli_figures(SEED)
     for name, draw in figures.items():
         assert draw().get_layout_engine().__class__.__name__ == "ConstrainedLayoutEngine", name
+
+
+# --- animating a crank that cannot turn fully (item 8) ---------------------------------------
+
+
+def test_a_crank_that_cannot_turn_fully_rocks_between_its_toggles():
+    """(4, 3, 1.5, 2): the crank stops at +-57.9 deg. The animation used to drive it
+    through its unreachable span (68% of the frames showed the crank alone); now it rocks
+    between the toggles, on the open mode one way and, having passed the toggle, on the
+    crossed mode back, every frame a whole linkage moving continuously. Checked against
+    the mpmath toggle angles and mpmath positions."""
+    r = (4.0, 3.0, 1.5, 2.0)
+    fb = pk.FourBar(*r)
+    sweep = fb.sweep()
+    path = plot.rocking(fb, fb.limits(), sweep)
+    assert [s.mode for s in path] == ["open", "crossed"]
+    (tog,) = (float(t) for t in mp_toggles(r))
+    t2 = np.concatenate([s.theta2 for s in path])
+    t4 = np.concatenate([s.theta4 for s in path])
+    assert np.all(np.abs(t2) < tog) and np.abs(t2).max() > tog - 1e-5  # up to the toggles
+    assert t2[0] < 0 < t2[len(path[0])]  # one way, then back
+    assert (np.concatenate([s.status for s in path]) == pk.Status.CONVERGED).all()
+    for k in range(0, len(t2), 37):
+        mode = path[0].mode if k < len(path[0]) else path[1].mode
+        assert angdiff(t4[k], mp_solve(r, t2[k], mode).theta4) < 1e-9
+    # B moves continuously, through both toggles and round the loop
+    bx, by = r[0] + r[3] * np.cos(t4), r[3] * np.sin(t4)
+    steps = np.hypot(np.diff(np.append(bx, bx[0])), np.diff(np.append(by, by[0])))
+    assert steps.max() < 0.1 * r[3]
+    # every frame drawn shows the whole linkage
+    anim = plot.animation(path, 1.0, 0.3, frames=72)
+    frames = plot.animation_frames(path, 72)
+    assert len(frames) == 72
+    ax = anim._fig.axes[0]
+    for i in frames:
+        anim._func(int(i))
+        drawn = [ln for ln in ax.get_lines() if ln.get_color() == "tab:blue"]
+        assert all(len(ln.get_xdata()) == 3 for ln in drawn), i
+    anim._draw_was_started = True  # drawn by hand: no "deleted without rendering" warning
+
+
+def test_a_crank_that_turns_fully_plays_its_sweep():
+    fb = pk.FourBar(*SEED)
+    sweep = fb.sweep()
+    assert plot.rocking(fb, fb.limits(), sweep) == [sweep]

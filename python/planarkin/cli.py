@@ -704,7 +704,9 @@ def run_animate(args: argparse.Namespace) -> int:
         theta2, mode=args.mode, tol=args.tol, max_iter=args.max_iter, predictor=args.predictor
     )
     p, delta = args.coupler[0], math.radians(args.coupler[1])
-    anim = plot.animation(sweep, p, delta, frames=args.frames, fps=args.fps, dpi=args.dpi)
+    # a crank that cannot turn fully rocks between its toggles (and the mode switches)
+    path = plot.rocking(fb, fb.limits(args.mode), sweep, points=len(theta2) // 2 + 1)
+    anim = plot.animation(path, p, delta, frames=args.frames, fps=args.fps, dpi=args.dpi)
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)
     anim.save(str(out / ANIMATION_GIF), writer=PillowWriter(fps=args.fps))
@@ -713,7 +715,8 @@ def run_animate(args: argparse.Namespace) -> int:
         anim, fps=args.fps, title=f"planarkin four-bar ({r}), {args.mode} mode"
     )
     (out / ANIMATION_HTML).write_text(page, encoding="utf-8")
-    n = len(plot.animation_frames(sweep, args.frames))
-    print(f"planarkin animate: four-bar ({r}), {args.mode} mode, {n} frames")
+    n = len(plot.animation_frames(path, args.frames))
+    how = "" if len(path) == 1 else ", the crank rocking between its toggles"
+    print(f"planarkin animate: four-bar ({r}), {args.mode} mode{how}, {n} frames")
     print(f"  wrote {out / ANIMATION_GIF} and {out / ANIMATION_HTML}")
     return 0

@@ -38,6 +38,7 @@ __all__ = [
     "linkage",
     "position",
     "positions_combined",
+    "rocking",
     "transmission",
     "unreachable_spans",
     "unwrap_deg",
@@ -452,31 +453,84 @@ def linkage(sweep: Sweep, p: float, delta: float, *, poses: int = 6) -> Figure:
     return _fit_titles(fig)
 
 
-def animation_frames(sweep: Sweep, frames: int) -> np.ndarray:
-    """Indices of the sweep points that :func:`animation` shows: at most ``frames``, evenly
-    spaced; a sweep that closes the circle does not repeat its first pose."""
-    t2 = np.asarray(sweep.theta2)
+def rocking(fb: FourBar, limits: Any, sweep: Sweep, *, points: int = 181) -> list[Sweep]:
+    """The motion a linkage whose crank cannot turn fully can make, as the sweeps to play
+    one after another: the crank rocks between the two toggles bounding an assemblable
+    interval (the one holding the first solved point of ``sweep``, else the first), on
+    ``sweep.mode`` one way, then, the crank having reversed at the toggle, back on the
+    other mode (the assembly passes through the toggle onto the other mode), and so on.
+    ``points`` crank angles each way, bunched towards the toggles and 1e-6 rad inside them
+    (at a toggle itself the position is a dead point: SINGULAR). A crank that turns
+    fully: ``[sweep]``."""
+    if limits.full_rotation or not limits.intervals:
+        return [sweep]
+    ok = np.flatnonzero(np.asarray(sweep.status) == Status.CONVERGED)
+    a, b = limits.intervals[0]
+    if ok.size:
+        t0 = float(sweep.theta2[ok[0]])
+        for lo, hi in limits.intervals:
+            if lo + (t0 - lo) % math.tau <= hi:
+                a, b = lo, hi
+                break
+    # crank angles bunched towards the toggles (cosine spacing), where the rest of the
+    # linkage moves fastest (as the square root of the distance to the toggle): the
+    # pins then move by about equal steps
+    inset = min(1e-6, 0.25 * (b - a))
+    u = np.linspace(0.0, math.pi, points)
+    there = np.clip(a + (b - a) * 0.5 * (1.0 - np.cos(u)), a + inset, b - inset)
+    other = "crossed" if sweep.mode == "open" else "open"
+    return [
+        fb.sweep(there, mode=sweep.mode, method="closed-form"),
+        fb.sweep(there[::-1], mode=other, method="closed-form"),
+    ]
+
+
+def _parts(sweep: Sweep | Sequence[Sweep]) -> list[Sweep]:
+    return [sweep] if isinstance(sweep, Sweep) else list(sweep)
+
+
+def animation_frames(sweep: Sweep | Sequence[Sweep], frames: int) -> np.ndarray:
+    """Indices, into the sweeps played one after another (their points concatenated), of
+    the points that :func:`animation` shows: at most ``frames``, evenly spaced; a single
+    sweep that closes the circle does not repeat its first pose."""
+    parts = _parts(sweep)
+    t2 = np.concatenate([np.asarray(p.theta2) for p in parts]) if parts else np.empty(0)
     n = len(t2)
-    closes = n > 1 and math.isclose(abs(t2[-1] - t2[0]), math.tau)
+    closes = len(parts) == 1 and n > 1 and math.isclose(abs(t2[-1] - t2[0]), math.tau)
     idx = np.unique(np.linspace(0, n - 1 if closes else n, frames, endpoint=False).astype(int))
     return idx[idx < n]
 
 
 def animation(
-    sweep: Sweep, p: float, delta: float, *, frames: int = 72, fps: float = 12, dpi: float = 80
+    sweep: Sweep | Sequence[Sweep],
+    p: float,
+    delta: float,
+    *,
+    frames: int = 72,
+    fps: float = 12,
+    dpi: float = 80,
 ) -> FuncAnimation:
-    """The linkage moving through the sweep with its coupler curve traced. Save it with
-    ``anim.save("x.gif", writer=PillowWriter(fps))`` or :func:`animation_html`."""
+    """The linkage moving through the sweep with its coupler curve traced; several sweeps
+    (e.g. :func:`rocking`) are played one after another, each frame labelled with its
+    assembly mode. Save it with ``anim.save("x.gif", writer=PillowWriter(fps))`` or
+    :func:`animation_html`."""
     if frames < 1:
         raise ValueError(f"frames must be >= 1, got {frames}")
-    a, b, pt, ground = _joints(sweep, p, delta)
-    t2 = np.asarray(sweep.theta2)
-    idx = animation_frames(sweep, frames)
+    parts = _parts(sweep)
+    if not parts:
+        raise ValueError("sweep: nothing to animate")
+    joints = [_joints(s, p, delta) for s in parts]
+    a, b, pt = (np.concatenate([j[k] for j in joints]) for k in range(3))
+    ground = joints[0][3]
+    t2 = np.concatenate([np.asarray(s.theta2) for s in parts])
+    status = np.concatenate([np.asarray(s.status) for s in parts])
+    modes = [s.mode for s in parts for _ in range(len(s.theta2))]
+    idx = animation_frames(parts, frames)
 
     fig = Figure(figsize=(6.0, 4.8), dpi=dpi, layout="constrained")
     ax = fig.subplots()
     ax.plot(pt[:, 0], pt[:, 1], color="0.8", lw=1.0, zorder=1)
-    _ground(ax, ground, 0.03 * max(sweep.lengths))
+    _ground(ax, ground, 0.03 * max(parts[0].lengths))
     (trace,) = ax.plot([], [], color=_CP, lw=1.8, zorder=2)
     coupler = Polygon(np.zeros((3, 2)), closed=True, fc="tab:blue", alpha=0.25, zorder=3)
     ax.add_patch(coupler)
@@ -484,12 +538,16 @@ def animation(
     (links,) = ax.plot([], [], "-o", color="tab:blue", lw=3, ms=5, zorder=4)
     (point,) = ax.plot([], [], "*", color=_CP, ms=12, zorder=5)
     label = ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", family="monospace")
-    ax.set_title(f"{_title(sweep)}, p = {p:g}, δ = {math.degrees(delta):g}°", fontsize="medium")
+    how = _title(parts[0]) if len(parts) == 1 else _title(parts[0]).rsplit(",", 1)[0]
+    if len(parts) > 1:
+        how += ", crank rocking between its toggles"
+    ax.set_title(f"{how}, p = {p:g}, δ = {math.degrees(delta):g}°", fontsize="medium")
     ax.grid(True, alpha=0.3)
     _frame_limits(ax, a, b, pt, ground)
+    _fit_titles(fig)
 
     def draw(i: int):
-        ok = sweep.status[i] == Status.CONVERGED
+        ok = status[i] == Status.CONVERGED
         crank.set_data([0.0, a[i, 0]], [0.0, a[i, 1]])
         seen = pt[: i + 1]
         trace.set_data(seen[:, 0], seen[:, 1])
@@ -501,8 +559,9 @@ def animation(
             links.set_data([], [])
             point.set_data([], [])
             coupler.set_xy(np.full((3, 2), np.nan))
-        state = "" if ok else "  " + Status(int(sweep.status[i])).name.lower().replace("_", " ")
-        label.set_text(f"θ2 = {math.degrees(t2[i]):6.1f}°{state}")
+        state = "" if ok else "  " + Status(int(status[i])).name.lower().replace("_", " ")
+        mode = f"  {modes[i]}" if len(parts) > 1 else ""
+        label.set_text(f"θ2 = {math.degrees(t2[i]):6.1f}°{mode}{state}")
         return trace, coupler, crank, links, point, label
 
     return FuncAnimation(fig, draw, frames=idx.tolist(), interval=1000.0 / fps, blit=False)
