@@ -567,23 +567,37 @@ def animation(
     return FuncAnimation(fig, draw, frames=idx.tolist(), interval=1000.0 / fps, blit=False)
 
 
-_ICONS = {
-    "fa-minus": "−",
-    "fa-fast-backward": "⏮",
-    "fa-step-backward": "⏴|",
-    "fa-play fa-flip-horizontal": "◀",
-    "fa-pause": "⏸",
-    "fa-play": "▶",
-    "fa-step-forward": "|⏵",
-    "fa-fast-forward": "⏭",
-    "fa-plus": "+",
-}
+def _svg(*shapes: str) -> str:
+    """A 16 x 16 inline SVG icon in the button's text colour: no font needed."""
+    return (
+        '<svg viewBox="0 0 16 16" width="16" height="16" fill="currentColor" '
+        'aria-hidden="true" style="vertical-align:middle">' + "".join(shapes) + "</svg>"
+    )
+
+
+_BAR = '<rect x="{}" y="3" width="2.5" height="10"/>'
+_LEFT = '<polygon points="{},3 {},13 {},8"/>'  # a triangle pointing left
+_ICONS = {  # matplotlib's Font Awesome classes -> inline SVG
+    "fa-minus": _svg('<rect x="3" y="7" width="10" height="2.5"/>'),
+    "fa-fast-backward": _svg(_BAR.format(1.5), _LEFT.format(9, 9, 4), _LEFT.format(14, 14, 9)),
+    "fa-step-backward": _svg(_BAR.format(3), _LEFT.format(13, 13, 6)),
+    "fa-play fa-flip-horizontal": _svg(_LEFT.format(12.5, 12.5, 3.5)),
+    "fa-pause": _svg(_BAR.format(4), _BAR.format(9.5)),
+    "fa-play": _svg('<polygon points="3.5,3 3.5,13 12.5,8"/>'),
+    "fa-step-forward": _svg('<polygon points="3,3 3,13 10,8"/>', _BAR.format(10.5)),
+    "fa-fast-forward": _svg(
+        '<polygon points="2,3 2,13 7,8"/>', '<polygon points="7,3 7,13 12,8"/>', _BAR.format(12)
+    ),
+    "fa-plus": _svg('<rect x="3" y="6.75" width="10" height="2.5"/>',
+                    '<rect x="6.75" y="3" width="2.5" height="10"/>'),
+}  # fmt: skip
 
 
 def animation_html(anim: FuncAnimation, *, fps: float = 12, title: str = "planarkin") -> str:
     """A self-contained HTML page (frames embedded as base64 PNG, play controls in plain
-    JavaScript) for an animation. matplotlib's player loads its button icons from a web
-    font; they are replaced by Unicode glyphs, so the page needs no network."""
+    JavaScript) for an animation, playing (looped) as soon as it loads. matplotlib's player
+    loads its button icons from a web font; they are drawn as inline SVG instead, so the
+    page needs no network and no particular font."""
     import tempfile
     from pathlib import Path
 
@@ -601,12 +615,21 @@ def animation_html(anim: FuncAnimation, *, fps: float = 12, title: str = "planar
         body = path.read_text(encoding="utf-8")
     body = re.sub(r"<link\b[^>]*\bhref=[\"']https?://[^>]*>", "", body)
     body = re.sub(
-        r'<i class="fa ([^"]*)"></i>', lambda m: _ICONS.get(m.group(1).strip(), "•"), body
+        r'<i class="fa ([^"]*)"></i>',
+        lambda m: _ICONS.get(m.group(1).strip(), _svg('<circle cx="8" cy="8" r="3"/>')),
+        body,
+    )
+    # start playing once matplotlib's player object exists (it is made in a timeout)
+    names = sorted(set(re.findall(r"\b(anim[0-9a-f]{32})\s*=\s*new Animation", body)))
+    autoplay = "".join(
+        f'(function start() {{ var a = window["{n}"]; '
+        "if (a) { a.play_animation(); } else { setTimeout(start, 10); } })();"
+        for n in names
     )
     title = html.escape(title)
     return (
         '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
         f"<title>{title}</title>\n<style>body{{font-family:sans-serif;margin:1.5em}}"
         ".anim-buttons button{min-width:2.6em;font-size:1em}</style>\n</head>\n<body>\n"
-        f"<h3>{title}</h3>\n{body}\n</body>\n</html>\n"
+        f"<h3>{title}</h3>\n{body}\n<script>{autoplay}</script>\n</body>\n</html>\n"
     )
