@@ -164,7 +164,8 @@ def _fit_titles(fig: Figure) -> Figure:
     """Wraps every title (of the figure and of its axes) onto more lines wherever it
     would leave the canvas; constrained layout then makes room for the lines. Text and
     canvas both scale with the resolution, so what fits at one dpi fits at any."""
-    titles = [fig._suptitle, *(ax.title for ax in fig.axes)]
+    sup = getattr(fig, "_suptitle", None)  # set by fig.suptitle(); no public getter of the Text
+    titles = [sup, *(ax.title for ax in fig.axes)]
     for _ in range(4):
         fig.draw_without_rendering()  # lays out (constrained layout) without drawing
         page = fig.bbox

@@ -309,7 +309,7 @@ def _drop_overlapping(fig, labels: list) -> None:
     """Hides a tolerance label that would overprint one already shown (the rows nearby
     are labelled; the table has every value)."""
     fig.draw_without_rendering()
-    shown = []
+    shown: list = []
     for t in labels:
         box = t.get_window_extent()
         if any(box.overlaps(b) for b in shown):

@@ -71,7 +71,8 @@ fn seed_sweep(c: &mut Criterion) {
     let (mut t3, mut t4, mut st) = (vec![0.0; N], vec![0.0; N], vec![0i8; N]);
     g.bench_function("closed_form", |bch| {
         bch.iter(|| {
-            closed_form_into(black_box(&fb), black_box(&t2), Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st)
+            let (fb, t2) = (black_box(&fb), black_box(&t2));
+            closed_form_into(fb, t2, Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st, &Never).unwrap()
         })
     });
     g.finish();

@@ -216,9 +216,12 @@ impl PyFourBar {
         let n = t2.len();
         let (mut t3, mut t4, mut st) = (zeros("theta3", n)?, zeros("theta4", n)?, zeros("status", n)?);
         let fb = self.inner;
+        let signals = Signals::default();
         py.detach(|| {
-            arrays::closed_form_into(&fb, t2, mode, core::newton::SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st)
-        });
+            let singular = core::newton::SINGULAR_THRESHOLD;
+            arrays::closed_form_into(&fb, t2, mode, singular, &mut t3, &mut t4, &mut st, &signals)
+        })
+        .map_err(|e| signals.err(e))?;
         Ok((t3.into_pyarray(py), t4.into_pyarray(py), st.into_pyarray(py)))
     }
 
@@ -240,10 +243,12 @@ impl PyFourBar {
         let n = t2.len();
         let (mut w3, mut w4, mut st) = (zeros("omega3", n)?, zeros("omega4", n)?, zeros("status", n)?);
         let fb = self.inner;
+        let signals = Signals::default();
         py.detach(|| {
-            arrays::velocity_into(&fb, t2, t3, t4, w2, core::newton::SINGULAR_THRESHOLD, &mut w3, &mut w4, &mut st)
+            let singular = core::newton::SINGULAR_THRESHOLD;
+            arrays::velocity_into(&fb, t2, t3, t4, w2, singular, &mut w3, &mut w4, &mut st, &signals)
         })
-        .map_err(err)?;
+        .map_err(|e| signals.err(e))?;
         Ok((w3.into_pyarray(py), w4.into_pyarray(py), st.into_pyarray(py)))
     }
 
@@ -263,6 +268,7 @@ impl PyFourBar {
         let n = t2.len();
         let (mut a3, mut a4, mut st) = (zeros("alpha3", n)?, zeros("alpha4", n)?, zeros("status", n)?);
         let fb = self.inner;
+        let signals = Signals::default();
         py.detach(|| {
             arrays::acceleration_into(
                 &fb,
@@ -275,9 +281,10 @@ impl PyFourBar {
                 &mut a3,
                 &mut a4,
                 &mut st,
+                &signals,
             )
         })
-        .map_err(err)?;
+        .map_err(|e| signals.err(e))?;
         Ok((a3.into_pyarray(py), a4.into_pyarray(py), st.into_pyarray(py)))
     }
 
@@ -294,7 +301,9 @@ impl PyFourBar {
         let n = t2.len();
         let (mut x, mut y) = (zeros("x", n)?, zeros("y", n)?);
         let fb = self.inner;
-        py.detach(|| arrays::coupler_into(&fb, t2, t3, p, delta, &mut x, &mut y)).map_err(err)?;
+        let signals = Signals::default();
+        py.detach(|| arrays::coupler_into(&fb, t2, t3, p, delta, &mut x, &mut y, &signals))
+            .map_err(|e| signals.err(e))?;
         Ok((x.into_pyarray(py), y.into_pyarray(py)))
     }
 
@@ -328,7 +337,8 @@ fn transmission<'py>(
     let (t3, t4) = (slice("theta3", &theta3)?, slice("theta4", &theta4)?);
     let n = t3.len();
     let (mut mu, mut s) = (zeros("mu", n)?, zeros("sin34", n)?);
-    py.detach(|| arrays::transmission_into(t3, t4, &mut mu, &mut s)).map_err(err)?;
+    let signals = Signals::default();
+    py.detach(|| arrays::transmission_into(t3, t4, &mut mu, &mut s, &signals)).map_err(|e| signals.err(e))?;
     Ok((mu.into_pyarray(py), s.into_pyarray(py)))
 }
 
