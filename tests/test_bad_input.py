@@ -9,13 +9,14 @@ import re
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import SEED_LINKAGE
+from conftest import SEED_LINKAGE, mp_solve
 from planarkin import reference as ref
 
 BAD_LENGTHS = [0, 0.0, -0.0, -1, -1e-300, math.nan, math.inf, -math.inf, np.float64("nan"),
                "abc", "", None, 1j, 1 + 0j, np.complex128(2), [1.0, 2.0], object(),
                True, np.bool_(False)]  # fmt: skip
 NAMES = ("r1", "r2", "r3", "r4")
+S = pk.Status
 
 
 def raises_named(name: str):
@@ -107,11 +108,29 @@ def test_bad_max_iter(fb, bad):
             call(max_iter=bad)
 
 
+def _results(out):
+    """(status, nit, theta3) arrays of a Solution, Sweep or BatchSweep (one row)."""
+    return (np.ravel(out.status), np.ravel(out.nit), np.ravel(out.theta3))
+
+
 def test_good_options_accepted(fb):
-    for call in calls(fb).values():
-        call(tol=1e-300, max_iter=1)
-        call(tol=1.0, max_iter=np.int64(7))
-        call(tol=np.float32(1e-6), max_iter=2**32 - 1)
+    """The extremes of the valid range are accepted and mean what they say; every run is
+    bounded (the largest max_iter only with a tolerance that converges in a few steps)."""
+    for name, call in calls(fb).items():
+        # at most one Newton step per attempt (a sweep point may make two attempts)
+        st, nit, _ = _results(call(tol=1e-300, max_iter=1))
+        assert (nit <= 2).all(), name
+        assert set(st.tolist()) <= {S.CONVERGED, S.MAX_ITERATIONS, S.PRECISION_LOSS}, name
+        # a tolerance of 1: the start (closed form or prediction) is already converged
+        st, nit, _ = _results(call(tol=1.0, max_iter=np.int64(7)))
+        assert (st == S.CONVERGED).all() and (nit == 0).all(), name
+        # a float32 tolerance and the largest max_iter: converged in a few steps, right
+        out = call(tol=np.float32(1e-6), max_iter=2**32 - 1)
+        st, nit, t3 = _results(out)
+        assert (st == S.CONVERGED).all() and nit.max() <= 10, name
+        t2 = np.ravel(out.theta2) if np.ndim(out.theta2) else np.array([out.theta2])
+        for k in range(0, len(t2), 60):
+            assert abs(t3[k] - mp_solve(SEED_LINKAGE, t2[k]).t3) < 1e-6, name
 
 
 @pytest.mark.parametrize("bad", ["bogus", "", "OPEN", "Crossed", None, 0, b"open"], ids=repr)
@@ -277,7 +296,7 @@ def test_alpha2_without_omega2_reference(fb):
         ref.sweep(fb, alpha2=1.0)
 
 
-@pytest.mark.parametrize("bad", ["x", 1j, [1.0, 2.0]], ids=repr)
+@pytest.mark.parametrize("bad", ["x", 1j, [1.0, 2.0], math.nan, math.inf, -math.inf], ids=repr)
 def test_bad_omega2_alpha2(fb, bad):
     with raises_named("omega2"):
         fb.sweep(omega2=bad)
@@ -314,3 +333,26 @@ def test_velocity_arrays_not_real(fb, bad):
         fb.velocity(0.1, bad, 0.2, 1.0)
     with raises_named("omega2"):
         fb.velocity(0.1, 0.2, 0.3, bad)
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf], ids=repr)
+def test_non_finite_crank_rates_at_given_positions(fb, bad):
+    """NaN omega2 used to give NaN rates on CONVERGED points: ValueError, as for lengths."""
+    with raises_named("omega2"):
+        fb.velocity(0.3, 1.2, 2.0, [1.0, bad])
+    with raises_named("omega2"):
+        fb.acceleration(0.3, 1.2, 2.0, bad, 0.0)
+    with raises_named("alpha2"):
+        fb.acceleration(0.3, 1.2, 2.0, 1.0, bad)
+
+
+def test_coupler_curve_needs_a_sweep_of_this_linkage(fb):
+    """Another linkage's sweep was used silently; a non-Sweep raised AttributeError."""
+    other = pk.FourBar(6, 2, 5, 4.5).sweep()
+    with raises_named("sweep"):
+        fb.coupler_curve(other, 3.0, 0.5)
+    for bad in (np.zeros(3), None, (1.0, 2.0)):
+        with raises_named("sweep"):
+            fb.coupler_curve(bad, 3.0, 0.5)
+    x, y = fb.coupler_curve(fb.sweep(), 3.0, 0.5)  # its own sweep: accepted
+    assert x.shape == y.shape == (361,)

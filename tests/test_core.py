@@ -295,3 +295,27 @@ def test_scalar_inputs_give_scalars():
     assert all(isinstance(x, float) for x in fb.coupler_point(0.5, r3, 1.0, 0.2))
     assert np.shape(fb.closed_form(np.float64(0.5))[0]) == ()
     assert np.shape(fb.closed_form_status(0.5)) == ()
+
+
+# --- result objects (issue 13, item 10) ----------------------------------------------------
+
+
+def test_sweep_repr_is_a_short_summary():
+    """repr(Sweep) printed every array (23 568 characters): now one line that names the
+    linkage, the mode and the status counts (counted here with NumPy)."""
+    fb = pk.FourBar(2.0, 5.0, 2.5, 2.0)  # triple rocker: two statuses
+    s = fb.sweep(omega2=1.0, alpha2=0.0)
+    text = repr(s)
+    assert "\n" not in text and len(text) < 250, text
+    n_na = int(np.count_nonzero(s.status == pk.Status.NOT_ASSEMBLABLE))
+    n_ok = int(np.count_nonzero(s.status == pk.Status.CONVERGED))
+    assert f"NOT_ASSEMBLABLE={n_na}" in text and f"CONVERGED={n_ok}" in text
+    assert "(2.0, 5.0, 2.5, 2.0)" in text and "open" in text and "361" in text
+    b = pk.sweep_batch(np.array([SEED_LINKAGE] * 3))
+    assert len(repr(b)) < 250 and f"CONVERGED={3 * 361}" in repr(b)
+
+
+def test_result_members_are_documented():
+    for member in (pk.Sweep.summary, pk.BatchSweep.success, pk.Solution.message,
+                   pk.Sweep.success, pk.Limits.rocker_swing):  # fmt: skip
+        assert member.__doc__ and member.__doc__.strip()

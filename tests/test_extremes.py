@@ -623,3 +623,60 @@ def test_nan_crank_angle_inside_array(mode, predictor):
         assert angdiff(a.theta3[k], tr.theta3) < 1e-12 and angdiff(a.theta4[k], tr.theta4) < 1e-12
     summ = a.summary()
     assert summ.statuses == {"NON_FINITE": 4, "CONVERGED": len(t2) - 4}
+
+
+# --- any finite scale (issue 13, item 2) ------------------------------------------------------
+
+#: Scales across the whole double range. Before the unit-length change: every point
+#: SINGULAR at 1e-100, NON_FINITE at 2^340, NOT_ASSEMBLABLE at 1e160 and above, and
+#: limits() said the crank does not turn fully at 1e-300.
+EXTREME_SCALES = [2.0**-1070, 1e-300, 1e-100, 2.0**-340, 1e-9, 1e100, 1e160, 2.0**340, 1e300]
+
+
+@pytest.mark.parametrize("mode", MODES)
+@pytest.mark.parametrize("scale", EXTREME_SCALES, ids=lambda s: f"{s:.3g}")
+def test_any_finite_scale_gives_the_seed_answer(mode, scale):
+    """The seed linkage times any finite scale: the statuses and angles of the 50-digit
+    mpmath truth of the unscaled linkage (the problem is scale-free), the same limits, and
+    the NumPy reference bit for bit; a power-of-two scale is bit-identical to the seed."""
+    r = tuple(x * scale for x in SEED_LINKAGE)
+    fb, seed = pk.FourBar(*r), pk.FourBar(*SEED_LINKAGE)
+    s = fb.sweep(mode=mode, omega2=1.0, alpha2=0.5)
+    assert (s.status == S.CONVERGED).all(), s.summary()
+    for k in range(0, 361, 15):
+        tr = mp_solve(SEED_LINKAGE, s.theta2[k], mode)
+        assert angdiff(s.theta3[k], tr.theta3) < 1e-12
+        assert angdiff(s.theta4[k], tr.theta4) < 1e-12
+    base = seed.sweep(mode=mode, omega2=1.0, alpha2=0.5)
+    assert np.allclose(s.omega4, base.omega4, rtol=1e-9, atol=1e-12)
+    assert np.allclose(s.alpha4, base.alpha4, rtol=1e-9, atol=1e-12)
+    lim, lim0 = fb.limits(mode), seed.limits(mode)
+    assert lim.full_rotation and lim.dead_points.size == 0 and lim.toggles.size == 0
+    assert abs(lim.rocker_min - lim0.rocker_min) < 1e-12
+    assert abs(lim.rocker_max - lim0.rocker_max) < 1e-12
+    b = pk.sweep_batch(np.array([r]), mode=mode)
+    assert_array_equal(b.status[0], s.status)
+    rs = pk.reference.sweep(fb, mode=mode)
+    for f in ("theta3", "theta4", "status", "nit", "residual"):
+        assert_array_equal(getattr(rs, f), getattr(s, f), err_msg=f)
+    assert rs.lengths == fb.lengths == r
+    if math.frexp(scale)[0] == 0.5:  # a power of two: bit-identical
+        for f in ("theta3", "theta4", "status", "nit", "residual"):
+            assert_array_equal(getattr(s, f), getattr(base, f), err_msg=f)
+
+
+def test_lengths_beyond_the_unit_problem_are_rejected():
+    """A link shorter than the smallest normal double times the longest has no place in
+    the scale-free problem: ValueError naming it, in the kernel, the batch and the
+    reference alike."""
+    r = (1e300, 1e-300, 1e300, 1e300)
+    with pytest.raises(ValueError, match=r"^r2 is too short"):
+        pk.FourBar(*r)
+    with pytest.raises(ValueError, match=r"^links\[0, 1\] is too short"):
+        pk.sweep_batch(np.array([r]))
+
+    class Lengths:
+        r1, r2, r3, r4 = r
+
+    with pytest.raises(ValueError, match=r"^r2 is too short"):
+        pk.reference.sweep(Lengths())

@@ -92,7 +92,7 @@ def test_toggles_match_mpmath_and_bound_the_assemblable_set(r):
 def test_rocker_extremes_contain_every_sampled_angle(mode):
     rng = np.random.default_rng(7)
     t = np.linspace(-math.pi, math.pi, 40001)
-    checked = 0
+    checked = crosses = 0
     for r in rng.uniform(0.2, 5.0, size=(300, 4)):
         lim = pk.FourBar(*r).limits(mode)
         _, t4 = closed_form_vectorized(*r, t, mode)
@@ -104,7 +104,14 @@ def test_rocker_extremes_contain_every_sampled_angle(mode):
         swing = lim.rocker_swing
         rel = np.mod(t4 - lim.rocker_min + 1e-9, 2 * math.pi) - 1e-9
         assert rel.max() <= swing + 1e-9
+        # the interval [min, max] is read as it stands: max is never below min, even
+        # across +-180 deg (then max > pi), and max - min is the swing
+        assert -math.pi < lim.rocker_min <= math.pi
+        assert lim.rocker_max >= lim.rocker_min
+        assert lim.rocker_max - lim.rocker_min == pytest.approx(swing, abs=1e-12)
+        crosses += lim.rocker_max > math.pi
         checked += 1
+    assert crosses > 0  # some rocker swings across +-180 deg
     assert checked > 100
 
 
@@ -112,6 +119,47 @@ def test_change_point_parallelogram_passes_both_dead_points():
     lim = pk.FourBar(6, 2, 6, 2).limits()
     assert lim.full_rotation and lim.toggles.size == 0
     np.testing.assert_allclose(lim.dead_points, [0.0, math.pi])
+
+
+def _change_point_linkages():
+    """Change-point linkages, some with decimal lengths whose distances round (e.g.
+    |1.8 - 0.6| and |1.8 - 0.6| computed apart): those that are exact change points."""
+    from fractions import Fraction
+
+    bases = [(6, 5, 3, 2), (6, 2, 6, 2), (3, 2, 5, 6), (5, 6, 2, 3), (6, 2, 2, 6), (2, 6, 2, 6)]
+    out = []
+    for base in bases:
+        for k in (1.0, 0.1, 0.3, 0.7, 1.1, 3.3, 1e-3):
+            r = tuple(x * k for x in base)
+            f = [Fraction(x) for x in r]
+            at0 = f[0] + f[3] == f[1] + f[2] or f[0] + f[2] == f[1] + f[3]
+            atpi = f[0] + f[1] == f[2] + f[3]
+            if at0 or atpi:
+                out.append((r, [0.0] * at0 + [math.pi] * atpi))
+    return out
+
+
+@pytest.mark.parametrize("r, folds", _change_point_linkages(), ids=str)
+@pytest.mark.parametrize("mode", ["open", "crossed"])
+def test_change_point_folds_are_dead_points_where_the_sweep_is_singular(r, folds, mode):
+    """A change-point linkage folds flat (all links collinear) at theta2 = 0 when
+    r1 + r4 = r2 + r3 or r1 + r3 = r2 + r4, and at pi when r1 + r2 = r3 + r4 (exact
+    rational arithmetic here). Those are dead points: limits() lists them, and the sweep
+    says SINGULAR there; and every SINGULAR point of a sweep is a listed dead point.
+    Before: (1.8, 0.6, 1.8, 0.6) listed pi but not 0, where the sweep was SINGULAR."""
+    fb = pk.FourBar(*r)
+    assert fb.grashof().condition == "change-point"
+    lim = fb.limits(mode)
+    for f in folds:
+        assert f in lim.dead_points.tolist(), (lim.dead_points, f)
+        assert f not in lim.toggles.tolist()
+    assert (fb.sweep(folds, mode=mode).status == pk.Status.SINGULAR).all()
+    s = fb.sweep(np.linspace(-math.pi, math.pi, 721), mode=mode)
+    sing = s.theta2[s.status == pk.Status.SINGULAR]
+    assert sing.size
+    for t in sing:
+        gap = np.abs(np.angle(np.exp(1j * (lim.dead_points - t))))
+        assert gap.min() < 1e-6, (t, lim.dead_points)
 
 
 def test_never_assemblable_linkage_has_no_interval():

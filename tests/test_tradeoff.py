@@ -193,3 +193,66 @@ def test_cli_markdown_no_plot_and_bad_options(tmp_path, capsys, monkeypatch):
     for bad in (("--tols", "0"), ("--tols", "x"), ("--methods", "nope"), ("--repeat", "0")):
         with pytest.raises(SystemExit):
             _parse(*bad)
+
+
+# --- the plot and the Pareto marks (issue 13, item 12) ---------------------------------------
+
+
+def _rows(times, errs, tols, method="quadratic"):
+    from planarkin.tradeoff import Row
+
+    label = tr.METHODS[method][0]
+    return [
+        Row(method, label, tol, 1.0, 1.0, t, e, e, e, 0)
+        for t, e, tol in zip(times, errs, tols, strict=True)
+    ]
+
+
+def test_pareto_front_does_not_follow_timing_noise():
+    """Four tolerances reach the same error (the rounding floor) at the same cost; only
+    timing noise (+-4%) tells them apart. Before, the front marked whichever happened to
+    be fastest in that run; now the loosest of the tied tolerances, every run."""
+    tols = [1e-3, 1e-6, 1e-9, 1e-12, 1e-13, 1e-14, 1e-15]
+    errs = [2e-4, 3e-7, 5e-10, 4.4e-16, 4.4e-16, 4.4e-16, 4.4e-16]
+    base = np.array([20.0, 35.0, 50.0, 80.0, 80.0, 80.0, 80.0])
+    rng = np.random.default_rng(5)
+    fronts = set()
+    for _ in range(50):
+        times = base * rng.uniform(0.96, 1.04, base.size)
+        rows = tr._mark_pareto(_rows(times.tolist(), errs, tols))
+        fronts.add(tuple(r.tol for r in rows if r.pareto_newton))
+    assert fronts == {(1e-3, 1e-6, 1e-9, 1e-12)}
+
+
+def _result(rows):
+    return tr.TradeoffResult(tr._mark_pareto(rows), "open", 3, 361, 2, 100, 1, 0.1)
+
+
+def test_plot_labels_do_not_overprint_and_ticks_are_plain_numbers():
+    """Before: the tolerance labels near 1e-15 rad printed over each other, and a time
+    axis spanning less than a decade read '4x10^1'."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Annotation
+
+    tols = [10.0**-k for k in range(3, 16)]
+    rows = []
+    for m, scale in (("previous", 1.0), ("tangent", 0.8), ("quadratic", 0.7)):
+        times = [scale * (30 + 2 * k) for k in range(13)]
+        errs = [max(10.0**-k, 4.4e-13) * (1 + 0.01 * k) for k in range(3, 16)]  # a floor
+        rows += _rows(times, errs, tols, m)
+    rows += _rows([20.0], [2.2e-16], [None], "closed-form")
+    fig = _result(rows).figure()
+    FigureCanvasAgg(fig).draw()
+    ax = fig.axes[0]
+    shown = [t for t in ax.texts if isinstance(t, Annotation) and t.get_visible()]
+    assert shown
+    boxes = [t.get_window_extent() for t in shown]
+    for i, a in enumerate(boxes):
+        for b in boxes[i + 1 :]:
+            assert not a.overlaps(b)
+    # every tolerance is named, alone or in a range "1e-12..1e-15"
+    assert any(".." in t.get_text() for t in shown)
+    ticks = [t.get_text() for t in ax.get_xticklabels() + ax.get_yticklabels() if t.get_text()]
+    assert ticks
+    assert not [t for t in ticks if "times" in t or "^" in t or "×" in t], ticks
+    assert any(t == "40" for t in (x.get_text() for x in ax.get_xticklabels(minor=True)))

@@ -99,6 +99,7 @@ class Solution:
 
     @property
     def message(self) -> str:
+        """One line saying how the solve ended (the status's message)."""
         return self.status.message
 
 
@@ -152,7 +153,13 @@ class Sweep:
     def __len__(self) -> int:
         return len(self.theta2)
 
+    def __repr__(self) -> str:
+        return _sweep_repr("Sweep", self, self.lengths)
+
     def summary(self) -> SweepSummary:
+        """Totals over the sweep: points, how many converged, iterations (total and mean
+        per point), the largest residual of the converged points and the count of each
+        status that occurs."""
         n = len(self.theta2)
         ok = int(np.count_nonzero(self.success))
         codes, counts = np.unique(self.status, return_counts=True)
@@ -208,8 +215,10 @@ class Limits:
     intervals: tuple[tuple[float, float], ...]
     #: The crank turns a full revolution.
     full_rotation: bool
-    #: Smallest rocker angle on this mode (wrapped), and the crank angle where it occurs;
-    #: None when the output turns fully (or never assembles).
+    #: The rocker's interval on this mode: it sweeps counter-clockwise from rocker_min
+    #: (wrapped to (-pi, pi]) to rocker_max = rocker_min + swing, which is never below
+    #: rocker_min (it exceeds pi when the interval contains 180 deg); with the crank
+    #: angles where they occur. None when the output turns fully (or never assembles).
     rocker_min: float | None
     rocker_min_theta2: float | None
     rocker_max: float | None
@@ -217,10 +226,10 @@ class Limits:
 
     @property
     def rocker_swing(self) -> float | None:
-        """Rocker swing angle (counter-clockwise from min to max)."""
+        """Rocker swing angle: rocker_max - rocker_min."""
         if self.rocker_min is None or self.rocker_max is None:
             return None
-        return (self.rocker_max - self.rocker_min) % TAU
+        return self.rocker_max - self.rocker_min
 
     def assemblable(self, theta2: object) -> np.ndarray:
         """Boolean mask: crank angles inside an assemblable interval."""
@@ -247,7 +256,25 @@ class BatchSweep:
 
     @property
     def success(self) -> np.ndarray:
+        """Boolean (M, N) array: status == CONVERGED."""
         return self.status == Status.CONVERGED
+
+    def __repr__(self) -> str:
+        return _sweep_repr("BatchSweep", self, f"{len(self.links)} linkages")
+
+
+def _sweep_repr(kind: str, s: Sweep | BatchSweep, what: object) -> str:
+    """A one-line summary (the arrays are attributes, not part of the repr)."""
+    t = np.asarray(s.theta2)
+    span = f"{t[0]:.6g}..{t[-1]:.6g} rad" if t.size else "empty"
+    codes, counts = np.unique(np.asarray(s.status), return_counts=True)
+    statuses = ", ".join(
+        f"{Status(int(c)).name}={int(k)}" for c, k in zip(codes, counts, strict=True)
+    )
+    return (
+        f"<{kind} {what}, {s.mode} mode, {s.method}, {t.size} crank angles ({span}); "
+        f"{statuses or 'no points'}>"
+    )
 
 
 # --- argument normalisation shared by the API and the reference -------------------
@@ -350,6 +377,9 @@ def motion_args(omega2: object, alpha2: object) -> tuple[float | None, float | N
         raise ValueError("alpha2 needs omega2: accelerations depend on the crank speed")
     w2 = None if omega2 is None else as_float("omega2", omega2)
     a2 = None if alpha2 is None else as_float("alpha2", alpha2)
+    for name, v in (("omega2", w2), ("alpha2", a2)):
+        if v is not None and not math.isfinite(v):
+            raise ValueError(f"{name} must be finite, got {v}")
     return w2, a2
 
 

@@ -37,6 +37,13 @@ def _broadcast(**arrays: object) -> tuple[tuple[int, ...], list[np.ndarray]]:
     return shape, [np.ascontiguousarray(x).ravel() for x in b]
 
 
+def _finite_rates(**rates: np.ndarray) -> None:
+    """Crank rates must be finite: NaN would give NaN rates on solved points."""
+    for name, a in rates.items():
+        if not np.isfinite(a).all():
+            raise ValueError(f"{name} must be finite, got {a[~np.isfinite(a)][0]}")
+
+
 def _shaped(shape: tuple[int, ...], *arrays: np.ndarray) -> tuple:
     """Reshapes flat results back; 0-d results become Python floats."""
     if shape == ():
@@ -183,6 +190,7 @@ class FourBar:
         """(omega3, omega4) from J [w3, w4] = -dF/dtheta2 omega2, broadcast over the inputs.
         NaN at a dead point (|sin(theta4 - theta3)| below the singular threshold)."""
         shape, arrs = _broadcast(theta2=theta2, theta3=theta3, theta4=theta4, omega2=omega2)
+        _finite_rates(omega2=arrs[3])
         w3, w4, _ = self._core.velocity(*arrs)
         return _shaped(shape, w3, w4)
 
@@ -194,6 +202,7 @@ class FourBar:
         shape, arrs = _broadcast(
             theta2=theta2, theta3=theta3, theta4=theta4, omega2=omega2, alpha2=alpha2
         )
+        _finite_rates(omega2=arrs[3], alpha2=arrs[4])
         a3, a4, _ = self._core.acceleration(*arrs)
         return _shaped(shape, a3, a4)
 
@@ -207,7 +216,17 @@ class FourBar:
         return _shaped(shape, x, y)
 
     def coupler_curve(self, sweep: Sweep, p: float, delta: float) -> tuple:
-        """Coupler-point curve (x, y) over a sweep of this linkage (NaN where unsolved)."""
+        """Coupler-point curve (x, y) over a sweep of this linkage (NaN where unsolved).
+        ValueError when ``sweep`` is not a Sweep, or is one of another linkage."""
+        if not isinstance(sweep, Sweep):
+            raise ValueError(
+                f"sweep must be a Sweep (from FourBar.sweep), got {type(sweep).__name__}"
+            )
+        if tuple(sweep.lengths) != self.lengths:
+            raise ValueError(
+                f"sweep is of another linkage: lengths {tuple(sweep.lengths)}, this "
+                f"linkage {self.lengths}"
+            )
         return self.coupler_point(sweep.theta2, sweep.theta3, p, delta)
 
     @staticmethod

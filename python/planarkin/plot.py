@@ -12,6 +12,7 @@ from __future__ import annotations
 import html
 import math
 import re
+import textwrap
 from collections.abc import Sequence
 from typing import Any
 
@@ -37,6 +38,7 @@ __all__ = [
     "linkage",
     "position",
     "positions_combined",
+    "rocking",
     "transmission",
     "unreachable_spans",
     "unwrap_deg",
@@ -158,6 +160,33 @@ def _mark_status(ax: Axes, sweep: Sweep, limits: object) -> None:
             ax.axvline(x, color="tab:red", ls="--", lw=1.0, label=label if n == 0 else None)
 
 
+def _fit_titles(fig: Figure) -> Figure:
+    """Wraps every title (of the figure and of its axes) onto more lines wherever it
+    would leave the canvas; constrained layout then makes room for the lines. Text and
+    canvas both scale with the resolution, so what fits at one dpi fits at any."""
+    sup = getattr(fig, "_suptitle", None)  # set by fig.suptitle(); no public getter of the Text
+    titles = [sup, *(ax.title for ax in fig.axes)]
+    for _ in range(4):
+        fig.draw_without_rendering()  # lays out (constrained layout) without drawing
+        page = fig.bbox
+        changed = False
+        for t in titles:
+            if t is None or not t.get_text():
+                continue
+            e = t.get_window_extent()
+            centre = 0.5 * (e.x0 + e.x1)
+            room = 0.96 * 2.0 * min(centre - page.x0, page.x1 - centre)
+            if e.width <= room:
+                continue
+            lines = t.get_text().split("\n")
+            chars = max(12, int(max(map(len, lines)) * room / e.width))
+            t.set_text("\n".join(textwrap.fill(line, chars) for line in lines))
+            changed = True
+        if not changed:
+            break
+    return fig
+
+
 def _figure(nrows: int = 1, *, figsize: tuple[float, float] = (8.0, 5.0), sharex: bool = True):
     fig = Figure(figsize=figsize, layout="constrained")
     axes = fig.subplots(nrows, 1, sharex=sharex, squeeze=False)[:, 0]
@@ -191,7 +220,7 @@ def position(sweep: Sweep, *, limits: object = None) -> Figure:
         ax.legend(loc="best", fontsize="small")
     a4.set_xlabel("crank angle θ2 [deg]")
     fig.suptitle(f"Position analysis: {_title(sweep)}")
-    return fig
+    return _fit_titles(fig)
 
 
 def positions_combined(sweep: Sweep, *, limits: object = None) -> Figure:
@@ -206,7 +235,7 @@ def positions_combined(sweep: Sweep, *, limits: object = None) -> Figure:
     ax.set_ylabel("angle [deg]")
     ax.legend(loc="best", fontsize="small")
     ax.set_title(f"Link angles: {_title(sweep)}")
-    return fig
+    return _fit_titles(fig)
 
 
 def velocity(sweep: Sweep, *, limits: object = None) -> Figure:
@@ -233,12 +262,12 @@ def _rates(sweep, y3, y4, sym, unit, what, limits) -> Figure:
     ax.set_ylabel(f"{what.lower()} [{unit}]")
     ax.legend(loc="best", fontsize="small")
     crank = ""
-    if sweep.omega2 is not None:
-        crank = f", ω2 = {sweep.omega2:.4g} rad/s ({sweep.omega2 * 60 / math.tau:.4g} rpm)"
+    if sweep.omega2 is not None:  # the crank's motion on a line of its own
+        crank = f"\nω2 = {sweep.omega2:.4g} rad/s ({sweep.omega2 * 60 / math.tau:.4g} rpm)"
         if sym == "α" and sweep.alpha2 is not None:
             crank += f", α2 = {sweep.alpha2:.4g} rad/s²"
     ax.set_title(f"{what}: {_title(sweep)}{crank}")
-    return fig
+    return _fit_titles(fig)
 
 
 def transmission(sweep: Sweep, *, limits: object = None, guideline_deg: float = 40.0) -> Figure:
@@ -267,7 +296,7 @@ def transmission(sweep: Sweep, *, limits: object = None, guideline_deg: float = 
         _deg_axis(ax, sweep)
         ax.legend(loc="best", fontsize="small")
     fig.suptitle(f"Transmission angle and branch: {_title(sweep)}")
-    return fig
+    return _fit_titles(fig)
 
 
 def convergence(
@@ -303,7 +332,7 @@ def convergence(
     if len(e) == 0 or not np.isfinite(shown).any():
         ax.text(0.5, 0.5, solution.status.message, transform=ax.transAxes, ha="center")
     ax.legend(loc="best", fontsize="small")
-    return fig
+    return _fit_titles(fig)
 
 
 # --- geometry: coupler curve, linkage drawing, animation ---------------------------------
@@ -370,7 +399,7 @@ def coupler_curve(sweep: Sweep, p: float, delta: float, *, limits: object = None
     if ok.size:
         ax.legend(loc="best", fontsize="small")
     _frame_limits(ax, pt, ground)
-    return fig
+    return _fit_titles(fig)
 
 
 def _pose_indices(sweep: Sweep, n: int) -> np.ndarray:
@@ -422,34 +451,87 @@ def linkage(sweep: Sweep, p: float, delta: float, *, poses: int = 6) -> Figure:
     ax.grid(True, alpha=0.35)
     fig.legend(loc="outside right center", fontsize="small")
     _frame_limits(ax, a, b, pt, ground)
-    return fig
+    return _fit_titles(fig)
 
 
-def animation_frames(sweep: Sweep, frames: int) -> np.ndarray:
-    """Indices of the sweep points that :func:`animation` shows: at most ``frames``, evenly
-    spaced; a sweep that closes the circle does not repeat its first pose."""
-    t2 = np.asarray(sweep.theta2)
+def rocking(fb: FourBar, limits: Any, sweep: Sweep, *, points: int = 181) -> list[Sweep]:
+    """The motion a linkage whose crank cannot turn fully can make, as the sweeps to play
+    one after another: the crank rocks between the two toggles bounding an assemblable
+    interval (the one holding the first solved point of ``sweep``, else the first), on
+    ``sweep.mode`` one way, then, the crank having reversed at the toggle, back on the
+    other mode (the assembly passes through the toggle onto the other mode), and so on.
+    ``points`` crank angles each way, bunched towards the toggles and 1e-6 rad inside them
+    (at a toggle itself the position is a dead point: SINGULAR). A crank that turns
+    fully: ``[sweep]``."""
+    if limits.full_rotation or not limits.intervals:
+        return [sweep]
+    ok = np.flatnonzero(np.asarray(sweep.status) == Status.CONVERGED)
+    a, b = limits.intervals[0]
+    if ok.size:
+        t0 = float(sweep.theta2[ok[0]])
+        for lo, hi in limits.intervals:
+            if lo + (t0 - lo) % math.tau <= hi:
+                a, b = lo, hi
+                break
+    # crank angles bunched towards the toggles (cosine spacing), where the rest of the
+    # linkage moves fastest (as the square root of the distance to the toggle): the
+    # pins then move by about equal steps
+    inset = min(1e-6, 0.25 * (b - a))
+    u = np.linspace(0.0, math.pi, points)
+    there = np.clip(a + (b - a) * 0.5 * (1.0 - np.cos(u)), a + inset, b - inset)
+    other = "crossed" if sweep.mode == "open" else "open"
+    return [
+        fb.sweep(there, mode=sweep.mode, method="closed-form"),
+        fb.sweep(there[::-1], mode=other, method="closed-form"),
+    ]
+
+
+def _parts(sweep: Sweep | Sequence[Sweep]) -> list[Sweep]:
+    return [sweep] if isinstance(sweep, Sweep) else list(sweep)
+
+
+def animation_frames(sweep: Sweep | Sequence[Sweep], frames: int) -> np.ndarray:
+    """Indices, into the sweeps played one after another (their points concatenated), of
+    the points that :func:`animation` shows: at most ``frames``, evenly spaced; a single
+    sweep that closes the circle does not repeat its first pose."""
+    parts = _parts(sweep)
+    t2 = np.concatenate([np.asarray(p.theta2) for p in parts]) if parts else np.empty(0)
     n = len(t2)
-    closes = n > 1 and math.isclose(abs(t2[-1] - t2[0]), math.tau)
+    closes = len(parts) == 1 and n > 1 and math.isclose(abs(t2[-1] - t2[0]), math.tau)
     idx = np.unique(np.linspace(0, n - 1 if closes else n, frames, endpoint=False).astype(int))
     return idx[idx < n]
 
 
 def animation(
-    sweep: Sweep, p: float, delta: float, *, frames: int = 72, fps: float = 12, dpi: float = 80
+    sweep: Sweep | Sequence[Sweep],
+    p: float,
+    delta: float,
+    *,
+    frames: int = 72,
+    fps: float = 12,
+    dpi: float = 80,
 ) -> FuncAnimation:
-    """The linkage moving through the sweep with its coupler curve traced. Save it with
-    ``anim.save("x.gif", writer=PillowWriter(fps))`` or :func:`animation_html`."""
+    """The linkage moving through the sweep with its coupler curve traced; several sweeps
+    (e.g. :func:`rocking`) are played one after another, each frame labelled with its
+    assembly mode. Save it with ``anim.save("x.gif", writer=PillowWriter(fps))`` or
+    :func:`animation_html`."""
     if frames < 1:
         raise ValueError(f"frames must be >= 1, got {frames}")
-    a, b, pt, ground = _joints(sweep, p, delta)
-    t2 = np.asarray(sweep.theta2)
-    idx = animation_frames(sweep, frames)
+    parts = _parts(sweep)
+    if not parts:
+        raise ValueError("sweep: nothing to animate")
+    joints = [_joints(s, p, delta) for s in parts]
+    a, b, pt = (np.concatenate([j[k] for j in joints]) for k in range(3))
+    ground = joints[0][3]
+    t2 = np.concatenate([np.asarray(s.theta2) for s in parts])
+    status = np.concatenate([np.asarray(s.status) for s in parts])
+    modes = [s.mode for s in parts for _ in range(len(s.theta2))]
+    idx = animation_frames(parts, frames)
 
     fig = Figure(figsize=(6.0, 4.8), dpi=dpi, layout="constrained")
     ax = fig.subplots()
     ax.plot(pt[:, 0], pt[:, 1], color="0.8", lw=1.0, zorder=1)
-    _ground(ax, ground, 0.03 * max(sweep.lengths))
+    _ground(ax, ground, 0.03 * max(parts[0].lengths))
     (trace,) = ax.plot([], [], color=_CP, lw=1.8, zorder=2)
     coupler = Polygon(np.zeros((3, 2)), closed=True, fc="tab:blue", alpha=0.25, zorder=3)
     ax.add_patch(coupler)
@@ -457,12 +539,16 @@ def animation(
     (links,) = ax.plot([], [], "-o", color="tab:blue", lw=3, ms=5, zorder=4)
     (point,) = ax.plot([], [], "*", color=_CP, ms=12, zorder=5)
     label = ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", family="monospace")
-    ax.set_title(f"{_title(sweep)}, p = {p:g}, δ = {math.degrees(delta):g}°", fontsize="medium")
+    how = _title(parts[0]) if len(parts) == 1 else _title(parts[0]).rsplit(",", 1)[0]
+    if len(parts) > 1:
+        how += ", crank rocking between its toggles"
+    ax.set_title(f"{how}, p = {p:g}, δ = {math.degrees(delta):g}°", fontsize="medium")
     ax.grid(True, alpha=0.3)
     _frame_limits(ax, a, b, pt, ground)
+    _fit_titles(fig)
 
     def draw(i: int):
-        ok = sweep.status[i] == Status.CONVERGED
+        ok = status[i] == Status.CONVERGED
         crank.set_data([0.0, a[i, 0]], [0.0, a[i, 1]])
         seen = pt[: i + 1]
         trace.set_data(seen[:, 0], seen[:, 1])
@@ -474,30 +560,45 @@ def animation(
             links.set_data([], [])
             point.set_data([], [])
             coupler.set_xy(np.full((3, 2), np.nan))
-        state = "" if ok else "  " + Status(int(sweep.status[i])).name.lower().replace("_", " ")
-        label.set_text(f"θ2 = {math.degrees(t2[i]):6.1f}°{state}")
+        state = "" if ok else "  " + Status(int(status[i])).name.lower().replace("_", " ")
+        mode = f"  {modes[i]}" if len(parts) > 1 else ""
+        label.set_text(f"θ2 = {math.degrees(t2[i]):6.1f}°{mode}{state}")
         return trace, coupler, crank, links, point, label
 
     return FuncAnimation(fig, draw, frames=idx.tolist(), interval=1000.0 / fps, blit=False)
 
 
-_ICONS = {
-    "fa-minus": "−",
-    "fa-fast-backward": "⏮",
-    "fa-step-backward": "⏴|",
-    "fa-play fa-flip-horizontal": "◀",
-    "fa-pause": "⏸",
-    "fa-play": "▶",
-    "fa-step-forward": "|⏵",
-    "fa-fast-forward": "⏭",
-    "fa-plus": "+",
-}
+def _svg(*shapes: str) -> str:
+    """A 16 x 16 inline SVG icon in the button's text colour: no font needed."""
+    return (
+        '<svg viewBox="0 0 16 16" width="16" height="16" fill="currentColor" '
+        'aria-hidden="true" style="vertical-align:middle">' + "".join(shapes) + "</svg>"
+    )
+
+
+_BAR = '<rect x="{}" y="3" width="2.5" height="10"/>'
+_LEFT = '<polygon points="{},3 {},13 {},8"/>'  # a triangle pointing left
+_ICONS = {  # matplotlib's Font Awesome classes -> inline SVG
+    "fa-minus": _svg('<rect x="3" y="7" width="10" height="2.5"/>'),
+    "fa-fast-backward": _svg(_BAR.format(1.5), _LEFT.format(9, 9, 4), _LEFT.format(14, 14, 9)),
+    "fa-step-backward": _svg(_BAR.format(3), _LEFT.format(13, 13, 6)),
+    "fa-play fa-flip-horizontal": _svg(_LEFT.format(12.5, 12.5, 3.5)),
+    "fa-pause": _svg(_BAR.format(4), _BAR.format(9.5)),
+    "fa-play": _svg('<polygon points="3.5,3 3.5,13 12.5,8"/>'),
+    "fa-step-forward": _svg('<polygon points="3,3 3,13 10,8"/>', _BAR.format(10.5)),
+    "fa-fast-forward": _svg(
+        '<polygon points="2,3 2,13 7,8"/>', '<polygon points="7,3 7,13 12,8"/>', _BAR.format(12)
+    ),
+    "fa-plus": _svg('<rect x="3" y="6.75" width="10" height="2.5"/>',
+                    '<rect x="6.75" y="3" width="2.5" height="10"/>'),
+}  # fmt: skip
 
 
 def animation_html(anim: FuncAnimation, *, fps: float = 12, title: str = "planarkin") -> str:
     """A self-contained HTML page (frames embedded as base64 PNG, play controls in plain
-    JavaScript) for an animation. matplotlib's player loads its button icons from a web
-    font; they are replaced by Unicode glyphs, so the page needs no network."""
+    JavaScript) for an animation, playing (looped) as soon as it loads. matplotlib's player
+    loads its button icons from a web font; they are drawn as inline SVG instead, so the
+    page needs no network and no particular font."""
     import tempfile
     from pathlib import Path
 
@@ -515,12 +616,21 @@ def animation_html(anim: FuncAnimation, *, fps: float = 12, title: str = "planar
         body = path.read_text(encoding="utf-8")
     body = re.sub(r"<link\b[^>]*\bhref=[\"']https?://[^>]*>", "", body)
     body = re.sub(
-        r'<i class="fa ([^"]*)"></i>', lambda m: _ICONS.get(m.group(1).strip(), "•"), body
+        r'<i class="fa ([^"]*)"></i>',
+        lambda m: _ICONS.get(m.group(1).strip(), _svg('<circle cx="8" cy="8" r="3"/>')),
+        body,
+    )
+    # start playing once matplotlib's player object exists (it is made in a timeout)
+    names = sorted(set(re.findall(r"\b(anim[0-9a-f]{32})\s*=\s*new Animation", body)))
+    autoplay = "".join(
+        f'(function start() {{ var a = window["{n}"]; '
+        "if (a) { a.play_animation(); } else { setTimeout(start, 10); } })();"
+        for n in names
     )
     title = html.escape(title)
     return (
         '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
         f"<title>{title}</title>\n<style>body{{font-family:sans-serif;margin:1.5em}}"
         ".anim-buttons button{min-width:2.6em;font-size:1em}</style>\n</head>\n<body>\n"
-        f"<h3>{title}</h3>\n{body}\n</body>\n</html>\n"
+        f"<h3>{title}</h3>\n{body}\n<script>{autoplay}</script>\n</body>\n</html>\n"
     )

@@ -32,12 +32,33 @@ from .reference_scene import SceneReference, scene_sweep  # noqa: E402, F401
 _NAN = float("nan")
 
 
-def _lengths(fb: object) -> tuple[float, float, float, float]:
+def _raw_lengths(fb: object) -> tuple[float, float, float, float]:
     r = tuple(as_float(n, getattr(fb, n)) for n in ("r1", "r2", "r3", "r4"))
     for n, v in zip(("r1", "r2", "r3", "r4"), r, strict=True):
         if not (math.isfinite(v) and v > 0):
             raise ValueError(f"{n} must be finite and > 0, got {v}")
     return r  # type: ignore[return-value]
+
+
+def unit_lengths(r: tuple[float, float, float, float]) -> tuple[float, float, float, float]:
+    """The lengths divided by 2^e with 2^e <= longest < 2^(e+1) (exact): the scale-free
+    problem the kernel solves, so any scale neither overflows nor underflows and
+    power-of-two scales give bit-identical results. A length below about 1e-308 times the
+    longest that the division does not keep exactly: ValueError naming it."""
+    e = math.frexp(max(r))[1] - 1
+    u = tuple(math.ldexp(v, -e) for v in r)
+    for n, v, raw in zip(("r1", "r2", "r3", "r4"), u, r, strict=True):
+        if v == 0.0 or math.ldexp(v, e) != raw:  # subnormal unit lengths: kept if exact
+            raise ValueError(
+                f"{n} is too short relative to the longest link to be represented "
+                f"(ratio below ~1e-308), got {raw}"
+            )
+    return u  # type: ignore[return-value]
+
+
+def _lengths(fb: object) -> tuple[float, float, float, float]:
+    """The validated unit lengths of ``fb`` (what every computation uses)."""
+    return unit_lengths(_raw_lengths(fb))
 
 
 def wrap(a: float) -> float:
@@ -51,6 +72,15 @@ def wrap(a: float) -> float:
         r += TAU
     r -= math.pi
     return math.pi if r <= -math.pi else r
+
+
+#: As the kernel: sides that close within this many ulp of the longest link are flat.
+FLAT_ULPS = 8.0
+EPS = 2.220446049250313e-16
+
+
+def _flat(q: float, slack: float) -> float:
+    return 0.0 if -slack <= q < 0.0 else q
 
 
 def _closed(r: tuple, c2: float, s2: float, sign: float):
@@ -68,9 +98,11 @@ def _closed(r: tuple, c2: float, s2: float, sign: float):
     d = math.sqrt(d2)
     if d == 0.0:
         return "indeterminate" if r3 == r4 else "not-assemblable"
-    q1 = d + r3 - r4
-    q2 = d - r3 + r4
-    q3 = r3 + r4 - d
+    # a triangle that closes within a few ulp of the longest link is flat (a dead point)
+    slack = FLAT_ULPS * EPS * max(r)
+    q1 = _flat(d + r3 - r4, slack)
+    q2 = _flat(d - r3 + r4, slack)
+    q3 = _flat(r3 + r4 - d, slack)
     if not (q1 >= 0.0 and q2 >= 0.0 and q3 >= 0.0):
         return "not-assemblable"
     two_dh = math.sqrt((r3 + r4 + d) * q1 * q2 * q3)
@@ -281,7 +313,8 @@ def sweep(
 ):
     """Reference of :meth:`planarkin.FourBar.sweep`: the same continuation, predictors
     and closed-form fallback (or the closed form alone), one point at a time in Python."""
-    r = _lengths(fb)
+    raw = _raw_lengths(fb)
+    r = unit_lengths(raw)
     t2s, mode, tol, max_iter, predictor, method = sweep_args(
         theta2, mode, tol, max_iter, predictor, method
     )
@@ -332,7 +365,7 @@ def sweep(
         else:
             prev = None
     return Sweep(
-        r, mode, t2s, t3o, t4o, sto, nito, reso,
+        raw, mode, t2s, t3o, t4o, sto, nito, reso,
         omega2=omega2, omega3=w3o, omega4=w4o,
         alpha2=alpha2 if a3o is not None else None, alpha3=a3o, alpha4=a4o, method=method,
     )  # fmt: skip

@@ -225,13 +225,19 @@ class TradeoffResult:
 
     def plot(self, path: str) -> None:
         """Saves the Pareto plot (time per point vs max error, log-log)."""
-        import matplotlib
+        self.figure().savefig(path, dpi=120)
 
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+    def figure(self):  # -> matplotlib.figure.Figure (matplotlib is imported only here)
+        """The Pareto plot as a matplotlib Figure (object API, no pyplot). Tolerances whose
+        markers would print their labels on top of each other share one label
+        ("1e-12..1e-15"); tick labels are plain numbers."""
+        from matplotlib.figure import Figure
+        from matplotlib.ticker import LogFormatter
 
-        fig, ax = plt.subplots(figsize=(7.5, 5.0), constrained_layout=True)
+        fig = Figure(figsize=(7.5, 5.0), layout="constrained")
+        ax = fig.subplots()
         floor = 1e-17  # an error of exactly 0 has no place on a log axis
+        labels = []
         for method, (label, _) in METHODS.items():
             rows = [r for r in self.rows if r.method == method]
             if not rows:
@@ -242,14 +248,19 @@ class TradeoffResult:
                 ax.plot(x, y, "*", ms=14, label=label, color="k")
                 continue
             (line,) = ax.plot(x, y, "o-", ms=4, label=label, alpha=0.8)
-            for r, xi, yi in zip(rows, x, y, strict=True):
-                ax.annotate(
-                    f"{r.tol:.0e}",
-                    (xi, yi),
-                    fontsize=6,
-                    xytext=(3, 2),
-                    textcoords="offset points",
-                    color=line.get_color(),
+            for group in _close_runs(x, y):
+                tols = [rows[i].tol for i in group]
+                text = f"{tols[0]:.0e}" + (f"..{tols[-1]:.0e}" if len(tols) > 1 else "")
+                i = group[len(group) // 2]
+                labels.append(
+                    ax.annotate(
+                        text,
+                        (x[i], y[i]),
+                        fontsize=6,
+                        xytext=(3, 2),
+                        textcoords="offset points",
+                        color=line.get_color(),
+                    )
                 )
         front = sorted((r for r in self.rows if r.pareto_newton), key=lambda r: r.ns_per_point)
         if front:
@@ -265,6 +276,9 @@ class TradeoffResult:
             )
         ax.set_xscale("log")
         ax.set_yscale("log")
+        for axis in (ax.xaxis, ax.yaxis):  # "40", not "4x10^1"
+            axis.set_major_formatter(LogFormatter(labelOnlyBase=False))
+            axis.set_minor_formatter(LogFormatter(labelOnlyBase=False, minor_thresholds=(1, 0.4)))
         ax.set_xlabel("time per point (ns, one thread)")
         ax.set_ylabel("max angle error (rad)")
         ax.set_title(
@@ -272,8 +286,36 @@ class TradeoffResult:
         )
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
-        fig.savefig(path, dpi=120)
-        plt.close(fig)
+        _drop_overlapping(fig, labels)
+        return fig
+
+
+def _close_runs(x: list[float], y: list[float], near: float = 0.06) -> list[list[int]]:
+    """Consecutive points (in tolerance order) whose markers are within ``near`` decades
+    of the previous one on both axes: one label for each run."""
+    runs: list[list[int]] = []
+    for i in range(len(x)):
+        if runs and all(
+            abs(math.log10(a[i]) - math.log10(a[runs[-1][-1]])) < near * (3 if a is y else 1)
+            for a in (x, y)
+        ):
+            runs[-1].append(i)
+        else:
+            runs.append([i])
+    return runs
+
+
+def _drop_overlapping(fig, labels: list) -> None:
+    """Hides a tolerance label that would overprint one already shown (the rows nearby
+    are labelled; the table has every value)."""
+    fig.draw_without_rendering()
+    shown: list = []
+    for t in labels:
+        box = t.get_window_extent()
+        if any(box.overlaps(b) for b in shown):
+            t.set_visible(False)
+        else:
+            shown.append(box)
 
 
 def _sci(v: float) -> str:
@@ -413,16 +455,37 @@ def tradeoff(
     return TradeoffResult(rows, mode, m, n, k, max_iter, repeat, time.perf_counter() - t_start)
 
 
+#: Relative differences in time per point below this are timing noise, not speed.
+TIME_NOISE = 0.10
+#: Relative differences in max error below this are the same accuracy (rounding).
+ERR_TIE = 0.10
+
+
 def _front(rows: list[Row]) -> set[int]:
-    """Indices of the rows no other row beats on both time and max error (NaN: never)."""
+    """Indices of the rows no other row beats on time and max error (NaN: never).
+
+    Times within :data:`TIME_NOISE` of each other, and errors within :data:`ERR_TIE`, are
+    ties, not wins: a row beats another only if it is no worse on both beyond that and
+    better on one beyond it, or, when tied on both, if it has the looser tolerance (it
+    does no more work; the closed form has none). So the front does not follow timing
+    noise between rows of equal error.
+    """
+
+    def looser(o: Row, r: Row) -> bool:
+        return r.tol is not None and (o.tol is None or o.tol > r.tol)
 
     def beats(o: Row, r: Row) -> bool:
-        return (
-            math.isfinite(o.err_max)
-            and o.ns_per_point <= r.ns_per_point
-            and o.err_max <= r.err_max
-            and (o.ns_per_point < r.ns_per_point or o.err_max < r.err_max)
+        if not math.isfinite(o.err_max):
+            return False
+        err_tie = abs(o.err_max - r.err_max) <= ERR_TIE * max(o.err_max, r.err_max)
+        time_tie = abs(o.ns_per_point - r.ns_per_point) <= TIME_NOISE * max(
+            o.ns_per_point, r.ns_per_point
         )
+        no_worse = (err_tie or o.err_max < r.err_max) and (
+            time_tie or o.ns_per_point < r.ns_per_point
+        )
+        better = not err_tie or not time_tie or looser(o, r)
+        return no_worse and better
 
     return {
         i

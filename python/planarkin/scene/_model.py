@@ -70,7 +70,7 @@ class Scene:
     (361, 2)
     """
 
-    __slots__ = ("_core", "_data", "_plans")
+    __slots__ = ("_core", "_data", "_plans", "_theta")
 
     def __init__(self, data: Mapping[str, Any]) -> None:
         _entry(isinstance(data, Mapping), "scene", f"must be a mapping, got {type(data).__name__}")
@@ -112,6 +112,7 @@ class Scene:
             "outputs": None if outputs is None else tuple(outputs),
         }
         self._plans: dict[tuple[str, ...] | None, tuple[Plan, Any]] = {}
+        self._theta: np.ndarray | None = None
         if outputs is not None:
             self.plan(outputs)  # names checked now, not at the first sweep
 
@@ -270,6 +271,14 @@ class Scene:
             hit = self._plans[key] = (plan, core)
         return hit
 
+    def _default_theta(self) -> np.ndarray:
+        """361 input angles from the drawn one through one full turn (read-only, cached)."""
+        if self._theta is None:
+            t = self.input_angle + np.arange(361) * (TAU / 360)
+            t.setflags(write=False)
+            self._theta = t
+        return self._theta
+
     def plan(self, outputs: Iterable[str] | str | None = None) -> Plan:
         """The steps that solve ``outputs`` (point or link names; None: the scene's
         ``outputs``, else everything; ``"all"``: everything). Each step has ``.kind``
@@ -297,7 +306,7 @@ class Scene:
         """
         plan, core = self._compiled(outputs)
         if theta is None:
-            t = self.input_angle + np.arange(361) * (TAU / 360)
+            t = self._default_theta()
         else:
             t = as_angles("theta", theta)
             if t.ndim != 1:

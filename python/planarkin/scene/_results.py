@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -54,16 +55,18 @@ class Plan:
 
 @dataclass(frozen=True, eq=False, repr=False)
 class SceneSweep:
-    """A scene solved at N input angles. Arrays come from the Rust kernel; the dicts hold
-    views into them (no copies). NaN wherever a point or link is not solved."""
+    """A scene solved at N input angles. Arrays come from the Rust kernel; the dicts
+    (``points``, ``angles``, ``point_status``, ``velocities``, ``angular_velocities``) hold
+    views into them (no copies), made on first access. NaN wherever a point or link is not
+    solved."""
 
     plan: Plan
     #: (N,) input angles (radians).
     theta: np.ndarray
-    #: name -> (N, 2) positions, scene units.
-    points: dict[str, np.ndarray]
-    #: link -> (N,) angles in (-pi, pi].
-    angles: dict[str, np.ndarray]
+    #: (N, P, 2) every reported position, scene units (``points`` are views of it).
+    coords: np.ndarray
+    #: (N, L) link angles in (-pi, pi] (``angles`` are views of it).
+    angle_array: np.ndarray
     #: (N,) int8: the first failing step's status, or CONVERGED.
     status: np.ndarray
     #: (N,) Newton steps spent reaching each angle (group steps only).
@@ -73,45 +76,61 @@ class SceneSweep:
     #: (N,) for LIMIT angles, the input angle (radians) of the dead point that stops the
     #: motion on the circuit followed (where continuation last converged); NaN elsewhere.
     limit: np.ndarray
+    #: (N, steps) int8 status of each step.
+    step_status: np.ndarray
     #: (N, steps) each step's signed conditioning (a dyad's sine of its angle at the
     #: solved point; a group's Hadamard ratio det J / prod |columns|).
     step_det: np.ndarray
-    #: (N, steps) int8 status of each step.
-    step_status: np.ndarray
-    #: name -> (N,) int8 status of each reported point.
-    point_status: dict[str, np.ndarray]
-    #: name -> (N, 2) velocities (scene units per time) when ``omega`` was given.
-    velocities: dict[str, np.ndarray] | None = None
-    #: link -> (N,) angular velocities when ``omega`` was given.
-    angular_velocities: dict[str, np.ndarray] | None = None
-    #: (N, P, 2) all reported positions in one array (``points`` are views of it).
-    coords: np.ndarray = field(default_factory=lambda: np.empty((0, 0, 2)))
+    #: (N, P) int8 status of each reported point.
+    point_status_array: np.ndarray
+    #: (N, P, 2) velocities and (N, L) angular velocities when ``omega`` was given.
+    velocity_array: np.ndarray | None = None
+    angular_velocity_array: np.ndarray | None = None
 
     @classmethod
-    def build(
-        cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel
-    ):  # noqa: ANN001, ANN206, E501
-        names, links = plan.points, plan.links
-        v = w = None
-        if vel is not None:
-            v = {n: vel[0][:, j] for j, n in enumerate(names)}
-            w = {n: vel[1][:, j] for j, n in enumerate(links)}
+    def build(cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel):  # noqa: ANN001, ANN206, E501
         return cls(
             plan=plan,
             theta=theta,
-            points={n: pts[:, j] for j, n in enumerate(names)},
-            angles={n: ang[:, j] for j, n in enumerate(links)},
+            coords=pts,
+            angle_array=ang,
             status=status,
             nit=nit,
             det=det,
             limit=limit,
-            step_det=step_det,
             step_status=step_status,
-            point_status={n: pstat[:, j] for j, n in enumerate(names)},
-            velocities=v,
-            angular_velocities=w,
-            coords=pts,
+            step_det=step_det,
+            point_status_array=pstat,
+            velocity_array=None if vel is None else vel[0],
+            angular_velocity_array=None if vel is None else vel[1],
         )
+
+    @cached_property
+    def points(self) -> dict[str, np.ndarray]:
+        """name -> (N, 2) positions, scene units."""
+        return {n: self.coords[:, j] for j, n in enumerate(self.plan.points)}
+
+    @cached_property
+    def angles(self) -> dict[str, np.ndarray]:
+        """link -> (N,) angles in (-pi, pi]."""
+        return {n: self.angle_array[:, j] for j, n in enumerate(self.plan.links)}
+
+    @cached_property
+    def point_status(self) -> dict[str, np.ndarray]:
+        """name -> (N,) int8 status of each reported point."""
+        return {n: self.point_status_array[:, j] for j, n in enumerate(self.plan.points)}
+
+    @cached_property
+    def velocities(self) -> dict[str, np.ndarray] | None:
+        """name -> (N, 2) velocities (scene units per time) when ``omega`` was given."""
+        v = self.velocity_array
+        return None if v is None else {n: v[:, j] for j, n in enumerate(self.plan.points)}
+
+    @cached_property
+    def angular_velocities(self) -> dict[str, np.ndarray] | None:
+        """link -> (N,) angular velocities when ``omega`` was given."""
+        w = self.angular_velocity_array
+        return None if w is None else {n: w[:, j] for j, n in enumerate(self.plan.links)}
 
     @property
     def success(self) -> np.ndarray:

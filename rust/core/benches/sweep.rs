@@ -12,7 +12,7 @@ use planarkin_core::arrays::closed_form_into;
 use planarkin_core::batch::{closed_form_batch, sweep_batch, validate_links, BatchOut};
 use planarkin_core::newton::SINGULAR_THRESHOLD;
 use planarkin_core::sweep::{default_angles, sweep_into, Method, SweepOut};
-use planarkin_core::{FourBar, Mode, NewtonOptions, Predictor, SweepOptions};
+use planarkin_core::{FourBar, Mode, Never, NewtonOptions, Predictor, SweepOptions};
 
 const N: usize = 361;
 
@@ -56,7 +56,7 @@ fn seed_sweep(c: &mut Criterion) {
         let o = opts(p);
         let mut b = Bufs::new(N);
         g.bench_function(name, |bch| {
-            bch.iter(|| sweep_into(black_box(&fb), black_box(&t2), None, &o, b.out(), None).unwrap())
+            bch.iter(|| sweep_into(black_box(&fb), black_box(&t2), None, &o, b.out(), None, &Never).unwrap())
         });
     }
     // What the binding does on each call: allocate the five outputs, then sweep.
@@ -64,14 +64,15 @@ fn seed_sweep(c: &mut Criterion) {
     g.bench_function("quadratic_alloc", |bch| {
         bch.iter(|| {
             let mut b = Bufs::new(N);
-            sweep_into(black_box(&fb), black_box(&t2), None, &o, b.out(), None).unwrap();
+            sweep_into(black_box(&fb), black_box(&t2), None, &o, b.out(), None, &Never).unwrap();
             b
         })
     });
     let (mut t3, mut t4, mut st) = (vec![0.0; N], vec![0.0; N], vec![0i8; N]);
     g.bench_function("closed_form", |bch| {
         bch.iter(|| {
-            closed_form_into(black_box(&fb), black_box(&t2), Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st)
+            let (fb, t2) = (black_box(&fb), black_box(&t2));
+            closed_form_into(fb, t2, Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st, &Never).unwrap()
         })
     });
     g.finish();
@@ -115,7 +116,7 @@ fn batch(c: &mut Criterion) {
                         nit: &mut b.nit,
                         residual: &mut b.res,
                     };
-                    sweep_batch(&fbs, &t2, &o, out, Some(threads)).unwrap()
+                    sweep_batch(&fbs, &t2, &o, out, Some(threads), &Never).unwrap()
                 },
                 BatchSize::LargeInput,
             )
@@ -124,7 +125,8 @@ fn batch(c: &mut Criterion) {
     let (mut t3, mut t4) = (vec![0.0; m * N], vec![0.0; m * N]);
     g.bench_function("closed_form_threads_1", |bch| {
         bch.iter(|| {
-            closed_form_batch(&fbs, &t2, Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, None, Some(1)).unwrap()
+            closed_form_batch(&fbs, &t2, Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, None, Some(1), &Never)
+                .unwrap()
         })
     });
     g.finish();

@@ -1,9 +1,11 @@
 //! Pointwise kernels over arrays (no continuation): closed form, velocity, acceleration,
 //! coupler points and transmission angles. Each writes into caller-owned slices of the
-//! same length; the bindings broadcast and allocate, these only compute.
+//! same length; the bindings broadcast and allocate, these only compute. Each asks its
+//! `interrupt` every [`crate::interrupt::CHECK_EVERY`] points ([`Error::Interrupted`]).
 
 use crate::error::Error;
 use crate::fourbar::{transmission_angle, Assembly, FourBar, Mode};
+use crate::interrupt::{Interrupt, Poll};
 use crate::Status;
 
 fn same_len(name: &str, got: usize, n: usize) -> Result<(), Error> {
@@ -17,6 +19,7 @@ fn same_len(name: &str, got: usize, n: usize) -> Result<(), Error> {
 /// Closed form of `mode` at each crank angle, with a status: Converged, NotAssemblable,
 /// Singular (conditioning below `singular`, or indeterminate), NonFinite. Angles are NaN
 /// only where no solution exists or it is indeterminate.
+#[allow(clippy::too_many_arguments)]
 pub fn closed_form_into(
     fb: &FourBar,
     theta2: &[f64],
@@ -25,9 +28,33 @@ pub fn closed_form_into(
     theta3: &mut [f64],
     theta4: &mut [f64],
     status: &mut [i8],
-) {
-    let trig: Vec<(f64, f64)> = theta2.iter().map(|t| t.sin_cos()).collect();
-    closed_form_trig(fb, theta2, &trig, mode, singular, theta3, theta4, Some(status));
+    interrupt: &dyn Interrupt,
+) -> Result<(), Error> {
+    let poll = Poll::new(interrupt);
+    for (i, &t2) in theta2.iter().enumerate() {
+        poll.tick()?;
+        let (s2, c2) = t2.sin_cos();
+        let st;
+        (theta3[i], theta4[i], st) = closed_point(fb, t2, s2, c2, mode, singular);
+        status[i] = st.code();
+    }
+    Ok(())
+}
+
+/// One closed-form point from the crank angle and its sin and cos.
+#[inline]
+fn closed_point(fb: &FourBar, t2: f64, s2: f64, c2: f64, mode: Mode, singular: f64) -> (f64, f64, Status) {
+    if !t2.is_finite() {
+        return (f64::NAN, f64::NAN, Status::NonFinite);
+    }
+    match fb.closed_form_cs(c2, s2, mode) {
+        Assembly::Closed { theta3, theta4, sin34 } => {
+            let st = if fb.conditioning(sin34) < singular { Status::Singular } else { Status::Converged };
+            (theta3, theta4, st)
+        }
+        Assembly::NotAssemblable => (f64::NAN, f64::NAN, Status::NotAssemblable),
+        Assembly::Indeterminate => (f64::NAN, f64::NAN, Status::Singular),
+    }
 }
 
 /// [`closed_form_into`] from precomputed (sin, cos) of the crank angles (shared across a
@@ -44,18 +71,7 @@ pub(crate) fn closed_form_trig(
     mut status: Option<&mut [i8]>,
 ) {
     for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
-        let (t3, t4, st) = if !t2.is_finite() {
-            (f64::NAN, f64::NAN, Status::NonFinite)
-        } else {
-            match fb.closed_form_cs(c2, s2, mode) {
-                Assembly::Closed { theta3, theta4, sin34 } => {
-                    let st = if fb.conditioning(sin34) < singular { Status::Singular } else { Status::Converged };
-                    (theta3, theta4, st)
-                }
-                Assembly::NotAssemblable => (f64::NAN, f64::NAN, Status::NotAssemblable),
-                Assembly::Indeterminate => (f64::NAN, f64::NAN, Status::Singular),
-            }
-        };
+        let (t3, t4, st) = closed_point(fb, t2, s2, c2, mode, singular);
         theta3[i] = t3;
         theta4[i] = t4;
         if let Some(s) = status.as_deref_mut() {
@@ -76,12 +92,15 @@ pub fn velocity_into(
     omega3: &mut [f64],
     omega4: &mut [f64],
     status: &mut [i8],
+    interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
     let n = theta2.len();
     for (name, len) in [("theta3", theta3.len()), ("theta4", theta4.len()), ("omega2", omega2.len())] {
         same_len(name, len, n)?;
     }
+    let poll = Poll::new(interrupt);
     for i in 0..n {
+        poll.tick()?;
         let (w, st) = fb.velocity(theta2[i], theta3[i], theta4[i], omega2[i], singular);
         omega3[i] = w[0];
         omega4[i] = w[1];
@@ -104,6 +123,7 @@ pub fn acceleration_into(
     alpha3: &mut [f64],
     alpha4: &mut [f64],
     status: &mut [i8],
+    interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
     let n = theta2.len();
     for (name, len) in
@@ -111,7 +131,9 @@ pub fn acceleration_into(
     {
         same_len(name, len, n)?;
     }
+    let poll = Poll::new(interrupt);
     for i in 0..n {
+        poll.tick()?;
         let (t2, t3, t4, w2) = (theta2[i], theta3[i], theta4[i], omega2[i]);
         let (w, st) = fb.velocity(t2, t3, t4, w2, singular);
         let (a, st) = if st == Status::Converged {
@@ -128,6 +150,7 @@ pub fn acceleration_into(
 
 /// Coupler-point positions for a point at distance `p` from the crank pin, at angle
 /// `delta` from the coupler line.
+#[allow(clippy::too_many_arguments)]
 pub fn coupler_into(
     fb: &FourBar,
     theta2: &[f64],
@@ -136,20 +159,55 @@ pub fn coupler_into(
     delta: f64,
     x: &mut [f64],
     y: &mut [f64],
+    interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
     same_len("theta3", theta3.len(), theta2.len())?;
+    let poll = Poll::new(interrupt);
     for i in 0..theta2.len() {
+        poll.tick()?;
         [x[i], y[i]] = fb.coupler_point(theta2[i], theta3[i], p, delta);
     }
     Ok(())
 }
 
 /// Transmission angles (acute, [0, pi/2]) and the branch indicator sin(theta4 - theta3).
-pub fn transmission_into(theta3: &[f64], theta4: &[f64], mu: &mut [f64], sin34: &mut [f64]) -> Result<(), Error> {
+pub fn transmission_into(
+    theta3: &[f64],
+    theta4: &[f64],
+    mu: &mut [f64],
+    sin34: &mut [f64],
+    interrupt: &dyn Interrupt,
+) -> Result<(), Error> {
     same_len("theta4", theta4.len(), theta3.len())?;
+    let poll = Poll::new(interrupt);
     for i in 0..theta3.len() {
+        poll.tick()?;
         mu[i] = transmission_angle(theta3[i], theta4[i]);
         sin34[i] = (theta4[i] - theta3[i]).sin();
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Never;
+
+    #[test]
+    fn pointwise_kernels_stop_when_interrupted() {
+        let fb = FourBar::new(6.0, 2.0, 5.0, 5.0).unwrap();
+        let n = 3 * crate::interrupt::CHECK_EVERY as usize;
+        let t = vec![0.5; n];
+        let (mut a, mut b, mut st) = (vec![0.0; n], vec![0.0; n], vec![0i8; n]);
+        let yes = || true;
+        let r = closed_form_into(&fb, &t, Mode::Open, 1e-6, &mut a, &mut b, &mut st, &yes);
+        assert_eq!(r, Err(Error::Interrupted));
+        closed_form_into(&fb, &t, Mode::Open, 1e-6, &mut a, &mut b, &mut st, &Never).unwrap();
+        assert!(st.iter().all(|&s| s == 0));
+        let (mut c, mut d) = (vec![0.0; n], vec![0.0; n]);
+        let w = vec![1.0; n];
+        assert_eq!(velocity_into(&fb, &t, &a, &b, &w, 1e-6, &mut c, &mut d, &mut st, &yes), Err(Error::Interrupted));
+        assert_eq!(coupler_into(&fb, &t, &a, 1.0, 0.0, &mut c, &mut d, &yes), Err(Error::Interrupted));
+        assert_eq!(transmission_into(&a, &b, &mut c, &mut d, &yes), Err(Error::Interrupted));
+    }
 }

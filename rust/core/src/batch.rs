@@ -2,13 +2,15 @@
 //! each row written straight into caller-owned (M, N) row-major output slices, with no
 //! allocation per linkage.
 
+use std::sync::atomic::AtomicBool;
 use std::sync::{Arc, Mutex};
 
 use rayon::prelude::*;
 
 use crate::arrays::closed_form_trig;
-use crate::error::{positive_finite, Error};
+use crate::error::Error;
 use crate::fourbar::{FourBar, Mode};
+use crate::interrupt::{watched, Flag, Interrupt, Poll};
 use crate::sweep::{sin_cos, sweep_unchecked, SweepOptions, SweepOut};
 
 /// (M, N) row-major outputs of a batch sweep.
@@ -20,7 +22,8 @@ pub struct BatchOut<'a> {
     pub residual: &'a mut [f64],
 }
 
-/// Validates an (M, 4) row-major array of lengths; errors name the entry, e.g. `links[3, 1]`.
+/// Validates an (M, 4) row-major array of lengths as [`FourBar::new`] does; errors name
+/// the entry, e.g. `links[3, 1]`.
 pub fn validate_links(links: &[f64]) -> Result<Vec<FourBar>, Error> {
     if !links.len().is_multiple_of(4) {
         return Err(Error::invalid("links", "must have shape (M, 4)", format!("{} values", links.len())));
@@ -28,15 +31,26 @@ pub fn validate_links(links: &[f64]) -> Result<Vec<FourBar>, Error> {
     links
         .chunks_exact(4)
         .enumerate()
-        .map(|(i, r)| {
-            for (k, &v) in r.iter().enumerate() {
-                if !(v.is_finite() && v > 0.0) {
-                    positive_finite(format!("links[{i}, {k}]"), v)?; // the name is built only on error
-                }
-            }
-            Ok(FourBar::new_unchecked([r[0], r[1], r[2], r[3]]))
-        })
+        .map(|(i, r)| FourBar::validated([r[0], r[1], r[2], r[3]], |k| format!("links[{i}, {k}]")))
         .collect()
+}
+
+/// Work (points times Newton steps) below which a batch runs without a watching thread:
+/// it ends in tens of milliseconds anyway, and starting a thread would cost more.
+const WATCH_ABOVE: u128 = 1 << 22;
+
+/// Runs `work` on the pool with the caller's `interrupt` watched from this thread when
+/// the work is large ([`watched`]); `work` polls the flag it gets.
+fn run<T: Send>(
+    threads: Option<usize>,
+    size: u128,
+    interrupt: &dyn Interrupt,
+    work: impl FnOnce(&AtomicBool) -> Result<T, Error> + Send,
+) -> Result<T, Error> {
+    if size < WATCH_ABOVE {
+        return with_threads(threads, || work(&AtomicBool::new(false)))?;
+    }
+    watched(interrupt, |stop| with_threads(threads, || work(stop))?)
 }
 
 /// Pools by thread count, built once: starting threads costs more than a small batch.
@@ -73,13 +87,16 @@ fn check(name: &str, got: usize, expected: usize) -> Result<(), Error> {
     }
 }
 
-/// Sweeps every linkage over the same crank angles.
+/// Sweeps every linkage over the same crank angles. A large batch is watched from the
+/// calling thread, which asks `interrupt` every few milliseconds; interrupted, it
+/// returns [`Error::Interrupted`].
 pub fn sweep_batch(
     links: &[FourBar],
     theta2: &[f64],
     opts: &SweepOptions,
     out: BatchOut<'_>,
     threads: Option<usize>,
+    interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
     let n = theta2.len();
     let mn = links.len() * n;
@@ -91,8 +108,9 @@ pub fn sweep_batch(
     if n == 0 {
         return Ok(());
     }
-    let trig = sin_cos(theta2);
-    with_threads(threads, || {
+    let trig = sin_cos(theta2)?;
+    let size = mn as u128 * (u128::from(opts.newton.max_iter) + 1);
+    run(threads, size, interrupt, |stop| {
         out.theta3
             .par_chunks_mut(n)
             .zip(out.theta4.par_chunks_mut(n))
@@ -100,9 +118,10 @@ pub fn sweep_batch(
             .zip(out.nit.par_chunks_mut(n))
             .zip(out.residual.par_chunks_mut(n))
             .zip(links.par_iter())
-            .for_each(|(((((theta3, theta4), status), nit), residual), fb)| {
+            .try_for_each(|(((((theta3, theta4), status), nit), residual), fb)| {
                 let row = SweepOut { theta3, theta4, status, nit, residual };
-                sweep_unchecked(fb, theta2, &trig, None, opts, row, None);
+                let flag = Flag(stop);
+                sweep_unchecked(fb, theta2, &trig, None, opts, row, None, &Poll::new(&flag))
             })
     })
 }
@@ -119,6 +138,7 @@ pub fn closed_form_batch(
     theta4: &mut [f64],
     status: Option<&mut [i8]>,
     threads: Option<usize>,
+    interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
     let n = theta2.len();
     let mn = links.len() * n;
@@ -130,13 +150,21 @@ pub fn closed_form_batch(
     if n == 0 {
         return Ok(());
     }
-    let trig = sin_cos(theta2);
+    let trig = sin_cos(theta2)?;
     let rows = theta3.par_chunks_mut(n).zip(theta4.par_chunks_mut(n)).zip(links.par_iter());
-    with_threads(threads, || match status {
-        Some(status) => rows
-            .zip(status.par_chunks_mut(n))
-            .for_each(|(((t3, t4), fb), st)| closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, Some(st))),
-        None => rows.for_each(|((t3, t4), fb)| closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, None)),
+    // a row is checked as a whole: closed-form points cost nanoseconds
+    let go = |stop: &AtomicBool| if Flag(stop).interrupted() { Err(Error::Interrupted) } else { Ok(()) };
+    run(threads, mn as u128, interrupt, |stop| match status {
+        Some(status) => rows.zip(status.par_chunks_mut(n)).try_for_each(|(((t3, t4), fb), st)| {
+            go(stop)?;
+            closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, Some(st));
+            Ok(())
+        }),
+        None => rows.try_for_each(|((t3, t4), fb)| {
+            go(stop)?;
+            closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, None);
+            Ok(())
+        }),
     })
 }
 
@@ -163,7 +191,7 @@ mod tests {
             let (mut a, mut b, mut s, mut k, mut r) =
                 (vec![0.0; mn], vec![0.0; mn], vec![0i8; mn], vec![0u32; mn], vec![0.0; mn]);
             let out = BatchOut { theta3: &mut a, theta4: &mut b, status: &mut s, nit: &mut k, residual: &mut r };
-            sweep_batch(&links, &t2, &opts, out, threads).unwrap();
+            sweep_batch(&links, &t2, &opts, out, threads, &crate::Never).unwrap();
             (a, s, k)
         };
         let (a1, s1, k1) = run(Some(1));
@@ -175,7 +203,7 @@ mod tests {
             let (mut a, mut b, mut s, mut k, mut r) =
                 (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
             let out = SweepOut { theta3: &mut a, theta4: &mut b, status: &mut s, nit: &mut k, residual: &mut r };
-            sweep_into(fb, &t2, None, &opts, out, None).unwrap();
+            sweep_into(fb, &t2, None, &opts, out, None, &crate::Never).unwrap();
             assert_eq!(&s1[m * n..(m + 1) * n], &s[..]);
             assert!(a1[m * n..(m + 1) * n].iter().zip(&a).all(|(x, y)| x.to_bits() == y.to_bits()));
         }

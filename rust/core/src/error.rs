@@ -1,4 +1,5 @@
-//! The one error type of the core: misuse (invalid input) only. Not converging is a
+//! The one error type of the core: misuse (invalid input), an output too large to
+//! allocate, or an interruption the caller asked for. Not converging is a
 //! [`crate::Status`], never an error.
 
 /// Invalid input, naming the offending parameter.
@@ -32,6 +33,17 @@ pub enum Error {
         /// What is wrong with it.
         message: String,
     },
+    /// An output too large to allocate: raised before any work, naming the sizes.
+    #[error("{what}: cannot allocate {bytes} bytes")]
+    Allocation {
+        /// What was being allocated, with its dimensions (e.g. "5 arrays of 1000 x 100000000").
+        what: String,
+        /// Bytes asked for (saturating).
+        bytes: u128,
+    },
+    /// The caller's [`crate::interrupt::Interrupt`] asked the computation to stop.
+    #[error("interrupted")]
+    Interrupted,
 }
 
 impl Error {
@@ -41,6 +53,19 @@ impl Error {
 
     pub(crate) fn invalid(name: impl Into<String>, requirement: &'static str, value: impl std::fmt::Display) -> Self {
         Error::InvalidParameter { name: name.into(), requirement, value: value.to_string() }
+    }
+}
+
+/// A vector of `len` default values, allocated fallibly: an [`Error::Allocation`] naming
+/// `what` instead of an abort when the memory is not there.
+pub fn try_zeros<T: Clone + Default>(what: impl FnOnce() -> String, len: usize) -> Result<Vec<T>, Error> {
+    let mut v = Vec::new();
+    match v.try_reserve_exact(len) {
+        Ok(()) => {
+            v.resize(len, T::default());
+            Ok(v)
+        }
+        Err(_) => Err(Error::Allocation { what: what(), bytes: len as u128 * std::mem::size_of::<T>() as u128 }),
     }
 }
 

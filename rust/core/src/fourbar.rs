@@ -7,6 +7,7 @@ use std::cell::Cell;
 use nalgebra::{Matrix2, Vector2};
 
 use crate::error::{positive_finite, Error};
+use crate::interrupt::{Never, Poll};
 use crate::newton::{self, NewtonOptions, System};
 use crate::{wrap_angle, Status};
 
@@ -113,37 +114,97 @@ impl Point {
 }
 
 /// A four-bar linkage with validated lengths: r1 ground, r2 crank, r3 coupler, r4 rocker.
+///
+/// The problem is scale-free: every kernel works on the lengths divided by the power of
+/// two 2^e <= L < 2^(e+1) of the longest link L (an exact division), so the longest unit
+/// length lies in [1, 2) and nothing overflows or underflows however large or small the
+/// lengths are, and lengths scaled by a power of two give bit-identical results.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FourBar {
+    /// The lengths as given.
+    raw: [f64; 4],
+    /// The lengths divided by 2^e: what every computation uses.
     r: [f64; 4],
+    /// The longest unit length, in [1, 2).
     longest: f64,
     /// min(r3, r4) / longest: turns |sin(theta4 - theta3)| into the conditioning measure.
     cond_scale: f64,
 }
 
+/// A triangle A-B-O4 whose sides close within this many ulp of the longest link is
+/// taken as flat (the rounding of |A O4| and of the sums of lengths).
+pub const FLAT_ULPS: f64 = 8.0;
+
+/// Why a length is refused when the unit problem cannot hold it.
+const TOO_SHORT: &str = "is too short relative to the longest link to be represented (ratio below ~1e-308)";
+
+/// 2^k for k in -1022..=1023 (a normal number).
+fn pow2(k: i32) -> f64 {
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// The exponent e with 2^e <= x < 2^(e+1), for finite x > 0 (subnormal x too).
+fn exponent(x: f64) -> i32 {
+    let bits = x.to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i32;
+    if e == 0 {
+        63 - (bits & ((1 << 52) - 1)).leading_zeros() as i32 - 1074
+    } else {
+        e - 1023
+    }
+}
+
+/// x 2^k, in steps that keep every factor normal: exact whenever the result is normal.
+fn times_pow2(mut x: f64, mut k: i32) -> f64 {
+    while k != 0 {
+        let s = k.clamp(-1000, 1000);
+        x *= pow2(s);
+        k -= s;
+    }
+    x
+}
+
 impl FourBar {
-    /// Validates every length (finite and > 0); the error names the parameter.
+    /// Validates every length (finite and > 0, and representable exactly once divided by
+    /// the power of two of the longest: a length below about 1e-308 times the longest
+    /// may not be); the error names the parameter.
     pub fn new(r1: f64, r2: f64, r3: f64, r4: f64) -> Result<Self, Error> {
-        let names = ["r1", "r2", "r3", "r4"];
-        let r = [r1, r2, r3, r4];
-        for (name, &v) in names.iter().zip(&r) {
-            positive_finite(*name, v)?;
+        const NAMES: [&str; 4] = ["r1", "r2", "r3", "r4"];
+        Self::validated([r1, r2, r3, r4], |i| NAMES[i].to_string())
+    }
+
+    /// Validates `raw`, naming entry `i` by `name(i)` in errors (built only on error).
+    pub(crate) fn validated(raw: [f64; 4], name: impl Fn(usize) -> String) -> Result<Self, Error> {
+        for (i, &v) in raw.iter().enumerate() {
+            if !(v.is_finite() && v > 0.0) {
+                positive_finite(name(i), v)?;
+            }
         }
-        Ok(Self::new_unchecked(r))
+        let big = raw[0].max(raw[1]).max(raw[2]).max(raw[3]);
+        let e = exponent(big);
+        let r = raw.map(|v| times_pow2(v, -e));
+        for (i, &v) in r.iter().enumerate() {
+            // below ~1e-308 times the longest the unit length is subnormal: kept if exact
+            if v == 0.0 || times_pow2(v, e) != raw[i] {
+                return Err(Error::invalid(name(i), TOO_SHORT, raw[i]));
+            }
+        }
+        let longest = times_pow2(big, -e);
+        Ok(FourBar { raw, r, longest, cond_scale: r[2].min(r[3]) / longest })
     }
 
-    /// For lengths already validated (batches validate once up front).
-    pub(crate) fn new_unchecked(r: [f64; 4]) -> Self {
-        let longest = r[0].max(r[1]).max(r[2]).max(r[3]);
-        FourBar { r, longest, cond_scale: r[2].min(r[3]) / longest }
-    }
-
-    /// The lengths [r1, r2, r3, r4].
+    /// The lengths [r1, r2, r3, r4] as given.
     pub fn lengths(&self) -> [f64; 4] {
+        self.raw
+    }
+
+    /// The lengths divided by the power of two of the longest (longest in [1, 2)): the
+    /// scale-free problem every kernel solves.
+    pub fn unit_lengths(&self) -> [f64; 4] {
         self.r
     }
 
-    /// The longest link: the scale that makes residuals dimensionless.
+    /// The longest unit length, in [1, 2): the scale that makes residuals dimensionless.
     pub fn longest(&self) -> f64 {
         self.longest
     }
@@ -191,9 +252,14 @@ impl FourBar {
         if d == 0.0 {
             return if r3 == r4 { Geometry::Indeterminate } else { Geometry::NotAssemblable };
         }
-        let q1 = d + r3 - r4;
-        let q2 = d - r3 + r4;
-        let q3 = r3 + r4 - d;
+        // d and the sums are rounded by a few ulp of the longest link: a triangle that
+        // closes within that is flat (a dead point: SINGULAR), not one that cannot close
+        // (e.g. the fold of the change point (1.8, 0.6, 1.8, 0.6) at theta2 = 0)
+        let slack = FLAT_ULPS * f64::EPSILON * self.longest;
+        let flat = |q: f64| if q < 0.0 && q >= -slack { 0.0 } else { q };
+        let q1 = flat(d + r3 - r4);
+        let q2 = flat(d - r3 + r4);
+        let q3 = flat(r3 + r4 - d);
         if !(q1 >= 0.0 && q2 >= 0.0 && q3 >= 0.0) {
             return Geometry::NotAssemblable;
         }
@@ -212,25 +278,31 @@ impl FourBar {
         opts: &NewtonOptions,
         history: Option<&mut Vec<f64>>,
     ) -> Point {
-        self.solve_point(theta2, mode, guess, opts, history).0
+        let never = Poll::new(&Never);
+        // Never does not interrupt: the error branch is unreachable, and harmless
+        self.solve_polled(theta2, mode, guess, opts, history, &never)
+            .unwrap_or_else(|_| Point::failed(Status::MaxIterations, 0, f64::NAN))
     }
 
-    /// [`FourBar::solve`] that also hands back the loop and the Jacobian at the solution.
-    pub(crate) fn solve_point(
+    /// [`FourBar::solve`] that counts its Newton steps on `poll` and returns
+    /// [`Error::Interrupted`] when the poll's interrupt asks to stop.
+    pub fn solve_polled(
         &self,
         theta2: f64,
         mode: Mode,
         guess: Option<[f64; 2]>,
         opts: &NewtonOptions,
         history: Option<&mut Vec<f64>>,
-    ) -> (Point, Matrix2<f64>) {
+        poll: &Poll<'_>,
+    ) -> Result<Point, Error> {
         if !theta2.is_finite() {
-            return Point::unsolved(Status::NonFinite);
+            return Ok(Point::unsolved(Status::NonFinite).0);
         }
-        self.solve_on(&self.at(theta2), mode, guess, opts, history)
+        Ok(self.solve_on(&self.at(theta2), mode, guess, opts, history, poll)?.0)
     }
 
-    /// [`FourBar::solve_point`] on a loop already set up at a finite crank angle.
+    /// Solves on a loop already set up at a finite crank angle; also hands back the
+    /// Jacobian at the solution.
     pub(crate) fn solve_on(
         &self,
         sys: &Loop<'_>,
@@ -238,14 +310,15 @@ impl FourBar {
         guess: Option<[f64; 2]>,
         opts: &NewtonOptions,
         history: Option<&mut Vec<f64>>,
-    ) -> (Point, Matrix2<f64>) {
+        poll: &Poll<'_>,
+    ) -> Result<(Point, Matrix2<f64>), Error> {
         let start = match (self.geometry(sys.c2, sys.s2), guess) {
-            (Geometry::NotAssemblable, _) => return Point::unsolved(Status::NotAssemblable),
+            (Geometry::NotAssemblable, _) => return Ok(Point::unsolved(Status::NotAssemblable)),
             (_, Some(g)) => Vector2::from(g),
             (Geometry::Triangle(t), None) => t.angles(mode).0,
-            (Geometry::Indeterminate, None) => return Point::unsolved(Status::Singular),
+            (Geometry::Indeterminate, None) => return Ok(Point::unsolved(Status::Singular)),
         };
-        self.solve_from(sys, start, mode, opts, history)
+        self.solve_from(sys, start, mode, opts, history, poll)
     }
 
     /// Newton from `start` on the loop `sys`, then the mode check.
@@ -256,8 +329,9 @@ impl FourBar {
         mode: Mode,
         opts: &NewtonOptions,
         history: Option<&mut Vec<f64>>,
-    ) -> (Point, Matrix2<f64>) {
-        let out = newton::solve(sys, start, opts, history);
+        poll: &Poll<'_>,
+    ) -> Result<(Point, Matrix2<f64>), Error> {
+        let out = newton::solve_polled(sys, start, opts, history, poll)?;
         let mut status = out.status;
         if status == Status::Converged && sys.sin34(&out.jacobian) * mode.sign() < 0.0 {
             status = Status::BranchJump;
@@ -273,10 +347,10 @@ impl FourBar {
         } else {
             Point::failed(status, out.nit, out.residual)
         };
-        (point, out.jacobian)
+        Ok((point, out.jacobian))
     }
 
-    /// Jacobian of the loop at (theta3, theta4).
+    /// Jacobian of the unit-length loop ([`FourBar::unit_lengths`]) at (theta3, theta4).
     pub fn jacobian(&self, theta3: f64, theta4: f64) -> Matrix2<f64> {
         let [_, _, r3, r4] = self.r;
         let (s3, c3) = theta3.sin_cos();
@@ -349,7 +423,7 @@ impl FourBar {
     /// Position of a coupler point at distance `p` from the crank pin A, at angle `delta`
     /// from the coupler line A-B.
     pub fn coupler_point(&self, theta2: f64, theta3: f64, p: f64, delta: f64) -> [f64; 2] {
-        let r2 = self.r[1];
+        let r2 = self.raw[1];
         let (s2, c2) = theta2.sin_cos();
         let (s, c) = (theta3 + delta).sin_cos();
         [r2 * c2 + p * c, r2 * s2 + p * s]
@@ -543,6 +617,54 @@ mod tests {
                 assert!(e.starts_with(name), "{e}");
             }
         }
+    }
+
+    #[test]
+    fn any_scale_gives_the_seed_results() {
+        // the problem is scale-free: power-of-two scales are bit-identical, others agree
+        // to rounding, down to the smallest and up to the largest lengths a double holds
+        let t2: Vec<f64> = crate::sweep::default_angles(361);
+        let opts = crate::sweep::SweepOptions {
+            mode: Mode::Open,
+            newton: NewtonOptions::default(),
+            predictor: crate::sweep::Predictor::Quadratic,
+            method: crate::sweep::Method::Newton,
+        };
+        let base = crate::sweep::sweep(&seed(), &t2, None, &opts);
+        let lim = seed().limits(Mode::Open);
+        for k in [-1070, -1000, -340, -200, 0, 200, 340, 1020] {
+            let s = times_pow2(1.0, k);
+            let fb = FourBar::new(6.0 * s, 2.0 * s, 5.0 * s, 5.0 * s).unwrap();
+            let sw = crate::sweep::sweep(&fb, &t2, None, &opts);
+            assert_eq!(sw.status, base.status, "2^{k}");
+            assert!(sw.theta3.iter().zip(&base.theta3).all(|(a, b)| a.to_bits() == b.to_bits()), "2^{k}");
+            assert_eq!(fb.limits(Mode::Open), lim, "2^{k}");
+        }
+        for s in [1e-300, 1e-100, 1e-9, 3.0, 1e100, 1e160, 1e300] {
+            let fb = FourBar::new(6.0 * s, 2.0 * s, 5.0 * s, 5.0 * s).unwrap();
+            let sw = crate::sweep::sweep(&fb, &t2, None, &opts);
+            assert_eq!(sw.status, base.status, "{s}");
+            assert!(sw.theta4.iter().zip(&base.theta4).all(|(a, b)| (a - b).abs() < 1e-12), "{s}");
+            let l = fb.limits(Mode::Open);
+            assert!(l.full_rotation && l.dead_points.is_empty(), "{s}");
+        }
+    }
+
+    #[test]
+    fn lengths_the_unit_problem_cannot_hold_are_rejected() {
+        let e = FourBar::new(1e300, 1e-300, 1e300, 1e300).unwrap_err().to_string();
+        assert!(e.starts_with("r2 is too short"), "{e}");
+        assert!(FourBar::new(5e-324, 1.0, 1.0, 1.0).is_ok());
+        assert!(FourBar::new(1.0, 1e-300, 1.0, 1.0).is_ok());
+        assert!(FourBar::new(5e-324, 5e-324, 5e-324, 5e-324).is_ok());
+    }
+
+    #[test]
+    fn an_interrupt_stops_a_long_solve() {
+        let opts = NewtonOptions::new(1e-300, 4_294_967_295).unwrap();
+        let yes = || true;
+        let p = seed().solve_polled(0.5, Mode::Open, Some([1.0, 2.0]), &opts, None, &Poll::new(&yes));
+        assert_eq!(p, Err(Error::Interrupted));
     }
 
     #[test]

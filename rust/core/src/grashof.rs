@@ -129,6 +129,13 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, (a - (s - bb)) + (b - bb))
 }
 
+/// Whether a + b == c + d exactly on the binary values (no rounding, no tolerance).
+pub(crate) fn sums_equal(a: f64, b: f64, c: f64, d: f64) -> bool {
+    let (x, ex) = two_sum(a, b);
+    let (y, ey) = two_sum(c, d);
+    x == y && ex == ey
+}
+
 /// Classifies lengths [r1 ground, r2 input, r3 coupler, r4 output] (validated, > 0).
 pub fn classify(r: [f64; 4]) -> Grashof {
     let mut sorted = r;

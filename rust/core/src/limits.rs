@@ -9,6 +9,7 @@
 use std::f64::consts::{PI, TAU};
 
 use crate::fourbar::{Assembly, FourBar, Mode};
+use crate::grashof::sums_equal;
 use crate::wrap_angle;
 
 /// The angle t in [0, pi] at which a point at radius `r` from the origin, at polar angle
@@ -48,18 +49,31 @@ pub struct Limits {
     /// The crank turns a full revolution.
     pub full_rotation: bool,
     /// The rocker's smallest and largest angle on this mode (None when the rocker turns
-    /// fully or the linkage never assembles). theta4 values are wrapped to (-pi, pi];
-    /// the swing is `(max - min)` taken counter-clockwise.
+    /// fully or the linkage never assembles): the rocker sweeps the interval from the
+    /// first to the second counter-clockwise. The smallest is wrapped to (-pi, pi]; the
+    /// largest is the smallest plus the swing, so it is never below it (and may exceed pi
+    /// when the interval contains theta4 = pi).
     pub rocker: Option<(Extreme, Extreme)>,
 }
 
 impl FourBar {
     /// Limit positions on `mode`, from the closed form.
+    ///
+    /// A change-point linkage folds flat (all links collinear) at theta2 = 0 when
+    /// r1 + r4 = r2 + r3 or r1 + r3 = r2 + r4, and at theta2 = pi when r1 + r2 = r3 + r4:
+    /// decided exactly on the binary values (as the Grashof class is), so these dead
+    /// points are listed even where rounding the distances would miss them.
     pub fn limits(&self, mode: Mode) -> Limits {
-        let [r1, r2, r3, r4] = self.lengths();
+        let [r1, r2, r3, r4] = self.unit_lengths();
         // d <= r3 + r4 for |theta2| <= hi; d >= |r3 - r4| for |theta2| >= lo.
-        let outer = reach(r1, r2, r3 + r4);
-        let inner = reach(r1, r2, (r3 - r4).abs());
+        let mut outer = reach(r1, r2, r3 + r4);
+        let mut inner = reach(r1, r2, (r3 - r4).abs());
+        if sums_equal(r1, r2, r3, r4) {
+            outer = Ok(PI); // d(pi) = r1 + r2 = r3 + r4
+        }
+        if sums_equal(r1, r4, r2, r3) || sums_equal(r1, r3, r2, r4) {
+            inner = Ok(0.0); // d(0) = |r1 - r2| = |r3 - r4|
+        }
         let mut dead: Vec<f64> =
             [outer, inner].iter().filter_map(|x| x.ok()).flat_map(|t| [t, -t]).map(|t| wrap_angle(t) + 0.0).collect();
         dead.sort_by(f64::total_cmp);
@@ -97,7 +111,7 @@ impl FourBar {
 
     /// theta4 at a toggle, where B is on the line A-O4 (no square root of a rounded zero).
     fn toggle_theta4(&self, theta2: f64) -> f64 {
-        let [r1, r2, r3, r4] = self.lengths();
+        let [r1, r2, r3, r4] = self.unit_lengths();
         let (s2, c2) = theta2.sin_cos();
         let phi = (-(r2 * s2)).atan2(r1 - r2 * c2); // direction A -> O4
         let d2 = (r1 - r2 * c2).powi(2) + (r2 * s2).powi(2);
@@ -108,7 +122,7 @@ impl FourBar {
 
     /// Crank angles where crank and coupler are collinear on `mode` (omega4 = 0), with theta4.
     fn stationary(&self, mode: Mode) -> Vec<Extreme> {
-        let [r1, r2, r3, r4] = self.lengths();
+        let [r1, r2, r3, r4] = self.unit_lengths();
         let mut out = Vec::new();
         for (rho, flip) in [(r2 + r3, false), ((r2 - r3).abs(), r3 > r2)] {
             if rho == 0.0 {
@@ -183,7 +197,8 @@ impl FourBar {
         if umx - umn >= TAU - 1e-9 {
             return None; // the output turns fully: it is a crank, not a rocker
         }
-        Some((mn, mx))
+        // the largest as the smallest plus the swing: never below it, across +-pi too
+        Some((mn, Extreme { theta2: mx.theta2, theta4: mn.theta4 + (umx - umn) }))
     }
 }
 
@@ -236,6 +251,40 @@ mod tests {
     fn double_crank_output_turns_fully() {
         let l = FourBar::new(2.0, 5.0, 6.0, 5.5).unwrap().limits(Mode::Open); // GCCC
         assert!(l.full_rotation && l.rocker.is_none());
+    }
+
+    #[test]
+    fn change_point_folds_are_dead_points_even_where_distances_round() {
+        // 1.8 = 3 * 0.6 rounded: |r1 - r2| and |r3 - r4| round apart, the sums do not
+        for (r, want) in [
+            ([6.0, 5.0, 3.0, 2.0], vec![0.0]),
+            ([6.0, 2.0, 6.0, 2.0], vec![0.0, PI]),
+            ([1.7999999999999998, 0.6, 1.7999999999999998, 0.6], vec![0.0, PI]),
+            ([0.30000000000000004, 0.2, 0.5, 0.6000000000000001], vec![]), // not a change point
+            ([0.003, 0.002, 0.005, 0.006], vec![0.0]),
+        ] {
+            let fb = FourBar::new(r[0], r[1], r[2], r[3]).unwrap();
+            for mode in [Mode::Open, Mode::Crossed] {
+                let l = fb.limits(mode);
+                for &w in &want {
+                    assert!(l.dead_points.contains(&w), "{r:?} {mode:?}: {:?}", l.dead_points);
+                    assert!(!l.toggles.contains(&w), "{r:?} {mode:?}: {:?}", l.toggles);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rocker_max_is_never_below_min() {
+        for r in [[6.0, 5.0, 3.0, 2.0], [6.0, 2.0, 5.0, 5.0], [4.0, 3.0, 1.5, 2.0], [1.0, 0.3, 1.2, 0.5]] {
+            let fb = FourBar::new(r[0], r[1], r[2], r[3]).unwrap();
+            for mode in [Mode::Open, Mode::Crossed] {
+                if let Some((mn, mx)) = fb.limits(mode).rocker {
+                    assert!(mx.theta4 >= mn.theta4 && mx.theta4 - mn.theta4 < TAU, "{r:?} {mode:?}");
+                    assert!(mn.theta4 > -PI && mn.theta4 <= PI);
+                }
+            }
+        }
     }
 
     #[test]

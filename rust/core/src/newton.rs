@@ -6,6 +6,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use crate::error::{positive_finite, Error};
+use crate::interrupt::Poll;
 use crate::Status;
 
 /// Default dimensionless singular threshold on the system's conditioning measure.
@@ -149,8 +150,35 @@ pub fn solve<S: System<N>, const N: usize>(
     sys: &S,
     x0: SVector<f64, N>,
     opts: &NewtonOptions,
-    mut history: Option<&mut Vec<f64>>,
+    history: Option<&mut Vec<f64>>,
 ) -> Outcome<N> {
+    iterate(sys, x0, opts, history, None).0
+}
+
+/// [`solve`] that counts every Newton step on `poll` and returns [`Error::Interrupted`]
+/// when the poll's interrupt asks to stop.
+pub fn solve_polled<S: System<N>, const N: usize>(
+    sys: &S,
+    x0: SVector<f64, N>,
+    opts: &NewtonOptions,
+    history: Option<&mut Vec<f64>>,
+    poll: &Poll<'_>,
+) -> Result<Outcome<N>, Error> {
+    match iterate(sys, x0, opts, history, Some(poll)) {
+        (out, None) => Ok(out),
+        (_, Some(e)) => Err(e),
+    }
+}
+
+/// The Newton loop; the error is set only when `poll` interrupted it.
+#[inline]
+fn iterate<S: System<N>, const N: usize>(
+    sys: &S,
+    x0: SVector<f64, N>,
+    opts: &NewtonOptions,
+    mut history: Option<&mut Vec<f64>>,
+    poll: Option<&Poll<'_>>,
+) -> (Outcome<N>, Option<Error>) {
     let scale = sys.scale();
     let mut x = x0;
     let mut nit = 0;
@@ -167,9 +195,9 @@ pub fn solve<S: System<N>, const N: usize>(
             h.push(if finite { residual } else { f64::NAN });
         }
         if !finite {
-            return Outcome { x, status: Status::NonFinite, nit, residual: f64::NAN, jacobian: j };
+            return (Outcome { x, status: Status::NonFinite, nit, residual: f64::NAN, jacobian: j }, None);
         }
-        let done = |status| Outcome { x, status, nit, residual, jacobian: j };
+        let done = |status| (Outcome { x, status, nit, residual, jacobian: j }, None);
         if sys.conditioning(&j) < opts.singular {
             return done(Status::Singular);
         }
@@ -179,7 +207,7 @@ pub fn solve<S: System<N>, const N: usize>(
             if step < opts.tol {
                 // The correction is already computed: apply it (no further evaluation), so
                 // the answer's error is quadratic in it rather than of its size.
-                return Outcome { x: x + dx, status: Status::Converged, nit, residual, jacobian: j };
+                return (Outcome { x: x + dx, status: Status::Converged, nit, residual, jacobian: j }, None);
             }
             if step > 0.5 * last_small_step {
                 return done(Status::PrecisionLoss);
@@ -188,6 +216,9 @@ pub fn solve<S: System<N>, const N: usize>(
         }
         if nit >= opts.max_iter {
             return done(Status::MaxIterations);
+        }
+        if let Some(Err(e)) = poll.map(Poll::tick) {
+            return (Outcome { x, status: Status::MaxIterations, nit, residual, jacobian: j }, Some(e));
         }
         x += dx;
         sys.normalize(&mut x);

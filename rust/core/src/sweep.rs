@@ -4,8 +4,9 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use crate::error::Error;
+use crate::error::{try_zeros, Error};
 use crate::fourbar::{cramer, Assembly, FourBar, Geometry, Loop, Mode, Point};
+use crate::interrupt::{Interrupt, Never, Poll};
 use crate::newton::NewtonOptions;
 use crate::{wrap_angle, Status};
 
@@ -126,7 +127,9 @@ impl SweepOut<'_> {
 }
 
 /// Sweeps `theta2` in order into `out` (and `motion` when given). `guess` seeds the
-/// first point instead of the closed form.
+/// first point instead of the closed form. `interrupt` is asked every
+/// [`crate::interrupt::CHECK_EVERY`] points and Newton steps; when it says stop, the sweep
+/// returns [`Error::Interrupted`] (the outputs are then partly written).
 pub fn sweep_into(
     fb: &FourBar,
     theta2: &[f64],
@@ -134,6 +137,7 @@ pub fn sweep_into(
     opts: &SweepOptions,
     out: SweepOut<'_>,
     motion: Option<MotionOut<'_>>,
+    interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
     let n = theta2.len();
     out.check(n)?;
@@ -145,16 +149,21 @@ pub fn sweep_into(
             check_len("alpha4", a4.len(), n)?;
         }
     }
-    sweep_unchecked(fb, theta2, &sin_cos(theta2), guess, opts, out, motion);
-    Ok(())
+    sweep_unchecked(fb, theta2, &sin_cos(theta2)?, guess, opts, out, motion, &Poll::new(interrupt))
 }
 
 /// (sin, cos) of every crank angle: computed once, shared by every linkage of a batch.
-pub fn sin_cos(theta2: &[f64]) -> Vec<(f64, f64)> {
-    theta2.iter().map(|t| t.sin_cos()).collect()
+/// Allocated fallibly ([`Error::Allocation`]).
+pub fn sin_cos(theta2: &[f64]) -> Result<Vec<(f64, f64)>, Error> {
+    let mut v = try_zeros::<(f64, f64)>(|| format!("sin and cos of {} crank angles", theta2.len()), theta2.len())?;
+    for (o, t) in v.iter_mut().zip(theta2) {
+        *o = t.sin_cos();
+    }
+    Ok(v)
 }
 
 /// [`sweep_into`] for slices known to have the right lengths (the batch kernel).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn sweep_unchecked(
     fb: &FourBar,
     theta2: &[f64],
@@ -163,12 +172,14 @@ pub(crate) fn sweep_unchecked(
     opts: &SweepOptions,
     out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
-) {
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
     if opts.method == Method::ClosedForm {
-        return closed_form_sweep(fb, theta2, trig, opts, out, motion);
+        return closed_form_sweep(fb, theta2, trig, opts, out, motion, poll);
     }
     let mut prev: Option<Prev> = None;
     for (i, &t2) in theta2.iter().enumerate() {
+        poll.tick()?;
         let start = match &prev {
             Some(p) => Some(p.predict(t2, opts.predictor)),
             None if i == 0 => guess.map(Vector2::from),
@@ -177,7 +188,7 @@ pub(crate) fn sweep_unchecked(
         let (point, j) = if t2.is_finite() {
             let (s2, c2) = trig[i];
             let sys = fb.at_sin_cos(s2, c2);
-            let (point, j) = sweep_point(fb, &sys, start, opts);
+            let (point, j) = sweep_point(fb, &sys, start, opts, poll)?;
             (point, Some((j, (sys.s2, sys.c2))))
         } else {
             (Point::failed(Status::NonFinite, 0, f64::NAN), None)
@@ -199,6 +210,7 @@ pub(crate) fn sweep_unchecked(
             _ => None,
         };
     }
+    Ok(())
 }
 
 /// A sweep by the closed form: each point on its own, NaN angles unless `Converged`
@@ -210,8 +222,10 @@ fn closed_form_sweep(
     opts: &SweepOptions,
     out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
-) {
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
     for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
+        poll.tick()?;
         let status = if !t2.is_finite() {
             Status::NonFinite
         } else {
@@ -237,6 +251,7 @@ fn closed_form_sweep(
             fill_motion(fb, t2, &p, status == Status::Converged, i, m, opts.newton.singular);
         }
     }
+    Ok(())
 }
 
 /// Solves one sweep point: continuation from `start` first, then, if that fails in any
@@ -246,26 +261,27 @@ fn sweep_point(
     sys: &Loop<'_>,
     start: Option<Vector2<f64>>,
     opts: &SweepOptions,
-) -> (Point, Matrix2<f64>) {
+    poll: &Poll<'_>,
+) -> Result<(Point, Matrix2<f64>), Error> {
     let Some(x0) = start else {
-        return fb.solve_on(sys, opts.mode, None, &opts.newton, None);
+        return fb.solve_on(sys, opts.mode, None, &opts.newton, None, poll);
     };
     let tri = match fb.geometry(sys.c2, sys.s2) {
-        Geometry::NotAssemblable => return Point::unsolved(Status::NotAssemblable),
+        Geometry::NotAssemblable => return Ok(Point::unsolved(Status::NotAssemblable)),
         Geometry::Indeterminate => None,
         Geometry::Triangle(t) => Some(t),
     };
-    let (first, j) = fb.solve_from(sys, x0, opts.mode, &opts.newton, None);
+    let (first, j) = fb.solve_from(sys, x0, opts.mode, &opts.newton, None, poll)?;
     if first.status == Status::Converged {
-        return (first, j);
+        return Ok((first, j));
     }
     // the closed form of the mode is computed only now, when continuation failed
     let (mut second, j) = match tri {
-        Some(t) => fb.solve_from(sys, t.angles(opts.mode).0, opts.mode, &opts.newton, None),
+        Some(t) => fb.solve_from(sys, t.angles(opts.mode).0, opts.mode, &opts.newton, None, poll)?,
         None => Point::unsolved(Status::Singular),
     };
     second.nit += first.nit;
-    (second, j)
+    Ok((second, j))
 }
 
 /// dx/dtheta2 and d2x/dtheta2^2 at unit crank speed, as far as the predictor needs them.
@@ -276,7 +292,7 @@ fn predictor_rates(fb: &FourBar, (s2, c2): (f64, f64), j: &Matrix2<f64>, p: Pred
     if p == Predictor::Previous {
         return (zero, zero);
     }
-    let r2 = fb.lengths()[1];
+    let r2 = fb.unit_lengths()[1];
     let Some(v) = cramer(j, &Vector2::new(r2 * s2, -(r2 * c2))) else { return (zero, zero) };
     if p == Predictor::Tangent {
         return (v, zero);
@@ -332,7 +348,9 @@ pub fn sweep(fb: &FourBar, theta2: &[f64], guess: Option<[f64; 2]>, opts: &Sweep
         nit: &mut s.nit,
         residual: &mut s.residual,
     };
-    sweep_unchecked(fb, theta2, &sin_cos(theta2), guess, opts, out, None);
+    let trig: Vec<(f64, f64)> = theta2.iter().map(|t| t.sin_cos()).collect();
+    // Never interrupts: the sweep always completes
+    let _ = sweep_unchecked(fb, theta2, &trig, guess, opts, out, None, &Poll::new(&Never));
     s
 }
 

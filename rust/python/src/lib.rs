@@ -4,16 +4,71 @@
 
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use std::sync::Mutex;
+
 use planarkin_core as core;
+use planarkin_core::interrupt::{Interrupt, Poll};
 use planarkin_core::{arrays, batch, sweep, FourBar, Method, Mode, NewtonOptions, Predictor, Status, SweepOptions};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyValueError};
 use pyo3::prelude::*;
 
 mod scene;
 
-/// The one place core errors become Python exceptions.
+/// The one place core errors become Python exceptions: invalid input is ValueError, an
+/// output too large MemoryError; an interruption re-raises what the signal handler raised.
 pub(crate) fn err(e: core::Error) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    match e {
+        core::Error::Allocation { .. } => PyMemoryError::new_err(e.to_string()),
+        core::Error::Interrupted => PyKeyboardInterrupt::new_err("interrupted"),
+        _ => PyValueError::new_err(e.to_string()),
+    }
+}
+
+/// The kernels' [`Interrupt`]: re-attaches to Python and runs its signal handlers
+/// (`py.check_signals()`); the exception a handler raised (KeyboardInterrupt for Ctrl-C)
+/// is kept and raised once the kernel has stopped.
+#[derive(Default)]
+pub(crate) struct Signals {
+    raised: Mutex<Option<PyErr>>,
+}
+
+impl Interrupt for Signals {
+    fn interrupted(&self) -> bool {
+        match Python::attach(|py| py.check_signals()) {
+            Ok(()) => false,
+            Err(e) => {
+                *self.raised.lock().unwrap_or_else(|p| p.into_inner()) = Some(e);
+                true
+            }
+        }
+    }
+}
+
+impl Signals {
+    /// [`err`], but an interruption raises the handler's own exception.
+    pub(crate) fn err(&self, e: core::Error) -> PyErr {
+        match e {
+            core::Error::Interrupted => {
+                self.raised.lock().unwrap_or_else(|p| p.into_inner()).take().unwrap_or_else(|| err(e))
+            }
+            e => err(e),
+        }
+    }
+}
+
+/// `len` zeros, or MemoryError naming what and how many.
+pub(crate) fn zeros<T: Clone + Default>(what: &str, len: usize) -> PyResult<Vec<T>> {
+    core::error::try_zeros(|| format!("{what} of {len} values"), len).map_err(err)
+}
+
+/// A batch output of `len` values, or MemoryError with the description `what`.
+fn out<T: Clone + Default>(what: &str, len: usize) -> PyResult<Vec<T>> {
+    core::error::try_zeros(|| what.to_string(), len).map_err(err)
+}
+
+/// m * n for an (m, n) output, or MemoryError when it does not fit in memory's address space.
+pub(crate) fn grid_len(what: &str, m: usize, n: usize) -> PyResult<usize> {
+    m.checked_mul(n).ok_or_else(|| PyMemoryError::new_err(format!("{what}: {m} x {n} values do not fit in memory")))
 }
 
 pub(crate) type Arr1<'py, T> = Bound<'py, PyArray1<T>>;
@@ -81,7 +136,14 @@ impl PyFourBar {
         let mode = Mode::parse(mode).map_err(err)?;
         let opts = NewtonOptions::new(tol, max_iter).map_err(err)?;
         let mut hist = history.then(Vec::new);
-        let p = self.inner.solve(theta2, mode, guess.map(|(a, b)| [a, b]), &opts, hist.as_mut());
+        let fb = self.inner;
+        let signals = Signals::default();
+        let p = py
+            .detach(|| {
+                let poll = Poll::new(&signals);
+                fb.solve_polled(theta2, mode, guess.map(|(a, b)| [a, b]), &opts, hist.as_mut(), &poll)
+            })
+            .map_err(|e| signals.err(e))?;
         Ok((p.theta3, p.theta4, p.status.code(), p.nit, p.residual, hist.map(|h| h.into_pyarray(py))))
     }
 
@@ -105,10 +167,13 @@ impl PyFourBar {
         let t2 = slice("theta2", &theta2)?;
         let n = t2.len();
         let fb = self.inner;
+        let what = "sweep outputs";
         let (mut t3, mut t4, mut st, mut nit, mut res) =
-            (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
-        let mut w = omega2.map(|_| (vec![0.0; n], vec![0.0; n]));
-        let mut a = alpha2.filter(|_| omega2.is_some()).map(|_| (vec![0.0; n], vec![0.0; n]));
+            (zeros(what, n)?, zeros(what, n)?, zeros(what, n)?, zeros(what, n)?, zeros(what, n)?);
+        let pair = || -> PyResult<(Vec<f64>, Vec<f64>)> { Ok((zeros(what, n)?, zeros(what, n)?)) };
+        let mut w = omega2.map(|_| pair()).transpose()?;
+        let mut a = alpha2.filter(|_| omega2.is_some()).map(|_| pair()).transpose()?;
+        let signals = Signals::default();
         py.detach(|| {
             let out = sweep::SweepOut {
                 theta3: &mut t3,
@@ -126,9 +191,9 @@ impl PyFourBar {
                 }),
                 _ => None,
             };
-            sweep::sweep_into(&fb, t2, guess.map(|(x, y)| [x, y]), &opts, out, motion)
+            sweep::sweep_into(&fb, t2, guess.map(|(x, y)| [x, y]), &opts, out, motion, &signals)
         })
-        .map_err(err)?;
+        .map_err(|e| signals.err(e))?;
         let pair = |p: Option<(Vec<f64>, Vec<f64>)>| p.map(|(x, y)| (x.into_pyarray(py), y.into_pyarray(py)));
         Ok((
             t3.into_pyarray(py),
@@ -151,11 +216,14 @@ impl PyFourBar {
         let mode = Mode::parse(mode).map_err(err)?;
         let t2 = slice("theta2", &theta2)?;
         let n = t2.len();
-        let (mut t3, mut t4, mut st) = (vec![0.0; n], vec![0.0; n], vec![0i8; n]);
+        let (mut t3, mut t4, mut st) = (zeros("theta3", n)?, zeros("theta4", n)?, zeros("status", n)?);
         let fb = self.inner;
+        let signals = Signals::default();
         py.detach(|| {
-            arrays::closed_form_into(&fb, t2, mode, core::newton::SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st)
-        });
+            let singular = core::newton::SINGULAR_THRESHOLD;
+            arrays::closed_form_into(&fb, t2, mode, singular, &mut t3, &mut t4, &mut st, &signals)
+        })
+        .map_err(|e| signals.err(e))?;
         Ok((t3.into_pyarray(py), t4.into_pyarray(py), st.into_pyarray(py)))
     }
 
@@ -175,12 +243,14 @@ impl PyFourBar {
             slice("omega2", &omega2)?,
         );
         let n = t2.len();
-        let (mut w3, mut w4, mut st) = (vec![0.0; n], vec![0.0; n], vec![0i8; n]);
+        let (mut w3, mut w4, mut st) = (zeros("omega3", n)?, zeros("omega4", n)?, zeros("status", n)?);
         let fb = self.inner;
+        let signals = Signals::default();
         py.detach(|| {
-            arrays::velocity_into(&fb, t2, t3, t4, w2, core::newton::SINGULAR_THRESHOLD, &mut w3, &mut w4, &mut st)
+            let singular = core::newton::SINGULAR_THRESHOLD;
+            arrays::velocity_into(&fb, t2, t3, t4, w2, singular, &mut w3, &mut w4, &mut st, &signals)
         })
-        .map_err(err)?;
+        .map_err(|e| signals.err(e))?;
         Ok((w3.into_pyarray(py), w4.into_pyarray(py), st.into_pyarray(py)))
     }
 
@@ -198,8 +268,9 @@ impl PyFourBar {
         let (t2, t3, t4) = (slice("theta2", &theta2)?, slice("theta3", &theta3)?, slice("theta4", &theta4)?);
         let (w2, a2) = (slice("omega2", &omega2)?, slice("alpha2", &alpha2)?);
         let n = t2.len();
-        let (mut a3, mut a4, mut st) = (vec![0.0; n], vec![0.0; n], vec![0i8; n]);
+        let (mut a3, mut a4, mut st) = (zeros("alpha3", n)?, zeros("alpha4", n)?, zeros("status", n)?);
         let fb = self.inner;
+        let signals = Signals::default();
         py.detach(|| {
             arrays::acceleration_into(
                 &fb,
@@ -212,9 +283,10 @@ impl PyFourBar {
                 &mut a3,
                 &mut a4,
                 &mut st,
+                &signals,
             )
         })
-        .map_err(err)?;
+        .map_err(|e| signals.err(e))?;
         Ok((a3.into_pyarray(py), a4.into_pyarray(py), st.into_pyarray(py)))
     }
 
@@ -229,9 +301,11 @@ impl PyFourBar {
     ) -> PyResult<(Arr1<'py, f64>, Arr1<'py, f64>)> {
         let (t2, t3) = (slice("theta2", &theta2)?, slice("theta3", &theta3)?);
         let n = t2.len();
-        let (mut x, mut y) = (vec![0.0; n], vec![0.0; n]);
+        let (mut x, mut y) = (zeros("x", n)?, zeros("y", n)?);
         let fb = self.inner;
-        py.detach(|| arrays::coupler_into(&fb, t2, t3, p, delta, &mut x, &mut y)).map_err(err)?;
+        let signals = Signals::default();
+        py.detach(|| arrays::coupler_into(&fb, t2, t3, p, delta, &mut x, &mut y, &signals))
+            .map_err(|e| signals.err(e))?;
         Ok((x.into_pyarray(py), y.into_pyarray(py)))
     }
 
@@ -264,8 +338,9 @@ fn transmission<'py>(
 ) -> PyResult<(Arr1<'py, f64>, Arr1<'py, f64>)> {
     let (t3, t4) = (slice("theta3", &theta3)?, slice("theta4", &theta4)?);
     let n = t3.len();
-    let (mut mu, mut s) = (vec![0.0; n], vec![0.0; n]);
-    py.detach(|| arrays::transmission_into(t3, t4, &mut mu, &mut s)).map_err(err)?;
+    let (mut mu, mut s) = (zeros("mu", n)?, zeros("sin34", n)?);
+    let signals = Signals::default();
+    py.detach(|| arrays::transmission_into(t3, t4, &mut mu, &mut s, &signals)).map_err(|e| signals.err(e))?;
     Ok((mu.into_pyarray(py), s.into_pyarray(py)))
 }
 
@@ -303,15 +378,19 @@ fn sweep_batch<'py>(
     let fbs = links_of(&links)?;
     let t2 = slice("theta2", &theta2)?;
     let (m, n) = (fbs.len(), t2.len());
-    let mn = m * n;
+    let mn = grid_len("sweep_batch", m, n)?;
+    // five (M, N) outputs of 29 bytes a point in all, allocated fallibly, before any work
+    let sizes = (mn as u128) * 29;
+    let what = format!("sweep_batch: 5 output arrays of {m} x {n} points ({sizes} bytes in all)");
     let (mut t3, mut t4, mut st, mut nit, mut res) =
-        (vec![0.0; mn], vec![0.0; mn], vec![0i8; mn], vec![0u32; mn], vec![0.0; mn]);
+        (out(&what, mn)?, out(&what, mn)?, out(&what, mn)?, out(&what, mn)?, out(&what, mn)?);
+    let signals = Signals::default();
     py.detach(|| {
         let out =
             batch::BatchOut { theta3: &mut t3, theta4: &mut t4, status: &mut st, nit: &mut nit, residual: &mut res };
-        batch::sweep_batch(&fbs, t2, &opts, out, threads)
+        batch::sweep_batch(&fbs, t2, &opts, out, threads, &signals)
     })
-    .map_err(err)?;
+    .map_err(|e| signals.err(e))?;
     Ok((grid(py, m, n, t3), grid(py, m, n, t4), grid(py, m, n, st), grid(py, m, n, nit), grid(py, m, n, res)))
 }
 
@@ -329,11 +408,16 @@ fn closed_form_batch<'py>(
     let fbs = links_of(&links)?;
     let t2 = slice("theta2", &theta2)?;
     let (m, n) = (fbs.len(), t2.len());
-    let (mut t3, mut t4) = (vec![0.0; m * n], vec![0.0; m * n]);
+    let mn = grid_len("closed_form_batch", m, n)?;
+    let what = || format!("closed_form_batch: 2 output arrays of {m} x {n} points ({} bytes in all)", mn as u128 * 16);
+    let what = what();
+    let (mut t3, mut t4) = (out(&what, mn)?, out(&what, mn)?);
+    let signals = Signals::default();
     py.detach(|| {
-        batch::closed_form_batch(&fbs, t2, mode, core::newton::SINGULAR_THRESHOLD, &mut t3, &mut t4, None, threads)
+        let singular = core::newton::SINGULAR_THRESHOLD;
+        batch::closed_form_batch(&fbs, t2, mode, singular, &mut t3, &mut t4, None, threads, &signals)
     })
-    .map_err(err)?;
+    .map_err(|e| signals.err(e))?;
     Ok((grid(py, m, n, t3), grid(py, m, n, t4)))
 }
 

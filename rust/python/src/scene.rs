@@ -9,7 +9,7 @@ use planarkin_core::scene::{
 use planarkin_core::NewtonOptions;
 use pyo3::prelude::*;
 
-use crate::{err, slice, Arr1};
+use crate::{err, grid_len, slice, zeros, Arr1, Signals};
 
 /// A validated scene (see `planarkin.Scene`, which wraps it).
 #[pyclass(frozen, module = "planarkin._core", name = "Scene")]
@@ -171,12 +171,16 @@ impl PyPlan {
         let t = slice("theta", &theta)?;
         let plan = &self.inner;
         let (n, np, nl, ns) = (t.len(), plan.points().len(), plan.links().len(), plan.steps().len());
-        let mut points = vec![0.0; n * np * 2];
-        let mut angles = vec![0.0; n * nl];
-        let (mut status, mut nit, mut det, mut limit) = (vec![0i8; n], vec![0u32; n], vec![0.0; n], vec![0.0; n]);
+        let what = "scene sweep outputs";
+        let (npn, nln, nsn) = (grid_len(what, n, 2 * np)?, grid_len(what, n, nl)?, grid_len(what, n, ns)?);
+        let mut points = zeros(what, npn)?;
+        let mut angles = zeros(what, nln)?;
+        let (mut status, mut nit, mut det, mut limit) =
+            (zeros(what, n)?, zeros(what, n)?, zeros(what, n)?, zeros(what, n)?);
         let (mut step_status, mut step_det, mut point_status) =
-            (vec![0i8; n * ns], vec![0.0; n * ns], vec![0i8; n * np]);
-        let mut vel = omega.map(|_| (vec![0.0; n * np * 2], vec![0.0; n * nl]));
+            (zeros(what, nsn)?, zeros(what, nsn)?, zeros(what, npn / 2)?);
+        let mut vel = omega.map(|_| Ok::<_, PyErr>((zeros(what, npn)?, zeros(what, nln)?))).transpose()?;
+        let signals = Signals::default();
         py.detach(|| {
             let out = SceneSweepOut {
                 points: &mut points,
@@ -190,9 +194,9 @@ impl PyPlan {
                 point_status: &mut point_status,
                 velocity: vel.as_mut().map(|(v, w)| (v.as_mut_slice(), w.as_mut_slice())),
             };
-            plan.sweep(t, &opts, out)
+            plan.sweep(t, &opts, out, &signals)
         })
-        .map_err(err)?;
+        .map_err(|e| signals.err(e))?;
         let a2 =
             |r: usize, c: usize, v: Vec<f64>| Array2::from_shape_vec((r, c), v).expect("r * c values").into_pyarray(py);
         let a3 = |v: Vec<f64>| Array3::from_shape_vec((n, np, 2), v).expect("n * np * 2 values").into_pyarray(py);

@@ -13,6 +13,7 @@ use super::group::{GroupSolve, MAX};
 use super::plan::{Op, Plan};
 use super::{cross, dot, perp, sub, Xy};
 use crate::error::{positive_finite, Error};
+use crate::interrupt::{Interrupt, Poll};
 use crate::newton::NewtonOptions;
 use crate::{wrap_angle, Status};
 
@@ -130,6 +131,8 @@ struct Solver<'p> {
     op_det: Vec<f64>,
     /// The op (a group) failed by itself at the last evaluation, not through its inputs.
     own_failure: Vec<bool>,
+    /// Some op failed at the last evaluation (else every status is CONVERGED: fast paths).
+    any_failure: bool,
     /// Group state per op (None for other ops).
     groups: Vec<Option<GroupState>>,
     nit: u32,
@@ -150,6 +153,7 @@ impl<'p> Solver<'p> {
             op_status: vec![Status::Converged; plan.ops.len()],
             op_det: vec![1.0; plan.ops.len()],
             own_failure: vec![false; plan.ops.len()],
+            any_failure: false,
             groups: plan
                 .ops
                 .iter()
@@ -182,8 +186,16 @@ impl<'p> Solver<'p> {
         let u = [c, s];
         let pu = perp(u);
         let mut failed = false;
+        // until an op fails, every input is CONVERGED: skip the lookups
+        let mut seen = false;
         for (i, op) in plan.ops.iter().enumerate() {
-            let bad = |pst: &[Status], ins: &[usize]| ins.iter().map(|&p| pst[p]).find(|s| *s != Status::Converged);
+            let bad = |pst: &[Status], ins: &[usize]| {
+                if seen {
+                    ins.iter().map(|&p| pst[p]).find(|s| *s != Status::Converged)
+                } else {
+                    None
+                }
+            };
             let (status, det) = match op {
                 Op::Input { q, lam, mu } => {
                     let st = if theta.is_finite() { Status::Converged } else { Status::NonFinite };
@@ -230,9 +242,11 @@ impl<'p> Solver<'p> {
                     r
                 }
             };
+            seen |= status != Status::Converged;
             self.op_status[i] = status;
             self.op_det[i] = det;
         }
+        self.any_failure = seen;
         failed
     }
 
@@ -364,35 +378,53 @@ impl<'p> Solver<'p> {
     fn write(&self, k: usize, out: &mut SceneSweepOut<'_>) {
         let plan = self.plan;
         let (np, nl, ns) = (plan.points.len(), plan.links.len(), plan.steps.len());
-        let sc = plan.scale;
-        let omega = self.opts.omega.unwrap_or(0.0);
-        for (j, &p) in plan.points.iter().enumerate() {
-            let ok = self.pst[p] == Status::Converged;
-            out.point_status[k * np + j] = self.pst[p].code();
+        let (sc, org) = (plan.scale, plan.origin);
+        let all_ok = !self.any_failure;
+        let row = &mut out.points[2 * k * np..2 * (k + 1) * np];
+        for (dst, &p) in row.chunks_exact_mut(2).zip(&plan.points) {
             let xy = self.pos[p];
-            let o = 2 * (k * np + j);
-            out.points[o] = if ok { xy[0] * sc + plan.origin[0] } else { f64::NAN };
-            out.points[o + 1] = if ok { xy[1] * sc + plan.origin[1] } else { f64::NAN };
-            if let Some((v, _)) = out.velocity.as_mut() {
-                let w = self.vel[p];
-                v[o] = if ok { w[0] * sc * omega } else { f64::NAN };
-                v[o + 1] = if ok { w[1] * sc * omega } else { f64::NAN };
+            dst[0] = xy[0] * sc + org[0];
+            dst[1] = xy[1] * sc + org[1];
+        }
+        let pst = &mut out.point_status[k * np..(k + 1) * np];
+        if all_ok {
+            pst.fill(0);
+        } else {
+            for ((code, dst), &p) in pst.iter_mut().zip(row.chunks_exact_mut(2)).zip(&plan.points) {
+                *code = self.pst[p].code();
+                if self.pst[p] != Status::Converged {
+                    dst.fill(f64::NAN);
+                }
             }
         }
-        for (j, &(a, b)) in plan.link_points.iter().enumerate() {
-            let ok = self.pst[a] == Status::Converged && self.pst[b] == Status::Converged;
+        let ok = |p: usize| all_ok || self.pst[p] == Status::Converged;
+        let angles = &mut out.angles[k * nl..(k + 1) * nl];
+        for (dst, &(a, b)) in angles.iter_mut().zip(&plan.link_points) {
             let d = sub(self.pos[b], self.pos[a]);
-            out.angles[k * nl + j] = if ok { (d[1] + 0.0).atan2(d[0]) } else { f64::NAN };
-            if let Some((_, w)) = out.velocity.as_mut() {
-                let dv = sub(self.vel[b], self.vel[a]);
-                w[k * nl + j] = if ok { cross(d, dv) / dot(d, d) * omega } else { f64::NAN };
+            *dst = if ok(a) && ok(b) { (d[1] + 0.0).atan2(d[0]) } else { f64::NAN };
+        }
+        if let Some((v, w)) = out.velocity.as_mut() {
+            let omega = self.opts.omega.unwrap_or(0.0);
+            for (dst, &p) in v[2 * k * np..2 * (k + 1) * np].chunks_exact_mut(2).zip(&plan.points) {
+                let (u, good) = (self.vel[p], ok(p));
+                dst[0] = if good { u[0] * sc * omega } else { f64::NAN };
+                dst[1] = if good { u[1] * sc * omega } else { f64::NAN };
+            }
+            for (dst, &(a, b)) in w[k * nl..(k + 1) * nl].iter_mut().zip(&plan.link_points) {
+                let (d, dv) = (sub(self.pos[b], self.pos[a]), sub(self.vel[b], self.vel[a]));
+                *dst = if ok(a) && ok(b) { cross(d, dv) / dot(d, d) * omega } else { f64::NAN };
             }
         }
-        let status = self.op_status.iter().copied().find(|s| *s != Status::Converged).unwrap_or(Status::Converged);
+        let status = if all_ok {
+            Status::Converged
+        } else {
+            self.op_status.iter().copied().find(|s| *s != Status::Converged).unwrap_or(Status::Converged)
+        };
         let mut det = 1.0;
-        for (s, &i) in plan.step_op.iter().enumerate() {
-            out.step_status[k * ns + s] = self.op_status[i].code();
-            out.step_det[k * ns + s] = self.op_det[i];
+        let (sst, sdet) = (&mut out.step_status[k * ns..(k + 1) * ns], &mut out.step_det[k * ns..(k + 1) * ns]);
+        for ((code, d), &i) in sst.iter_mut().zip(sdet.iter_mut()).zip(&plan.step_op) {
+            *code = self.op_status[i].code();
+            *d = self.op_det[i];
             det *= self.op_det[i];
         }
         out.status[k] = status.code();
@@ -413,7 +445,15 @@ impl Plan {
     /// to `theta[0]` the shortest way round, then along `theta` in order. Angles past a dead
     /// point of a group are LIMIT; those that the drawn circuit reaches the other way round
     /// are then solved by continuing backwards from the drawn pose over the end of `theta`.
-    pub fn sweep(&self, theta: &[f64], opts: &SceneSweepOptions, mut out: SceneSweepOut<'_>) -> Result<(), Error> {
+    /// `interrupt` is asked every few thousand angles (Ctrl-C from Python).
+    pub fn sweep(
+        &self,
+        theta: &[f64],
+        opts: &SceneSweepOptions,
+        mut out: SceneSweepOut<'_>,
+        interrupt: &dyn Interrupt,
+    ) -> Result<(), Error> {
+        let poll = Poll::new(interrupt);
         let n = theta.len();
         let (np, nl, ns) = (self.points.len(), self.links.len(), self.steps.len());
         let check = |name: &str, got: usize, expected: usize| {
@@ -439,19 +479,20 @@ impl Plan {
         if !self.has_group() {
             let mut s = Solver::new(self, *opts);
             for (k, &t) in theta.iter().enumerate() {
+                poll.tick()?;
                 s.eval(t);
                 s.write(k, &mut out);
             }
             return Ok(());
         }
         let limit = Status::Limit.code();
-        self.continuation(theta, 0..n, opts, &mut out, false);
+        self.continuation(theta, 0..n, opts, &mut out, false, &poll)?;
         // the rest of the drawn circuit, backwards from the drawn pose
         if out.status.contains(&limit) {
             let status = out.status.to_vec();
             let last = (0..n).rev().take_while(|&k| status[k] == limit || !theta[k].is_finite()).last();
             if let Some(first) = last {
-                self.continuation(theta, (first..n).rev(), opts, &mut out, true);
+                self.continuation(theta, (first..n).rev(), opts, &mut out, true, &poll)?;
             }
         }
         Ok(())
@@ -467,11 +508,13 @@ impl Plan {
         opts: &SceneSweepOptions,
         out: &mut SceneSweepOut<'_>,
         backward: bool,
-    ) {
+        poll: &Poll<'_>,
+    ) -> Result<(), Error> {
         let mut s = Solver::new(self, *opts);
         s.eval(self.theta0); // tangents at the drawn pose
         let mut started = false;
         for k in order {
+            poll.tick()?;
             let t = theta[k];
             s.nit = 0;
             if !t.is_finite() {
@@ -507,5 +550,6 @@ impl Plan {
                 break;
             }
         }
+        Ok(())
     }
 }

@@ -58,7 +58,7 @@ fn run(plan: &Plan, theta: &[f64]) -> Run {
         point_status: &mut ps,
         velocity: None,
     };
-    plan.sweep(theta, &opts, out).unwrap();
+    plan.sweep(theta, &opts, out, &crate::interrupt::Never).unwrap();
     r
 }
 

@@ -1,0 +1,148 @@
+"""Scenes side by side: Jansen's leg (foot requested) by planarkin, a vectorized NumPy chain of
+circle intersections and pylinkage (numba); groups that no dyad reaches (Stephenson III,
+the double butterflies) with iterations per point; a plan that needs one dyad against the
+whole six-bar; and every assembly, a traced circuit and all circuits of a double butterfly.
+Correctness is checked outside the timed calls."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import planarkin as pk
+import pytest
+import scene_peers
+from conftest import record
+
+DEG = math.pi / 180
+
+
+def _theta(sc: pk.Scene) -> np.ndarray:
+    return sc.input_angle + np.arange(361) * DEG
+
+
+def _size(sc: pk.Scene) -> float:
+    return float(np.ptp(np.array(list(sc.points.values())), axis=0).max())
+
+
+# --- Jansen's leg, the foot requested --------------------------------------------------
+
+JANSEN = "scene: Jansen's leg, 361 angles, foot requested"
+
+
+@pytest.fixture(scope="module")
+def jansen():
+    sc = pk.scenes.load("jansen")
+    truth = sc.sweep(outputs=["foot"]).points["foot"]
+    return sc, truth
+
+
+@pytest.mark.benchmark(group=JANSEN)
+def test_jansen_planarkin(benchmark, jansen):
+    sc, truth = jansen
+    sw = benchmark(sc.sweep, outputs=["foot"])
+    assert sw.success.all()
+    record(benchmark, "scene_jansen_pk", "**planarkin sc.sweep(outputs=['foot'])**",
+           max_error=float(np.abs(sw.points["foot"] - truth).max()))  # fmt: skip
+
+
+@pytest.mark.benchmark(group=JANSEN)
+def test_jansen_planarkin_all_points(benchmark, jansen):
+    sc, truth = jansen
+    sw = benchmark(sc.sweep, outputs="all")
+    record(benchmark, "scene_jansen_pk_all", "planarkin sc.sweep(outputs='all') (every point)",
+           max_error=float(np.abs(sw.points["foot"] - truth).max()))  # fmt: skip
+
+
+@pytest.mark.benchmark(group=JANSEN)
+def test_jansen_numpy_chain(benchmark, jansen):
+    sc, truth = jansen
+    chain = scene_peers.NumpyChain(sc.to_dict())
+    t = _theta(sc)
+    out = benchmark(chain.run, t)
+    err = float(np.abs(out["foot"] - truth).max())
+    assert err < 1e-10 * _size(sc)
+    record(benchmark, "scene_jansen_numpy", "NumPy vectorized circle-intersection chain",
+           max_error=err)  # fmt: skip
+
+
+@pytest.mark.benchmark(group=JANSEN)
+def test_jansen_pylinkage(benchmark, jansen):
+    pytest.importorskip("numba")
+    pylinkage = pytest.importorskip("pylinkage")
+    sc, truth = jansen
+    pl = scene_peers.PylinkageScene(sc.to_dict())
+    traj = benchmark(pl.run)
+    err = float(np.abs(traj[:, pl.names.index("foot")] - truth).max())
+    assert err < 1e-10 * _size(sc)
+    record(benchmark, "scene_jansen_pylinkage",
+           f"pylinkage {pylinkage.__version__} step_fast (numba)", max_error=err)  # fmt: skip
+
+
+# --- groups: no dyad reaches them ------------------------------------------------------
+
+GROUPS = "scene: groups solved by Newton, 361 angles (tol 1e-9, 1 deg steps)"
+
+
+@pytest.mark.benchmark(group=GROUPS)
+@pytest.mark.parametrize("name", ["stephenson3", "double-butterfly-1", "double-butterfly-2"])
+def test_group_sweep(benchmark, name):
+    sc = pk.scenes.load(name)
+    sw = benchmark(sc.sweep, outputs="all")
+    ok = sw.success
+    ref = pk.reference.scene_sweep(sc.to_dict(), sw.theta)
+    both = ok & (ref.status == 0)
+    err = max(float(np.abs(sw.points[p][both] - ref.points[p][both]).max()) for p in sc.points)
+    assert err < 1e-9 * _size(sc)
+    record(benchmark, f"scene_group_{name}",
+           f"planarkin {name}: {int(ok.sum())} solved, {int((~ok).sum())} LIMIT",
+           nit_mean=float(sw.nit[ok].mean()), solved=int(ok.sum()), max_error=err,
+           note="pylinkage: cannot solve (no dyad reaches the group)")  # fmt: skip
+
+
+# --- the plan: only what the outputs need ----------------------------------------------
+
+PLAN = "scene: Watt-II six-bar, one dyad requested vs the whole plan"
+
+
+@pytest.mark.benchmark(group=PLAN)
+@pytest.mark.parametrize("what", ["first dyad", "all"])
+def test_plan_pruning(benchmark, what):
+    sc = pk.scenes.load("watt2")
+    full = sc.plan("all")
+    outputs = [full[0].points[0]] if what == "first dyad" else "all"
+    sw = benchmark(sc.sweep, outputs=outputs)
+    assert sw.success.all()
+    record(benchmark, f"scene_plan_{what.replace(' ', '_')}",
+           f"planarkin watt2, outputs={outputs!r}: {len(sc.plan(outputs))} step(s)")  # fmt: skip
+
+
+# --- every assembly, tracing, circuits ---------------------------------------------------
+
+CIRCUITS = "scene: double butterfly (type II): assemblies, a traced circuit, all circuits"
+
+
+@pytest.mark.benchmark(group=CIRCUITS)
+def test_assemblies(benchmark):
+    sc = pk.scenes.load("double-butterfly-2")
+    a = benchmark(sc.assemblies)
+    assert a.complex_counts == [[18]]
+    record(benchmark, "scene_assemblies", f"sc.assemblies(): {len(a)} real of 18 complex "
+           "(2 homotopy runs x 64 paths)")  # fmt: skip
+
+
+@pytest.mark.benchmark(group=CIRCUITS)
+def test_trace(benchmark):
+    sc = pk.scenes.load("double-butterfly-2")
+    tr = benchmark(sc.trace)
+    assert tr.closed
+    record(benchmark, "scene_trace", f"sc.trace(): one full circuit, {len(tr)} points, "
+           f"{len(tr.turning_points)} turning points")  # fmt: skip
+
+
+@pytest.mark.benchmark(group=CIRCUITS)
+def test_circuits(benchmark):
+    sc = pk.scenes.load("double-butterfly-2")
+    cs = benchmark(sc.circuits)
+    record(benchmark, "scene_circuits", f"sc.circuits(): {len(cs)} circuit(s), "
+           f"{sum(len(c.assemblies) for c in cs)} assemblies")  # fmt: skip

@@ -1,0 +1,112 @@
+"""Resources (issue 13, items 1 and 3): outputs too large for memory raise MemoryError
+naming the sizes instead of aborting the process, and long kernel calls answer Ctrl-C
+(SIGINT) with KeyboardInterrupt."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import numpy as np
+import planarkin as pk
+import pytest
+from conftest import SEED_LINKAGE
+
+# --- memory ------------------------------------------------------------------------------------
+
+
+def test_batch_too_large_for_memory_raises_memory_error():
+    """1000 linkages x 10^8 crank angles: 2.9 TB of outputs. Before: the process aborted
+    ('memory allocation of 800000000000 bytes failed', exit 134)."""
+    links = np.full((1000, 4), SEED_LINKAGE)
+    theta2 = np.zeros(10**8)
+    with pytest.raises(MemoryError, match=r"1000 x 100000000"):
+        pk.sweep_batch(links, theta2=theta2)
+    with pytest.raises(MemoryError, match=r"1000 x 100000000"):
+        pk.closed_form_batch(links, theta2)
+
+
+def test_batch_too_large_does_not_abort_the_process():
+    """The same in a child process: it ends normally (exit 0), not with SIGABRT."""
+    code = textwrap.dedent(
+        """
+        import numpy as np, planarkin as pk
+        try:
+            pk.sweep_batch(np.full((1000, 4), [6, 2, 5, 5.0]), theta2=np.zeros(10**8))
+        except MemoryError as e:
+            print("MemoryError:", e)
+        """
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.startswith("MemoryError: sweep_batch: 5 output arrays of 1000 x 100000000")
+
+
+def test_cli_step_too_small_is_a_one_line_error(tmp_path):
+    """`planarkin analyze --step 1e-9` asked NumPy for 2.6 TiB and ended in a traceback."""
+    for cmd in ("analyze", "animate"):
+        out = subprocess.run(
+            [sys.executable, "-m", "planarkin", cmd, "--step", "1e-9", "--out", str(tmp_path)],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+        assert out.returncode == 2
+        lines = out.stderr.strip().splitlines()
+        assert len(lines) == 1, out.stderr
+        assert lines[0].startswith("planarkin: error: --step")
+        assert "360000000001 crank angles" in lines[0]
+        assert "Traceback" not in out.stderr
+
+
+# --- Ctrl-C ------------------------------------------------------------------------------------
+
+#: Kernel calls that run for minutes: tol 1e-300 is never met (the residual does not reach
+#: exactly 0) from the guess (1, 2), nor at theta2 = 3.6 (from the previous point, then
+#: from the closed form), so each attempt takes all 4294967295 iterations. Before, the
+#: solve ignored SIGINT for 40 s, the others for far longer.
+SLOW = {
+    "solve": "fb.solve(0.5, tol=1e-300, max_iter=4294967295, guess=(1, 2))",
+    "sweep": "fb.sweep([0.5, 3.6], tol=1e-300, max_iter=4294967295)",
+    "sweep_batch": "pk.sweep_batch(np.full((4, 4), [6, 2, 5, 5.0]), [0.5, 3.6], "
+    "tol=1e-300, max_iter=4294967295, threads=2)",
+    "sweep_batch_global_pool": "pk.sweep_batch(np.full((4, 4), [6, 2, 5, 5.0]), [0.5, 3.6], "
+    "tol=1e-300, max_iter=4294967295)",
+}
+
+
+@pytest.mark.skipif(os.name != "posix", reason="sends SIGINT")
+@pytest.mark.parametrize("call", list(SLOW))
+def test_ctrl_c_interrupts_a_long_kernel_call(call):
+    """A child process starts a kernel call that would run for minutes; SIGINT must end
+    it with KeyboardInterrupt (the hang guard of 60 s is not a timing assertion: the
+    call itself takes far longer)."""
+    code = textwrap.dedent(
+        f"""
+        import numpy as np, planarkin as pk
+        fb = pk.FourBar(6, 2, 5, 5)
+        print("ready", flush=True)
+        {SLOW[call]}
+        print("finished", flush=True)
+        """
+    )
+    p = subprocess.Popen(
+        [sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    try:
+        assert p.stdout is not None
+        assert p.stdout.readline().strip() == "ready"
+        time.sleep(0.5)  # let the kernel call start
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(timeout=60)
+    finally:
+        if p.poll() is None:
+            p.kill()
+            p.communicate()
+    assert "finished" not in out
+    assert p.returncode != 0
+    assert err.rstrip().splitlines()[-1] == "KeyboardInterrupt", err
