@@ -18,7 +18,9 @@
 //! doubled after three acceptances), bounded by `max_steps` per path, so nothing hangs.
 //! Every endpoint that reached tau = 1 is finished by Newton on the affine target `F(t)`
 //! and kept only if Newton converges near it (a finite, verified root). Roots are
-//! deduplicated; the whole tracking runs `runs` times (default 2) with independent
+//! deduplicated; two paths of one run ending on the same root (path jumping: the roots
+//! are simple for generic geometry) are both tracked again with steps eight times
+//! smaller; the whole tracking runs `runs` times (default 2) with independent
 //! `gamma`s and the root sets are merged, so a root lost by one run to a path failure or
 //! path jumping is still found if the other run finds it. Real assemblies: roots whose
 //! imaginary parts are below a scale-aware tolerance, polished by real Newton in the
@@ -79,6 +81,10 @@ pub struct Solutions {
     pub per_run_found: Vec<usize>,
     /// Failed paths in each run.
     pub per_run_failed: Vec<usize>,
+    /// Paths in each run that ended on a root another path of the run had already
+    /// reached (path jumping, for isolated simple roots); those paths were tracked again
+    /// with steps eight times smaller, and `per_run_found` counts what that recovered.
+    pub per_run_jumps: Vec<usize>,
 }
 
 /// All finite complex solutions of `A z = b`, `c_j^2 + s_j^2 = 1` (`a` is N x 2N, `b` has
@@ -132,6 +138,7 @@ pub fn unit_circle_solutions(
         out.infinite += run.infinite;
         out.per_run_found.push(run.roots.len());
         out.per_run_failed.push(run.failed);
+        out.per_run_jumps.push(run.jumps);
         for t in run.roots {
             insert_unique(&mut roots, t);
         }
@@ -187,6 +194,16 @@ struct RunResult {
     paths: usize,
     failed: usize,
     infinite: usize,
+    /// Paths that ended on a root another path of the run had reached.
+    jumps: usize,
+}
+
+/// A path's classified end.
+enum PathEnd {
+    /// A finite root t, verified by Newton on the target.
+    Root(Vec<C>),
+    Infinite,
+    Failed,
 }
 
 /// Scratch buffers of one path (no allocation inside the step loop).
@@ -272,42 +289,70 @@ impl Reduced {
         let n = self.n;
         let m = n + 1;
         let mut work = Work { m, jac: vec![C::default(); m * m], rhs: vec![C::default(); m], w: vec![C::default(); 2 * n] };
-        let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0 };
-        let norm0 = 1.0 / (m as f64).sqrt();
+        let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0, jumps: 0 };
+        // root index reached by each path (None: infinite or failed)
+        let mut reached: Vec<Option<usize>> = Vec::with_capacity(1 << n);
         for start in 0..(1usize << n) {
             res.paths += 1;
-            let mut x: Vec<C> = (0..m)
-                .map(|k| {
-                    let sign = if k > 0 && (start >> (k - 1)) & 1 == 1 { -1.0 } else { 1.0 };
-                    C::new(sign * norm0, 0.0)
-                })
-                .collect();
-            let end = self.track(&mut x, gamma, opts, &mut work);
-            match end {
-                End::Infinite => res.infinite += 1,
-                End::Failed => {
-                    if x[0].norm() < 1e-4 {
-                        res.infinite += 1;
-                    } else {
-                        res.failed += 1;
-                    }
+            let end = match self.path(start, gamma, opts, &mut work) {
+                PathEnd::Root(t) => Some(insert_unique(&mut res.roots, t)),
+                PathEnd::Infinite => {
+                    res.infinite += 1;
+                    None
                 }
-                End::Reached => {
-                    let root = if x[0].norm() > 1e-12 {
-                        let t0: Vec<C> = x[1..].iter().map(|v| v / x[0]).collect();
-                        self.affine_newton(&t0)
-                    } else {
-                        None
-                    };
-                    match root {
-                        Some(t) => insert_unique(&mut res.roots, t),
-                        None if x[0].norm() < 1e-4 => res.infinite += 1,
-                        None => res.failed += 1,
+                PathEnd::Failed => {
+                    res.failed += 1;
+                    None
+                }
+            };
+            reached.push(end);
+        }
+        // Roots here are isolated and simple for generic geometry, so two paths ending at
+        // one root means a path jumped (and another root was probably lost): retrack
+        // every path of such a root with steps eight times smaller.
+        let mut hits = vec![0usize; res.roots.len()];
+        for r in reached.iter().flatten() {
+            hits[*r] += 1;
+        }
+        res.jumps = hits.iter().map(|&h| h.saturating_sub(1)).sum();
+        if res.jumps > 0 {
+            let fine = HomotopyOptions { max_step: opts.max_step / 8.0, max_steps: opts.max_steps.saturating_mul(4), ..*opts };
+            for (start, r) in reached.iter().enumerate() {
+                if matches!(r, Some(r) if hits[*r] > 1) {
+                    if let PathEnd::Root(t) = self.path(start, gamma, &fine, &mut work) {
+                        insert_unique(&mut res.roots, t);
                     }
                 }
             }
         }
         res
+    }
+
+    /// Tracks the path from start point number `start` (bit k set: t_k = -1) and
+    /// classifies its end.
+    fn path(&self, start: usize, gamma: C, opts: &HomotopyOptions, work: &mut Work) -> PathEnd {
+        let m = self.n + 1;
+        let norm0 = 1.0 / (m as f64).sqrt();
+        let mut x: Vec<C> = (0..m)
+            .map(|k| {
+                let sign = if k > 0 && (start >> (k - 1)) & 1 == 1 { -1.0 } else { 1.0 };
+                C::new(sign * norm0, 0.0)
+            })
+            .collect();
+        let end = self.track(&mut x, gamma, opts, work);
+        let root = if end == End::Reached && x[0].norm() > 1e-12 {
+            let t0: Vec<C> = x[1..].iter().map(|v| v / x[0]).collect();
+            self.affine_newton(&t0)
+        } else {
+            None
+        };
+        match (end, root) {
+            (End::Infinite, _) => PathEnd::Infinite,
+            (_, Some(t)) => PathEnd::Root(t),
+            // stopped (or arrived) near x0 = 0 without a finite root
+            _ if x[0].norm() < 1e-4 => PathEnd::Infinite,
+            _ => PathEnd::Failed,
+        }
     }
 
     /// Homotopy residual (rows 0..N, plus the patch row N) into `work.rhs` and, when
@@ -563,12 +608,16 @@ fn axpy(y: &mut [C], x: &[C], a: f64, k: &[C]) {
     }
 }
 
-/// Adds `t` to `roots` unless a root within 1e-8 (relative) is there already.
-fn insert_unique(roots: &mut Vec<Vec<C>>, t: Vec<C>) {
+/// Adds `t` to `roots` unless a root within 1e-8 (relative) is there already; returns
+/// its index.
+fn insert_unique(roots: &mut Vec<Vec<C>>, t: Vec<C>) -> usize {
     let scale = t.iter().map(|v| v.norm()).fold(1.0, f64::max);
-    let dup = roots.iter().any(|r| r.iter().zip(&t).all(|(a, b)| (a - b).norm() <= 1e-8 * scale));
-    if !dup {
-        roots.push(t);
+    match roots.iter().position(|r| r.iter().zip(&t).all(|(a, b)| (a - b).norm() <= 1e-8 * scale)) {
+        Some(i) => i,
+        None => {
+            roots.push(t);
+            roots.len() - 1
+        }
     }
 }
 
@@ -1011,6 +1060,24 @@ mod tests {
         assert_eq!(sol.complex.len(), 1024);
     }
 
+    /// A geometry (number 87 of the spread-length statistics set) where run 2 of the
+    /// default options has a path jump: two paths end on one root. Retracking those two
+    /// paths with finer steps recovers the lost root, so each run still finds all 16.
+    #[test]
+    fn homotopy_path_jump_is_detected_and_retracked() {
+        let mut rng = SplitMix64(4444);
+        let mut j = spread_joints(&mut rng, 1.0);
+        for _ in 0..87 {
+            j = spread_joints(&mut rng, 1.0);
+        }
+        let (a, b) = butterfly_bar_ground(&j);
+        let sol = solve(&a, &b);
+        assert_eq!(sol.per_run_jumps, vec![0, 1]);
+        assert_eq!(sol.per_run_found, vec![16, 16]);
+        assert_eq!(sol.complex.len(), 16);
+        check_real::<6>(&a, &b, &sol, 2000, 87);
+    }
+
     #[test]
     fn homotopy_rejects_misuse() {
         let o = HomotopyOptions::default();
@@ -1089,7 +1156,7 @@ mod tests {
     fn stats(name: &str, build: fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>), expected: usize, spread: f64, seed: u64) {
         let count = 1000;
         let mut rng = SplitMix64(seed);
-        let (mut fail_runs, mut short_runs, mut short_merged) = ([0usize; 2], [0usize; 2], 0usize);
+        let (mut fail_runs, mut short_runs, mut short_merged, mut jumps) = ([0usize; 2], [0usize; 2], 0usize, [0usize; 2]);
         let (mut counts, mut fail_hist, mut infinite) = (HashMap::new(), HashMap::new(), 0usize);
         let mut times = Vec::new();
         let mut missing_pose = 0;
@@ -1101,8 +1168,12 @@ mod tests {
             *counts.entry(sol.complex.len()).or_insert(0) += 1;
             *fail_hist.entry(sol.failed).or_insert(0) += 1;
             infinite += sol.infinite;
+            if sol.per_run_jumps.iter().any(|&j| j > 0) {
+                eprintln!("  geometry {g}: path jumps {:?}, per run found {:?}", sol.per_run_jumps, sol.per_run_found);
+            }
             for r in 0..2 {
                 fail_runs[r] += sol.per_run_failed[r];
+                jumps[r] += sol.per_run_jumps[r];
                 short_runs[r] += expected.saturating_sub(sol.per_run_found[r]);
             }
             short_merged += expected.saturating_sub(sol.complex.len());
@@ -1123,7 +1194,7 @@ mod tests {
         let mean = times.iter().sum::<f64>() / count as f64;
         eprintln!("{name}, spread {spread}: {count} geometries; root counts {counts:?} (expected {expected})");
         eprintln!("  failed paths per run {fail_runs:?} of {} each; failed paths per solve (histogram) {fail_hist:?}; infinite {infinite}", count * 64);
-        eprintln!("  roots short of {expected}: run 1 {}, run 2 {}, merged {short_merged}; geometries listed {missing_pose}", short_runs[0], short_runs[1]);
+        eprintln!("  roots short of {expected}: run 1 {}, run 2 {}, merged {short_merged}; geometries listed {missing_pose}; path jumps detected (retracked) per run {jumps:?}", short_runs[0], short_runs[1]);
         eprintln!(
             "  time per solve (2 runs x 64 paths): mean {:.1} ms, median {:.1} ms, max {:.1} ms",
             mean * 1e3,
