@@ -94,11 +94,7 @@ pub struct Solutions {
 /// Errors (misuse only): N = 0 or N > [`MAX_LINKS`], shapes that disagree, non-finite
 /// entries, invalid options, or `A` without full row rank (dependent closure equations:
 /// the solution set is not finite). Path failures are data ([`Solutions::failed`]).
-pub fn unit_circle_solutions(
-    a: &DMatrix<f64>,
-    b: &DVector<f64>,
-    opts: &HomotopyOptions,
-) -> Result<Solutions, Error> {
+pub fn unit_circle_solutions(a: &DMatrix<f64>, b: &DVector<f64>, opts: &HomotopyOptions) -> Result<Solutions, Error> {
     let n = a.nrows();
     if n == 0 {
         return Err(Error::invalid("a", "must have at least one row", "0 rows"));
@@ -162,7 +158,8 @@ pub fn unit_circle_solutions(
     // Real roots are stored exactly; a complex root that polished to the same real
     // assembly as another (a near-conjugate pair) is not listed twice.
     for phi in &real {
-        out.complex.push(phi.iter().map(|p| C::new(p.cos(), 0.0)).chain(phi.iter().map(|p| C::new(p.sin(), 0.0))).collect());
+        out.complex
+            .push(phi.iter().map(|p| C::new(p.cos(), 0.0)).chain(phi.iter().map(|p| C::new(p.sin(), 0.0))).collect());
     }
     out.real = real;
     Ok(out)
@@ -240,7 +237,7 @@ impl Reduced {
         order.sort_by(|&i, &j| sv[j].total_cmp(&sv[i]));
         let smax = sv[order[0]];
         let smin = sv[order[n - 1]];
-        if !(smin > 1e-10 * smax) {
+        if smin.is_nan() || smin <= 1e-10 * smax {
             return Err(Error::invalid(
                 "a",
                 "must have full row rank (independent closure equations)",
@@ -288,7 +285,8 @@ impl Reduced {
     fn run(&self, gamma: C, opts: &HomotopyOptions) -> RunResult {
         let n = self.n;
         let m = n + 1;
-        let mut work = Work { m, jac: vec![C::default(); m * m], rhs: vec![C::default(); m], w: vec![C::default(); 2 * n] };
+        let mut work =
+            Work { m, jac: vec![C::default(); m * m], rhs: vec![C::default(); m], w: vec![C::default(); 2 * n] };
         let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0, jumps: 0 };
         // root index reached by each path (None: infinite or failed)
         let mut reached: Vec<Option<usize>> = Vec::with_capacity(1 << n);
@@ -316,7 +314,8 @@ impl Reduced {
         }
         res.jumps = hits.iter().map(|&h| h.saturating_sub(1)).sum();
         if res.jumps > 0 {
-            let fine = HomotopyOptions { max_step: opts.max_step / 8.0, max_steps: opts.max_steps.saturating_mul(4), ..*opts };
+            let fine =
+                HomotopyOptions { max_step: opts.max_step / 8.0, max_steps: opts.max_steps.saturating_mul(4), ..*opts };
             for (start, r) in reached.iter().enumerate() {
                 if matches!(r, Some(r) if hits[*r] > 1) {
                     if let PathEnd::Root(t) = self.path(start, gamma, &fine, &mut work) {
@@ -355,10 +354,9 @@ impl Reduced {
         }
     }
 
-    /// Homotopy residual (rows 0..N, plus the patch row N) into `work.rhs` and, when
-    /// `jac`, its Jacobian in X into `work.jac`; with `dtau`, `rhs` gets H_tau instead
-    /// (patch row 0).
-    fn eval(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, jac: bool, dtau: bool) {
+    /// Homotopy residual (rows 0..N, plus the patch row N) into `work.rhs` and its
+    /// Jacobian in X into `work.jac`; with `dtau`, `rhs` gets H_tau instead (patch row 0).
+    fn eval(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, dtau: bool) {
         let n = self.n;
         let m = work.m;
         for r in 0..2 * n {
@@ -376,21 +374,17 @@ impl Reduced {
             let f = c * c + s * s - x0 * x0;
             let g = x[j + 1] * x[j + 1] - x0 * x0;
             work.rhs[j] = if dtau { f - gamma * g } else { g_w * g + f * tau };
-            if jac {
-                let rc = &self.p[j * m..(j + 1) * m];
-                let rs = &self.p[(n + j) * m..(n + j + 1) * m];
-                let row = &mut work.jac[j * m..(j + 1) * m];
-                let (c2, s2) = (c * (2.0 * tau), s * (2.0 * tau));
-                for k in 0..m {
-                    row[k] = c2 * rc[k] + s2 * rs[k];
-                }
-                row[0] -= x0 * (2.0 * tau) + g_w * x0 * 2.0;
-                row[j + 1] += g_w * x[j + 1] * 2.0;
+            let rc = &self.p[j * m..(j + 1) * m];
+            let rs = &self.p[(n + j) * m..(n + j + 1) * m];
+            let row = &mut work.jac[j * m..(j + 1) * m];
+            let (c2, s2) = (c * (2.0 * tau), s * (2.0 * tau));
+            for k in 0..m {
+                row[k] = c2 * rc[k] + s2 * rs[k];
             }
+            row[0] -= x0 * (2.0 * tau) + g_w * x0 * 2.0;
+            row[j + 1] += g_w * x[j + 1] * 2.0;
         }
-        if jac {
-            work.jac[n * m..(n + 1) * m].copy_from_slice(patch);
-        }
+        work.jac[n * m..(n + 1) * m].copy_from_slice(patch);
         work.rhs[n] = if dtau {
             C::default()
         } else {
@@ -404,7 +398,7 @@ impl Reduced {
 
     /// dX/dtau at (x, tau) on the patch, into `out`. False on a singular solve.
     fn tangent(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, out: &mut [C]) -> bool {
-        self.eval(x, tau, gamma, patch, work, true, true);
+        self.eval(x, tau, gamma, patch, work, true);
         for v in work.rhs.iter_mut() {
             *v = -*v;
         }
@@ -459,7 +453,7 @@ impl Reduced {
                 // Corrector: at most three Newton steps, each contracting.
                 let mut last = f64::INFINITY;
                 for it in 0..3 {
-                    self.eval(&y, t1, gamma, &patch, work, true, false);
+                    self.eval(&y, t1, gamma, &patch, work, false);
                     for v in work.rhs.iter_mut() {
                         *v = -*v;
                     }
@@ -470,8 +464,8 @@ impl Reduced {
                     if !d.is_finite() || d > 0.1 || (it > 0 && d > 0.25 * last) {
                         break 'step false;
                     }
-                    for k in 0..m {
-                        y[k] += work.rhs[k];
+                    for (yk, dk) in y.iter_mut().zip(&work.rhs) {
+                        *yk += dk;
                     }
                     last = d;
                     if d < 1e-10 {
@@ -700,6 +694,8 @@ mod tests {
     use std::f64::consts::PI;
 
     type P = [f64; 2];
+    /// A mechanism's A, b from its drawn joints.
+    type Builder = fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>);
 
     fn sub(a: P, b: P) -> P {
         [a[0] - b[0], a[1] - b[1]]
@@ -752,8 +748,14 @@ mod tests {
     fn triad(j: &HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>) {
         let g = |c| j[&c];
         Group::new(4)
-            .lp(&[(1, sub(g('1'), g('p')), 1.0), (0, sub(g('2'), g('1')), 1.0), (2, sub(g('2'), g('q')), -1.0)], sub(g('q'), g('p')))
-            .lp(&[(1, sub(g('1'), g('p')), 1.0), (0, sub(g('3'), g('1')), 1.0), (3, sub(g('3'), g('r')), -1.0)], sub(g('r'), g('p')))
+            .lp(
+                &[(1, sub(g('1'), g('p')), 1.0), (0, sub(g('2'), g('1')), 1.0), (2, sub(g('2'), g('q')), -1.0)],
+                sub(g('q'), g('p')),
+            )
+            .lp(
+                &[(1, sub(g('1'), g('p')), 1.0), (0, sub(g('3'), g('1')), 1.0), (3, sub(g('3'), g('r')), -1.0)],
+                sub(g('r'), g('p')),
+            )
             .ab()
     }
 
@@ -762,8 +764,14 @@ mod tests {
     fn stephenson3(j: &HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>) {
         let g = |c| j[&c];
         Group::new(4)
-            .lp(&[(0, sub(g('1'), g('3')), 1.0), (2, sub(g('4'), g('1')), 1.0), (1, sub(g('4'), g('6')), -1.0)], sub(g('6'), g('3')))
-            .lp(&[(0, sub(g('2'), g('3')), 1.0), (3, sub(g('5'), g('2')), 1.0), (1, sub(g('5'), g('6')), -1.0)], sub(g('6'), g('3')))
+            .lp(
+                &[(0, sub(g('1'), g('3')), 1.0), (2, sub(g('4'), g('1')), 1.0), (1, sub(g('4'), g('6')), -1.0)],
+                sub(g('6'), g('3')),
+            )
+            .lp(
+                &[(0, sub(g('2'), g('3')), 1.0), (3, sub(g('5'), g('2')), 1.0), (1, sub(g('5'), g('6')), -1.0)],
+                sub(g('6'), g('3')),
+            )
             .ab()
     }
 
@@ -773,12 +781,23 @@ mod tests {
         let g = |c| j[&c];
         let (r3, r4, r5, r6, r7, r8) = (0, 1, 2, 3, 4, 5);
         Group::new(6)
-            .lp(&[(r3, sub(g('E'), g('B')), 1.0), (r4, sub(g('H'), g('E')), 1.0), (r5, sub(g('H'), g('K')), -1.0)], sub(g('K'), g('B')))
             .lp(
-                &[(r3, sub(g('D'), g('B')), 1.0), (r6, sub(g('G'), g('D')), 1.0), (r5, sub(g('I'), g('K')), -1.0), (r7, sub(g('G'), g('I')), -1.0)],
+                &[(r3, sub(g('E'), g('B')), 1.0), (r4, sub(g('H'), g('E')), 1.0), (r5, sub(g('H'), g('K')), -1.0)],
                 sub(g('K'), g('B')),
             )
-            .lp(&[(r8, sub(g('F'), g('C')), 1.0), (r5, sub(g('I'), g('K')), -1.0), (r7, sub(g('F'), g('I')), -1.0)], sub(g('K'), g('C')))
+            .lp(
+                &[
+                    (r3, sub(g('D'), g('B')), 1.0),
+                    (r6, sub(g('G'), g('D')), 1.0),
+                    (r5, sub(g('I'), g('K')), -1.0),
+                    (r7, sub(g('G'), g('I')), -1.0),
+                ],
+                sub(g('K'), g('B')),
+            )
+            .lp(
+                &[(r8, sub(g('F'), g('C')), 1.0), (r5, sub(g('I'), g('K')), -1.0), (r7, sub(g('F'), g('I')), -1.0)],
+                sub(g('K'), g('C')),
+            )
             .ab()
     }
 
@@ -788,13 +807,26 @@ mod tests {
         let g = |c| j[&c];
         let (r1, r2, r3, r4, r6, r8) = (0, 1, 2, 3, 4, 5);
         Group::new(6)
-            .lp(&[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('C'), g('A')), 1.0), (r8, sub(g('C'), g('F')), -1.0)], sub(g('F'), g('K')))
             .lp(
-                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('E'), g('B')), 1.0), (r4, sub(g('E'), g('H')), -1.0)],
+                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('C'), g('A')), 1.0), (r8, sub(g('C'), g('F')), -1.0)],
+                sub(g('F'), g('K')),
+            )
+            .lp(
+                &[
+                    (r1, sub(g('A'), g('K')), 1.0),
+                    (r2, sub(g('B'), g('A')), 1.0),
+                    (r3, sub(g('E'), g('B')), 1.0),
+                    (r4, sub(g('E'), g('H')), -1.0),
+                ],
                 sub(g('H'), g('K')),
             )
             .lp(
-                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('D'), g('B')), 1.0), (r6, sub(g('D'), g('G')), -1.0)],
+                &[
+                    (r1, sub(g('A'), g('K')), 1.0),
+                    (r2, sub(g('B'), g('A')), 1.0),
+                    (r3, sub(g('D'), g('B')), 1.0),
+                    (r6, sub(g('D'), g('G')), -1.0),
+                ],
                 sub(g('G'), g('K')),
             )
             .ab()
@@ -806,12 +838,23 @@ mod tests {
         let g = |c| j[&c];
         let (r1, r2, r3, r6, r7, r8) = (0, 1, 2, 3, 4, 5);
         Group::new(6)
-            .lp(&[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('B'), g('E')), -1.0)], sub(g('E'), g('K')))
             .lp(
-                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('C'), g('A')), 1.0), (r8, sub(g('F'), g('C')), 1.0), (r7, sub(g('F'), g('I')), -1.0)],
+                &[(r1, sub(g('A'), g('K')), 1.0), (r2, sub(g('B'), g('A')), 1.0), (r3, sub(g('B'), g('E')), -1.0)],
+                sub(g('E'), g('K')),
+            )
+            .lp(
+                &[
+                    (r1, sub(g('A'), g('K')), 1.0),
+                    (r2, sub(g('C'), g('A')), 1.0),
+                    (r8, sub(g('F'), g('C')), 1.0),
+                    (r7, sub(g('F'), g('I')), -1.0),
+                ],
                 sub(g('I'), g('K')),
             )
-            .lp(&[(r3, sub(g('D'), g('E')), 1.0), (r6, sub(g('G'), g('D')), 1.0), (r7, sub(g('G'), g('I')), -1.0)], sub(g('I'), g('E')))
+            .lp(
+                &[(r3, sub(g('D'), g('E')), 1.0), (r6, sub(g('G'), g('D')), 1.0), (r7, sub(g('G'), g('I')), -1.0)],
+                sub(g('I'), g('E')),
+            )
             .ab()
     }
 
@@ -858,7 +901,13 @@ mod tests {
     /// Every real root satisfies the original equations to 1e-12; every root found by
     /// `starts` random Newton starts of the crate's solver is among them. Returns how
     /// many distinct roots the starts found.
-    fn check_real<const N: usize>(a: &DMatrix<f64>, b: &DVector<f64>, sol: &Solutions, starts: usize, seed: u64) -> usize {
+    fn check_real<const N: usize>(
+        a: &DMatrix<f64>,
+        b: &DVector<f64>,
+        sol: &Solutions,
+        starts: usize,
+        seed: u64,
+    ) -> usize {
         for phi in &sol.real {
             assert_eq!(phi.len(), N);
             assert!(phi.iter().all(|p| *p > -PI && *p <= PI));
@@ -974,7 +1023,7 @@ mod tests {
             let sol = solve(&a, &b);
             assert_eq!(sol.complex.len(), 6, "seed {seed}: {:?}", sol.per_run_found);
             assert!(contains(&sol.real, &[0.0; 4], 1e-12), "drawn pose missing");
-            assert!(sol.real.len() % 2 == 0);
+            assert!(sol.real.len().is_multiple_of(2));
             check_real::<4>(&a, &b, &sol, 2000, seed);
         }
     }
@@ -998,7 +1047,7 @@ mod tests {
             let mut rng = SplitMix64(300 + seed);
             let j = joints(&mut rng, BUTTERFLY);
             for (name, build, expected) in [
-                ("bar ground, input at A", butterfly_bar_ground as fn(&HashMap<char, P>) -> _, 16),
+                ("bar ground, input at A", butterfly_bar_ground as Builder, 16),
                 ("ternary ground, input at hinge I", butterfly_hinge_input, 18),
                 ("ternary ground, input at H", butterfly_ternary_ground_bar_input, 16),
             ] {
@@ -1128,7 +1177,8 @@ mod tests {
     #[ignore]
     fn homotopy_debug_geometry() {
         let which: Vec<String> = std::env::var("HOMGEO").unwrap().split(',').map(String::from).collect();
-        let (kind, seed, spread, g): (&str, u64, f64, usize) = (&which[0], which[1].parse().unwrap(), which[2].parse().unwrap(), which[3].parse().unwrap());
+        let (kind, seed, spread, g): (&str, u64, f64, usize) =
+            (&which[0], which[1].parse().unwrap(), which[2].parse().unwrap(), which[3].parse().unwrap());
         let mut rng = SplitMix64(seed);
         let mut j = spread_joints(&mut rng, spread);
         for _ in 0..g {
@@ -1153,10 +1203,11 @@ mod tests {
     /// `spread`: joint coordinates scaled per joint by 10^U(-spread, spread) (links of
     /// disparate lengths: harder). Prints the statistics; asserts that the drawn pose is
     /// found every time.
-    fn stats(name: &str, build: fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>), expected: usize, spread: f64, seed: u64) {
+    fn stats(name: &str, build: Builder, expected: usize, spread: f64, seed: u64) {
         let count = 1000;
         let mut rng = SplitMix64(seed);
-        let (mut fail_runs, mut short_runs, mut short_merged, mut jumps) = ([0usize; 2], [0usize; 2], 0usize, [0usize; 2]);
+        let (mut fail_runs, mut short_runs, mut short_merged, mut jumps) =
+            ([0usize; 2], [0usize; 2], 0usize, [0usize; 2]);
         let (mut counts, mut fail_hist, mut infinite) = (HashMap::new(), HashMap::new(), 0usize);
         let mut times = Vec::new();
         let mut missing_pose = 0;
@@ -1179,7 +1230,11 @@ mod tests {
             short_merged += expected.saturating_sub(sol.complex.len());
             if !contains(&sol.real, &[0.0; 6], 1e-12) || sol.complex.len() != expected {
                 missing_pose += 1;
-                let near = sol.real.iter().map(|r| r.iter().map(|v| v.abs()).fold(0.0, f64::max)).fold(f64::INFINITY, f64::min);
+                let near = sol
+                    .real
+                    .iter()
+                    .map(|r| r.iter().map(|v| v.abs()).fold(0.0, f64::max))
+                    .fold(f64::INFINITY, f64::min);
                 let sys = Closure::<6> { a: &a, b: &b };
                 let cond = sys.conditioning(&sys.eval(&SVector::zeros()).1);
                 eprintln!(
