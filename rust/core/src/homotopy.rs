@@ -1198,6 +1198,34 @@ mod tests {
         assert!(sol.real.iter().all(|r| angles_close(r, &[0.0, PI], 1e-7)));
     }
 
+    /// Time of one double-butterfly solve (release; the machine may be shared, so the
+    /// minimum of repeated solves is the figure to quote):
+    /// `cargo test --release -p planarkin-core homotopy_time -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn homotopy_time_double_butterfly() {
+        for (name, build) in [
+            ("bar ground, input at A (16)", butterfly_bar_ground as Builder),
+            ("ternary ground, input at hinge I (18)", butterfly_hinge_input),
+        ] {
+            let mut rng = SplitMix64(300);
+            let (a, b) = build(&joints(&mut rng, BUTTERFLY));
+            for runs in [1, 2] {
+                let o = HomotopyOptions { runs, ..Default::default() };
+                let mut t: Vec<f64> = (0..40)
+                    .map(|_| {
+                        let t0 = std::time::Instant::now();
+                        let sol = unit_circle_solutions(&a, &b, &o).unwrap();
+                        std::hint::black_box(sol);
+                        t0.elapsed().as_secs_f64() * 1e3
+                    })
+                    .collect();
+                t.sort_by(f64::total_cmp);
+                eprintln!("{name}, runs {runs}: min {:.2} ms, median {:.2} ms over 40 solves", t[0], t[20]);
+            }
+        }
+    }
+
     /// Random double-butterfly joints, each scaled by 10^U(-spread, spread).
     fn spread_joints(rng: &mut SplitMix64, spread: f64) -> HashMap<char, P> {
         let mut j = joints(rng, BUTTERFLY);
