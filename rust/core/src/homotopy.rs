@@ -12,12 +12,15 @@
 //! singularity for tau < 1, with probability one). Each path is tracked in projective
 //! coordinates `X = (x0, x)`, `t = x / x0`, on a moving orthogonal patch
 //! (`conj(X_k) . X = 1`, renormalised after every accepted step), so paths whose `t`
-//! diverges stay bounded and arrive at `x0 = 0`: they are classified *infinite*, not failed.
-//! Predictor: classical RK4 on the Davidenko equation `H_X dX/dtau = -H_tau`; corrector:
-//! at most three Newton steps that must contract; adaptive step (halved on rejection,
-//! doubled after three acceptances), bounded by `max_steps` per path, so nothing hangs.
-//! Every endpoint that reached tau = 1 is finished by Newton on the affine target `F(t)`
-//! and kept only if Newton converges near it (a finite, verified root). Roots are
+//! diverges stay bounded and head for `x0 = 0`: once `|x0| < 1e-6 |X|` (or if they stop
+//! or end with `|x0| < 1e-4 |X|` and no finite root) they are classified *infinite*, not
+//! failed. Predictor: classical RK4 on the Davidenko equation `H_X dX/dtau = -H_tau`;
+//! corrector: at most three Newton steps that must contract; adaptive step (halved on
+//! rejection, doubled after three acceptances), bounded by `max_steps` per path and a
+//! minimum step, so nothing hangs. Every endpoint that reached tau = 1 (or stopped within
+//! 1e-6 of it, as paths to a singular root do) is finished by Newton on the affine target
+//! `F(t)` and kept only if Newton converges near it with a small residual (a finite,
+//! verified root). Roots are
 //! deduplicated; two paths of one run ending on the same root (path jumping: the roots
 //! are simple for generic geometry) are both tracked again with steps eight times
 //! smaller; the whole tracking runs `runs` times (default 2) with independent
@@ -66,8 +69,9 @@ impl Default for HomotopyOptions {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Solutions {
     /// Finite complex solutions `z = (c_1..c_N, s_1..s_N)` (length 2N), deduplicated over
-    /// all runs. Real ones are given exactly as `(cos phi, sin phi)` of their polished
-    /// angles (zero imaginary parts).
+    /// all runs: the non-real ones first, then the real ones, given exactly as
+    /// `(cos phi, sin phi)` of their polished angles (zero imaginary parts) in the order
+    /// of [`Solutions::real`].
     pub complex: Vec<Vec<Complex<f64>>>,
     /// Real solutions as angles `phi` (length N) in (-pi, pi], polished by real Newton
     /// (to ~1e-15 rad at simple roots; a double root, at a dead point, is resolved only
