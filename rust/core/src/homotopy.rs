@@ -1161,6 +1161,38 @@ mod tests {
         check_real::<6>(&a, &b, &sol, 2000, 87);
     }
 
+    /// Units do not matter: the same triad in metres, millimetres and kilometres gives the
+    /// same angles.
+    #[test]
+    fn homotopy_is_scale_invariant() {
+        let mut rng = SplitMix64(100);
+        let j = joints(&mut rng, "123pqr");
+        let (a, b) = triad(&j);
+        let base = solve(&a, &b);
+        for f in [1e3, 1e-3] {
+            let jf: HashMap<char, P> = j.iter().map(|(k, p)| (*k, [p[0] * f, p[1] * f])).collect();
+            let (a, b) = triad(&jf);
+            let sol = solve(&a, &b);
+            assert_eq!(sol.complex.len(), 6);
+            assert_eq!(sol.real.len(), base.real.len());
+            assert!(sol.real.iter().all(|r| contains(&base.real, r, 1e-10)));
+        }
+    }
+
+    /// A dyad far from closing: its two complex roots grow like the anchor distance d
+    /// (|cos phi| ~ d / r); both are found up to d = 1e5 (|z| ~ 7e4).
+    #[test]
+    fn homotopy_far_from_closing_dyad() {
+        for d in [10.0, 1e2, 1e3, 1e4, 1e5] {
+            let (a, b) = dyad([0.0, 0.0], [d, 0.0], [1.0, 0.0], [0.0, 0.7]);
+            let sol = solve(&a, &b);
+            let zmax = sol.complex.iter().flatten().map(|v| v.norm()).fold(0.0, f64::max);
+            eprintln!("dyad, anchors {d:e} apart: {} complex roots (max |z| {zmax:.1e}), {} real, per run {:?}, failed {}, infinite {}", sol.complex.len(), sol.real.len(), sol.per_run_found, sol.failed, sol.infinite);
+            assert!(sol.real.is_empty());
+            assert_eq!(sol.complex.len(), 2);
+        }
+    }
+
     #[test]
     fn homotopy_rejects_misuse() {
         let o = HomotopyOptions::default();
