@@ -1372,5 +1372,6 @@ mod tests {
         stats("ternary ground, input at hinge I", butterfly_hinge_input, 18, 0.0, 4343);
         stats("bar ground, input at A", butterfly_bar_ground, 16, 1.0, 4444);
         stats("bar ground, input at A", butterfly_bar_ground, 16, 0.0, 4242);
+        stats("ternary ground, input at H", butterfly_ternary_ground_bar_input, 16, 0.0, 4545);
     }
 }
