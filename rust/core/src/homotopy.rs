@@ -241,6 +241,10 @@ impl Reduced {
             a_s.row_mut(i).scale_mut(1.0 / s);
             b_s[i] /= s;
         }
+        // nalgebra's SVD iterates without a bound: never hand it a non-finite entry
+        if let Some(v) = b_s.iter().find(|v| !v.is_finite()) {
+            return Err(Error::invalid("b", "must be finite after dividing each row by its largest |a|", v));
+        }
         // Pad to square so the SVD returns a full V^T: its N rows of zero singular value
         // span the null space of A.
         let mut m = DMatrix::<f64>::zeros(2 * n, 2 * n);
@@ -1232,6 +1236,10 @@ mod tests {
         assert!(unit_circle_solutions(&a, &b, &HomotopyOptions { runs: 0, ..o }).is_err());
         assert!(unit_circle_solutions(&a, &b, &HomotopyOptions { max_step: 0.0, ..o }).is_err());
         assert!(unit_circle_solutions(&DMatrix::zeros(17, 34), &DVector::zeros(17), &o).is_err());
+        let mut huge = DVector::zeros(2);
+        huge[0] = 1e300;
+        let tiny = DMatrix::from_row_slice(2, 4, &[1e-300, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+        assert!(unit_circle_solutions(&tiny, &huge, &o).is_err());
         assert!(unit_circle_solutions(&a, &b, &o).is_ok());
     }
 
@@ -1302,7 +1310,9 @@ mod tests {
     #[test]
     #[ignore]
     fn homotopy_debug_geometry() {
-        let which: Vec<String> = std::env::var("HOMGEO").unwrap().split(',').map(String::from).collect();
+        // HOMGEO=kind,seed,spread,index (kind: hinge or bar), e.g. HOMGEO=bar,4444,1,87
+        let Ok(spec) = std::env::var("HOMGEO") else { return };
+        let which: Vec<String> = spec.split(',').map(String::from).collect();
         let (kind, seed, spread, g): (&str, u64, f64, usize) =
             (&which[0], which[1].parse().unwrap(), which[2].parse().unwrap(), which[3].parse().unwrap());
         let mut rng = SplitMix64(seed);
