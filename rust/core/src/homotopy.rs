@@ -241,7 +241,7 @@ impl Reduced {
             a_s.row_mut(i).scale_mut(1.0 / s);
             b_s[i] /= s;
         }
-        // nalgebra's SVD iterates without a bound: never hand it a non-finite entry
+        // never hand the SVD a non-finite entry
         if let Some(v) = b_s.iter().find(|v| !v.is_finite()) {
             return Err(Error::invalid("b", "must be finite after dividing each row by its largest |a|", v));
         }
@@ -249,7 +249,10 @@ impl Reduced {
         // span the null space of A.
         let mut m = DMatrix::<f64>::zeros(2 * n, 2 * n);
         m.rows_mut(0, n).copy_from(&a_s);
-        let svd = m.svd(true, true);
+        // bounded iterations (plain `svd` iterates until convergence)
+        let svd = m
+            .try_svd(true, true, 5.0 * f64::EPSILON, 10_000)
+            .ok_or_else(|| Error::invalid("a", "must have a computable SVD", "no convergence in 10000 sweeps"))?;
         let (Some(u), Some(vt)) = (svd.u.as_ref(), svd.v_t.as_ref()) else {
             return Err(Error::invalid("a", "must have a computable SVD", "SVD failed"));
         };
