@@ -12,13 +12,18 @@
 //! singularity for tau < 1, with probability one). Each path is tracked in projective
 //! coordinates `X = (x0, x)`, `t = x / x0`, on a moving orthogonal patch
 //! (`conj(X_k) . X = 1`, renormalised after every accepted step), so paths whose `t`
-//! diverges stay bounded and arrive at `x0 = 0`: they are classified *infinite*, not failed.
-//! Predictor: classical RK4 on the Davidenko equation `H_X dX/dtau = -H_tau`; corrector:
-//! at most three Newton steps that must contract; adaptive step (halved on rejection,
-//! doubled after three acceptances), bounded by `max_steps` per path, so nothing hangs.
-//! Every endpoint that reached tau = 1 is finished by Newton on the affine target `F(t)`
-//! and kept only if Newton converges near it (a finite, verified root). Roots are
-//! deduplicated; the whole tracking runs `runs` times (default 2) with independent
+//! diverges stay bounded and head for `x0 = 0`: once `|x0| < 1e-6 |X|` (or if they stop
+//! or end with `|x0| < 1e-4 |X|` and no finite root) they are classified *infinite*, not
+//! failed. Predictor: classical RK4 on the Davidenko equation `H_X dX/dtau = -H_tau`;
+//! corrector: at most three Newton steps that must contract; adaptive step (halved on
+//! rejection, doubled after three acceptances), bounded by `max_steps` per path and a
+//! minimum step, so nothing hangs. Every endpoint that reached tau = 1 (or stopped within
+//! 1e-6 of it, as paths to a singular root do) is finished by Newton on the affine target
+//! `F(t)` and kept only if Newton converges near it with a small residual (a finite,
+//! verified root). Roots are
+//! deduplicated; two paths of one run ending on the same root (path jumping: the roots
+//! are simple for generic geometry) are both tracked again with steps eight times
+//! smaller; the whole tracking runs `runs` times (default 2) with independent
 //! `gamma`s and the root sets are merged, so a root lost by one run to a path failure or
 //! path jumping is still found if the other run finds it. Real assemblies: roots whose
 //! imaginary parts are below a scale-aware tolerance, polished by real Newton in the
@@ -64,10 +69,13 @@ impl Default for HomotopyOptions {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Solutions {
     /// Finite complex solutions `z = (c_1..c_N, s_1..s_N)` (length 2N), deduplicated over
-    /// all runs. Real ones are given exactly as `(cos phi, sin phi)` of their polished
-    /// angles (zero imaginary parts).
+    /// all runs: the non-real ones first, then the real ones, given exactly as
+    /// `(cos phi, sin phi)` of their polished angles (zero imaginary parts) in the order
+    /// of [`Solutions::real`].
     pub complex: Vec<Vec<Complex<f64>>>,
-    /// Real solutions as angles `phi` (length N) in (-pi, pi], polished by real Newton.
+    /// Real solutions as angles `phi` (length N) in (-pi, pi], polished by real Newton
+    /// (to ~1e-15 rad at simple roots; a double root, at a dead point, is resolved only
+    /// to ~1e-8 and may be listed twice, about that far apart).
     pub real: Vec<Vec<f64>>,
     /// Paths tracked, over all runs (`runs * 2^N`).
     pub paths: usize,
@@ -79,6 +87,14 @@ pub struct Solutions {
     pub per_run_found: Vec<usize>,
     /// Failed paths in each run.
     pub per_run_failed: Vec<usize>,
+    /// Paths in each run that ended on a root another path of the run had already
+    /// reached (path jumping, for isolated simple roots); those paths were tracked again
+    /// with steps eight times smaller, and `per_run_found` counts what that recovered.
+    pub per_run_jumps: Vec<usize>,
+    /// Predictor-corrector steps (accepted and rejected, retracking included) over all
+    /// paths and runs: the machine-independent cost of the solve (each step is an RK4
+    /// predictor, four (N+1)-square complex LU solves, plus 1-3 Newton solves).
+    pub steps: usize,
 }
 
 /// All finite complex solutions of `A z = b`, `c_j^2 + s_j^2 = 1` (`a` is N x 2N, `b` has
@@ -128,6 +144,8 @@ pub fn unit_circle_solutions(a: &DMatrix<f64>, b: &DVector<f64>, opts: &Homotopy
         out.infinite += run.infinite;
         out.per_run_found.push(run.roots.len());
         out.per_run_failed.push(run.failed);
+        out.per_run_jumps.push(run.jumps);
+        out.steps += run.steps;
         for t in run.roots {
             insert_unique(&mut roots, t);
         }
@@ -173,6 +191,9 @@ struct Reduced {
 enum End {
     /// Reached tau = 1.
     Reached,
+    /// Stopped within 1e-6 of tau = 1 (the step fell below its minimum or the budget
+    /// ran out): typical of a singular endpoint, e.g. a double root at a dead point.
+    Near,
     /// x0 became negligible: t diverges.
     Infinite,
     /// Step below the minimum, step budget spent, or a singular / non-finite linear solve.
@@ -184,10 +205,23 @@ struct RunResult {
     paths: usize,
     failed: usize,
     infinite: usize,
+    /// Paths that ended on a root another path of the run had reached.
+    jumps: usize,
+    steps: usize,
+}
+
+/// A path's classified end.
+enum PathEnd {
+    /// A finite root t, verified by Newton on the target.
+    Root(Vec<C>),
+    Infinite,
+    Failed,
 }
 
 /// Scratch buffers of one path (no allocation inside the step loop).
 struct Work {
+    /// Predictor-corrector steps taken (accepted and rejected), all paths of the run.
+    steps: usize,
     m: usize,
     jac: Vec<C>,
     rhs: Vec<C>,
@@ -207,11 +241,18 @@ impl Reduced {
             a_s.row_mut(i).scale_mut(1.0 / s);
             b_s[i] /= s;
         }
+        // never hand the SVD a non-finite entry
+        if let Some(v) = b_s.iter().find(|v| !v.is_finite()) {
+            return Err(Error::invalid("b", "must be finite after dividing each row by its largest |a|", v));
+        }
         // Pad to square so the SVD returns a full V^T: its N rows of zero singular value
         // span the null space of A.
         let mut m = DMatrix::<f64>::zeros(2 * n, 2 * n);
         m.rows_mut(0, n).copy_from(&a_s);
-        let svd = m.svd(true, true);
+        // bounded iterations (plain `svd` iterates until convergence)
+        let svd = m
+            .try_svd(true, true, 5.0 * f64::EPSILON, 10_000)
+            .ok_or_else(|| Error::invalid("a", "must have a computable SVD", "no convergence in 10000 sweeps"))?;
         let (Some(u), Some(vt)) = (svd.u.as_ref(), svd.v_t.as_ref()) else {
             return Err(Error::invalid("a", "must have a computable SVD", "SVD failed"));
         };
@@ -220,7 +261,7 @@ impl Reduced {
         order.sort_by(|&i, &j| sv[j].total_cmp(&sv[i]));
         let smax = sv[order[0]];
         let smin = sv[order[n - 1]];
-        if !(smin > 1e-10 * smax) {
+        if smin.is_nan() || smin <= 1e-10 * smax {
             return Err(Error::invalid(
                 "a",
                 "must have full row rank (independent closure equations)",
@@ -268,51 +309,86 @@ impl Reduced {
     fn run(&self, gamma: C, opts: &HomotopyOptions) -> RunResult {
         let n = self.n;
         let m = n + 1;
-        let mut work =
-            Work { m, jac: vec![C::default(); m * m], rhs: vec![C::default(); m], w: vec![C::default(); 2 * n] };
-        let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0 };
-        let norm0 = 1.0 / (m as f64).sqrt();
+        let mut work = Work {
+            steps: 0,
+            m,
+            jac: vec![C::default(); m * m],
+            rhs: vec![C::default(); m],
+            w: vec![C::default(); 2 * n],
+        };
+        let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0, jumps: 0, steps: 0 };
+        // root index reached by each path (None: infinite or failed)
+        let mut reached: Vec<Option<usize>> = Vec::with_capacity(1 << n);
         for start in 0..(1usize << n) {
             res.paths += 1;
-            let mut x: Vec<C> = (0..m)
-                .map(|k| {
-                    let sign = if k > 0 && (start >> (k - 1)) & 1 == 1 { -1.0 } else { 1.0 };
-                    C::new(sign * norm0, 0.0)
-                })
-                .collect();
-            let end = self.track(&mut x, gamma, opts, &mut work);
-            match end {
-                End::Infinite => res.infinite += 1,
-                End::Failed => {
-                    if x[0].norm() < 1e-4 {
-                        res.infinite += 1;
-                    } else {
-                        res.failed += 1;
-                    }
+            let end = match self.path(start, gamma, opts, &mut work) {
+                PathEnd::Root(t) => Some(insert_unique(&mut res.roots, t)),
+                PathEnd::Infinite => {
+                    res.infinite += 1;
+                    None
                 }
-                End::Reached => {
-                    let root = if x[0].norm() > 1e-12 {
-                        let t0: Vec<C> = x[1..].iter().map(|v| v / x[0]).collect();
-                        self.affine_newton(&t0)
-                    } else {
-                        None
-                    };
-                    match root {
-                        Some(t) => insert_unique(&mut res.roots, t),
-                        None if x[0].norm() < 1e-4 => res.infinite += 1,
-                        None => res.failed += 1,
+                PathEnd::Failed => {
+                    res.failed += 1;
+                    None
+                }
+            };
+            reached.push(end);
+        }
+        // Roots here are isolated and simple for generic geometry, so two paths ending at
+        // one root means a path jumped (and another root was probably lost): retrack
+        // every path of such a root with steps eight times smaller.
+        let mut hits = vec![0usize; res.roots.len()];
+        for r in reached.iter().flatten() {
+            hits[*r] += 1;
+        }
+        res.jumps = hits.iter().map(|&h| h.saturating_sub(1)).sum();
+        if res.jumps > 0 {
+            let fine =
+                HomotopyOptions { max_step: opts.max_step / 8.0, max_steps: opts.max_steps.saturating_mul(4), ..*opts };
+            for (start, r) in reached.iter().enumerate() {
+                if matches!(r, Some(r) if hits[*r] > 1) {
+                    if let PathEnd::Root(t) = self.path(start, gamma, &fine, &mut work) {
+                        insert_unique(&mut res.roots, t);
                     }
                 }
             }
         }
+        res.steps = work.steps;
         res
     }
 
-    /// Homotopy residual (rows 0..N, plus the patch row N) into `work.rhs` and, when
-    /// `jac`, its Jacobian in X into `work.jac`; with `dtau`, `rhs` gets H_tau instead
-    /// (patch row 0).
-    #[allow(clippy::too_many_arguments)]
-    fn eval(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, jac: bool, dtau: bool) {
+    /// Tracks the path from start point number `start` (bit k set: t_k = -1) and
+    /// classifies its end.
+    fn path(&self, start: usize, gamma: C, opts: &HomotopyOptions, work: &mut Work) -> PathEnd {
+        let m = self.n + 1;
+        let norm0 = 1.0 / (m as f64).sqrt();
+        let mut x: Vec<C> = (0..m)
+            .map(|k| {
+                let sign = if k > 0 && (start >> (k - 1)) & 1 == 1 { -1.0 } else { 1.0 };
+                C::new(sign * norm0, 0.0)
+            })
+            .collect();
+        let end = self.track(&mut x, gamma, opts, work);
+        // A path that stopped just short of tau = 1 usually sits by a singular root, where
+        // Newton still converges (linearly): keep it if Newton verifies it.
+        let root = if matches!(end, End::Reached | End::Near) && x[0].norm() > 1e-12 {
+            let t0: Vec<C> = x[1..].iter().map(|v| v / x[0]).collect();
+            self.affine_newton(&t0)
+        } else {
+            None
+        };
+        match (end, root) {
+            (End::Infinite, _) => PathEnd::Infinite,
+            (_, Some(t)) => PathEnd::Root(t),
+            // stopped (or arrived) near x0 = 0 without a finite root
+            _ if x[0].norm() < 1e-4 => PathEnd::Infinite,
+            _ => PathEnd::Failed,
+        }
+    }
+
+    /// Homotopy residual (rows 0..N, plus the patch row N) into `work.rhs` and its
+    /// Jacobian in X into `work.jac`; with `dtau`, `rhs` gets H_tau instead (patch row 0).
+    fn eval(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, dtau: bool) {
         let n = self.n;
         let m = work.m;
         for r in 0..2 * n {
@@ -330,21 +406,17 @@ impl Reduced {
             let f = c * c + s * s - x0 * x0;
             let g = x[j + 1] * x[j + 1] - x0 * x0;
             work.rhs[j] = if dtau { f - gamma * g } else { g_w * g + f * tau };
-            if jac {
-                let rc = &self.p[j * m..(j + 1) * m];
-                let rs = &self.p[(n + j) * m..(n + j + 1) * m];
-                let row = &mut work.jac[j * m..(j + 1) * m];
-                let (c2, s2) = (c * (2.0 * tau), s * (2.0 * tau));
-                for k in 0..m {
-                    row[k] = c2 * rc[k] + s2 * rs[k];
-                }
-                row[0] -= x0 * (2.0 * tau) + g_w * x0 * 2.0;
-                row[j + 1] += g_w * x[j + 1] * 2.0;
+            let rc = &self.p[j * m..(j + 1) * m];
+            let rs = &self.p[(n + j) * m..(n + j + 1) * m];
+            let row = &mut work.jac[j * m..(j + 1) * m];
+            let (c2, s2) = (c * (2.0 * tau), s * (2.0 * tau));
+            for k in 0..m {
+                row[k] = c2 * rc[k] + s2 * rs[k];
             }
+            row[0] -= x0 * (2.0 * tau) + g_w * x0 * 2.0;
+            row[j + 1] += g_w * x[j + 1] * 2.0;
         }
-        if jac {
-            work.jac[n * m..(n + 1) * m].copy_from_slice(patch);
-        }
+        work.jac[n * m..(n + 1) * m].copy_from_slice(patch);
         work.rhs[n] = if dtau {
             C::default()
         } else {
@@ -358,7 +430,7 @@ impl Reduced {
 
     /// dX/dtau at (x, tau) on the patch, into `out`. False on a singular solve.
     fn tangent(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, out: &mut [C]) -> bool {
-        self.eval(x, tau, gamma, patch, work, true, true);
+        self.eval(x, tau, gamma, patch, work, true);
         for v in work.rhs.iter_mut() {
             *v = -*v;
         }
@@ -383,6 +455,7 @@ impl Reduced {
         let mut k4 = vec![C::default(); m];
         let mut y = vec![C::default(); m];
         for _ in 0..opts.max_steps {
+            work.steps += 1;
             if x[0].norm() < INFINITE_X0 {
                 return End::Infinite;
             }
@@ -413,7 +486,7 @@ impl Reduced {
                 // Corrector: at most three Newton steps, each contracting.
                 let mut last = f64::INFINITY;
                 for it in 0..3 {
-                    self.eval(&y, t1, gamma, &patch, work, true, false);
+                    self.eval(&y, t1, gamma, &patch, work, false);
                     for v in work.rhs.iter_mut() {
                         *v = -*v;
                     }
@@ -424,8 +497,8 @@ impl Reduced {
                     if !d.is_finite() || d > 0.1 || (it > 0 && d > 0.25 * last) {
                         break 'step false;
                     }
-                    for (yk, r) in y.iter_mut().zip(&work.rhs).take(m) {
-                        *yk += r;
+                    for (yk, dk) in y.iter_mut().zip(&work.rhs) {
+                        *yk += dk;
                     }
                     last = d;
                     if d < 1e-10 {
@@ -452,11 +525,15 @@ impl Reduced {
                 good = 0;
                 h *= 0.5;
                 if h < h_min {
-                    return End::Failed;
+                    return if 1.0 - tau < 1e-6 { End::Near } else { End::Failed };
                 }
             }
         }
-        End::Failed
+        if 1.0 - tau < 1e-6 {
+            End::Near
+        } else {
+            End::Failed
+        }
     }
 
     /// Newton on the affine target q(t) = 0 from `t0`: the root if it converges near `t0`
@@ -489,7 +566,9 @@ impl Reduced {
                 t[k] += rhs[k];
             }
             let tn = t.iter().map(|v| v.norm()).fold(1.0, f64::max);
-            if d <= 1e-14 * tn || (d <= 1e-10 * tn && d >= 0.5 * last) {
+            // Converged, or stagnating at the rounding floor: ~eps / conditioning for a simple
+            // root, ~sqrt(eps) for a double one (the residual check below still applies).
+            if d <= 1e-14 * tn || (d <= 1e-6 * tn && d >= 0.5 * last) {
                 let dist = t.iter().zip(t0).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
                 let zmax = self.z_of(&t).iter().map(|v| v.norm()).fold(1.0, f64::max);
                 let ok = dist <= 1e-3 * tn && res <= 1e-8 * zmax * zmax;
@@ -529,7 +608,8 @@ impl Reduced {
             for j in 0..n {
                 phi[j] += d[j];
             }
-            if step <= 1e-15 || (step <= 1e-11 && step >= 0.5 * last) {
+            // As in `affine_newton`: a double root (dead point) stagnates near sqrt(eps).
+            if step <= 1e-15 || (step <= 1e-6 && step >= 0.5 * last) {
                 let res = self.real_residual(&phi);
                 let moved = phi.iter().zip(&phi0).map(|(a, b)| wrap_angle(a - b).abs()).fold(0.0, f64::max);
                 return (res <= 1e-12 && moved <= 1e-4).then(|| phi.iter().map(|&p| wrap_angle(p)).collect());
@@ -562,12 +642,16 @@ fn axpy(y: &mut [C], x: &[C], a: f64, k: &[C]) {
     }
 }
 
-/// Adds `t` to `roots` unless a root within 1e-8 (relative) is there already.
-fn insert_unique(roots: &mut Vec<Vec<C>>, t: Vec<C>) {
+/// Adds `t` to `roots` unless a root within 1e-8 (relative) is there already; returns
+/// its index.
+fn insert_unique(roots: &mut Vec<Vec<C>>, t: Vec<C>) -> usize {
     let scale = t.iter().map(|v| v.norm()).fold(1.0, f64::max);
-    let dup = roots.iter().any(|r| r.iter().zip(&t).all(|(a, b)| (a - b).norm() <= 1e-8 * scale));
-    if !dup {
-        roots.push(t);
+    match roots.iter().position(|r| r.iter().zip(&t).all(|(a, b)| (a - b).norm() <= 1e-8 * scale)) {
+        Some(i) => i,
+        None => {
+            roots.push(t);
+            roots.len() - 1
+        }
     }
 }
 
@@ -650,6 +734,8 @@ mod tests {
     use std::f64::consts::PI;
 
     type P = [f64; 2];
+    /// A mechanism's A, b from its drawn joints.
+    type Builder = fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>);
 
     fn sub(a: P, b: P) -> P {
         [a[0] - b[0], a[1] - b[1]]
@@ -824,10 +910,10 @@ mod tests {
         fn eval(&self, x: &SVector<f64, N>) -> (SVector<f64, N>, SMatrix<f64, N, N>) {
             let mut f = SVector::<f64, N>::zeros();
             let mut j = SMatrix::<f64, N, N>::zeros();
+            let sc: [(f64, f64); N] = std::array::from_fn(|k| x[k].sin_cos());
             for i in 0..N {
                 f[i] = -self.b[i];
-                for k in 0..N {
-                    let (s, c) = x[k].sin_cos();
+                for (k, &(s, c)) in sc.iter().enumerate() {
                     f[i] += self.a[(i, k)] * c + self.a[(i, N + k)] * s;
                     j[(i, k)] = -self.a[(i, k)] * s + self.a[(i, N + k)] * c;
                 }
@@ -975,6 +1061,14 @@ mod tests {
             let j = joints(&mut rng, "123pqr");
             let (a, b) = triad(&j);
             let sol = solve(&a, &b);
+            eprintln!(
+                "triad seed {seed}: {} complex, {} real, per run {:?}, failed {:?}, infinite {}",
+                sol.complex.len(),
+                sol.real.len(),
+                sol.per_run_found,
+                sol.per_run_failed,
+                sol.infinite
+            );
             assert_eq!(sol.complex.len(), 6, "seed {seed}: {:?}", sol.per_run_found);
             assert!(contains(&sol.real, &[0.0; 4], 1e-12), "drawn pose missing");
             assert!(sol.real.len().is_multiple_of(2));
@@ -989,6 +1083,14 @@ mod tests {
             let j = joints(&mut rng, "123456");
             let (a, b) = stephenson3(&j);
             let sol = solve(&a, &b);
+            eprintln!(
+                "stephenson3 seed {seed}: {} complex, {} real, per run {:?}, failed {:?}, infinite {}",
+                sol.complex.len(),
+                sol.real.len(),
+                sol.per_run_found,
+                sol.per_run_failed,
+                sol.infinite
+            );
             assert_eq!(sol.complex.len(), 6, "seed {seed}: {:?}", sol.per_run_found);
             assert!(contains(&sol.real, &[0.0; 4], 1e-12), "drawn pose missing");
             check_real::<4>(&a, &b, &sol, 2000, seed);
@@ -1001,7 +1103,7 @@ mod tests {
             let mut rng = SplitMix64(300 + seed);
             let j = joints(&mut rng, BUTTERFLY);
             for (name, build, expected) in [
-                ("bar ground, input at A", butterfly_bar_ground as fn(&HashMap<char, P>) -> _, 16),
+                ("bar ground, input at A", butterfly_bar_ground as Builder, 16),
                 ("ternary ground, input at hinge I", butterfly_hinge_input, 18),
                 ("ternary ground, input at H", butterfly_ternary_ground_bar_input, 16),
             ] {
@@ -1017,8 +1119,14 @@ mod tests {
                 );
                 assert_eq!(sol.complex.len(), expected, "{name}");
                 assert!(contains(&sol.real, &[0.0; 6], 1e-12), "drawn pose missing");
-                let newton_found = check_real::<6>(&a, &b, &sol, 2000, seed);
-                assert!(newton_found >= 1);
+                // 2000 Newton starts are slow in a debug build: every mechanism on the
+                // first geometry, the bar-ground one on all
+                if seed == 0 || expected == 16 && name.starts_with("bar") {
+                    let newton_found = check_real::<6>(&a, &b, &sol, 2000, seed);
+                    assert!(newton_found >= 1);
+                } else {
+                    check_real::<6>(&a, &b, &sol, 0, seed);
+                }
             }
         }
     }
@@ -1063,6 +1171,56 @@ mod tests {
         assert_eq!(sol.complex.len(), 1024);
     }
 
+    /// A geometry (number 87 of the spread-length statistics set) where run 2 of the
+    /// default options has a path jump: two paths end on one root. Retracking those two
+    /// paths with finer steps recovers the lost root, so each run still finds all 16.
+    #[test]
+    fn homotopy_path_jump_is_detected_and_retracked() {
+        let mut rng = SplitMix64(4444);
+        let mut j = spread_joints(&mut rng, 1.0);
+        for _ in 0..87 {
+            j = spread_joints(&mut rng, 1.0);
+        }
+        let (a, b) = butterfly_bar_ground(&j);
+        let sol = solve(&a, &b);
+        assert_eq!(sol.per_run_jumps, vec![0, 1]);
+        assert_eq!(sol.per_run_found, vec![16, 16]);
+        assert_eq!(sol.complex.len(), 16);
+        check_real::<6>(&a, &b, &sol, 2000, 87);
+    }
+
+    /// Units do not matter: the same triad in metres, millimetres and kilometres gives the
+    /// same angles.
+    #[test]
+    fn homotopy_is_scale_invariant() {
+        let mut rng = SplitMix64(100);
+        let j = joints(&mut rng, "123pqr");
+        let (a, b) = triad(&j);
+        let base = solve(&a, &b);
+        for f in [1e3, 1e-3] {
+            let jf: HashMap<char, P> = j.iter().map(|(k, p)| (*k, [p[0] * f, p[1] * f])).collect();
+            let (a, b) = triad(&jf);
+            let sol = solve(&a, &b);
+            assert_eq!(sol.complex.len(), 6);
+            assert_eq!(sol.real.len(), base.real.len());
+            assert!(sol.real.iter().all(|r| contains(&base.real, r, 1e-10)));
+        }
+    }
+
+    /// A dyad far from closing: its two complex roots grow like the anchor distance d
+    /// (|cos phi| ~ d / r); both are found up to d = 1e5 (|z| ~ 7e4).
+    #[test]
+    fn homotopy_far_from_closing_dyad() {
+        for d in [10.0, 1e2, 1e3, 1e4, 1e5] {
+            let (a, b) = dyad([0.0, 0.0], [d, 0.0], [1.0, 0.0], [0.0, 0.7]);
+            let sol = solve(&a, &b);
+            let zmax = sol.complex.iter().flatten().map(|v| v.norm()).fold(0.0, f64::max);
+            eprintln!("dyad, anchors {d:e} apart: {} complex roots (max |z| {zmax:.1e}), {} real, per run {:?}, failed {}, infinite {}", sol.complex.len(), sol.real.len(), sol.per_run_found, sol.failed, sol.infinite);
+            assert!(sol.real.is_empty());
+            assert_eq!(sol.complex.len(), 2);
+        }
+    }
+
     #[test]
     fn homotopy_rejects_misuse() {
         let o = HomotopyOptions::default();
@@ -1081,6 +1239,10 @@ mod tests {
         assert!(unit_circle_solutions(&a, &b, &HomotopyOptions { runs: 0, ..o }).is_err());
         assert!(unit_circle_solutions(&a, &b, &HomotopyOptions { max_step: 0.0, ..o }).is_err());
         assert!(unit_circle_solutions(&DMatrix::zeros(17, 34), &DVector::zeros(17), &o).is_err());
+        let mut huge = DVector::zeros(2);
+        huge[0] = 1e300;
+        let tiny = DMatrix::from_row_slice(2, 4, &[1e-300, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+        assert!(unit_circle_solutions(&tiny, &huge, &o).is_err());
         assert!(unit_circle_solutions(&a, &b, &o).is_ok());
     }
 
@@ -1089,13 +1251,52 @@ mod tests {
         // parallelogram-like dyad with coincident anchors and equal links: a circle of
         // solutions (not isolated), and a step budget of 1 step per path
         let (a, b) = dyad([0.0, 0.0], [0.0, 0.0], [1.0, 0.0], [1.0, 0.0]);
-        let _ = unit_circle_solutions(&a, &b, &HomotopyOptions::default());
+        let r = unit_circle_solutions(&a, &b, &HomotopyOptions::default());
+        eprintln!("coincident anchors, equal links: {r:?}");
+        assert!(r.is_ok());
         let (a, b) = dyad([0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [1.0, 0.0]);
         let sol = unit_circle_solutions(&a, &b, &HomotopyOptions { max_steps: 1, ..Default::default() }).unwrap();
         assert_eq!(sol.failed + sol.infinite, sol.paths);
         // tangent circles: a double real root
         let (a, b) = dyad([0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 0.0]);
-        let _ = unit_circle_solutions(&a, &b, &HomotopyOptions::default()).unwrap();
+        let sol = unit_circle_solutions(&a, &b, &HomotopyOptions::default()).unwrap();
+        eprintln!("tangent circles: real {:?}, complex {}, failed {}", sol.real, sol.complex.len(), sol.failed);
+        // the double root (0, pi) is found to about sqrt(eps), possibly twice
+        assert!(!sol.real.is_empty());
+        assert!(sol.real.iter().all(|r| angles_close(r, &[0.0, PI], 1e-7)));
+    }
+
+    /// Time of one double-butterfly solve (release; the machine may be shared, so the
+    /// minimum of repeated solves is the figure to quote):
+    /// `cargo test --release -p planarkin-core homotopy_time -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn homotopy_time_double_butterfly() {
+        for (name, build) in [
+            ("bar ground, input at A (16)", butterfly_bar_ground as Builder),
+            ("ternary ground, input at hinge I (18)", butterfly_hinge_input),
+        ] {
+            let mut rng = SplitMix64(300);
+            let (a, b) = build(&joints(&mut rng, BUTTERFLY));
+            for runs in [1, 2] {
+                let o = HomotopyOptions { runs, ..Default::default() };
+                let mut steps = 0;
+                let mut t: Vec<f64> = (0..40)
+                    .map(|_| {
+                        let t0 = std::time::Instant::now();
+                        let sol = unit_circle_solutions(&a, &b, &o).unwrap();
+                        steps = sol.steps;
+                        std::hint::black_box(sol);
+                        t0.elapsed().as_secs_f64() * 1e3
+                    })
+                    .collect();
+                t.sort_by(f64::total_cmp);
+                eprintln!(
+                    "{name}, runs {runs}: min {:.2} ms, median {:.2} ms over 40 solves; {steps} steps",
+                    t[0], t[20]
+                );
+            }
+        }
     }
 
     /// Random double-butterfly joints, each scaled by 10^U(-spread, spread).
@@ -1112,7 +1313,9 @@ mod tests {
     #[test]
     #[ignore]
     fn homotopy_debug_geometry() {
-        let which: Vec<String> = std::env::var("HOMGEO").unwrap().split(',').map(String::from).collect();
+        // HOMGEO=kind,seed,spread,index (kind: hinge or bar), e.g. HOMGEO=bar,4444,1,87
+        let Ok(spec) = std::env::var("HOMGEO") else { return };
+        let which: Vec<String> = spec.split(',').map(String::from).collect();
         let (kind, seed, spread, g): (&str, u64, f64, usize) =
             (&which[0], which[1].parse().unwrap(), which[2].parse().unwrap(), which[3].parse().unwrap());
         let mut rng = SplitMix64(seed);
@@ -1139,12 +1342,11 @@ mod tests {
     /// `spread`: joint coordinates scaled per joint by 10^U(-spread, spread) (links of
     /// disparate lengths: harder). Prints the statistics; asserts that the drawn pose is
     /// found every time.
-    type Build = fn(&HashMap<char, P>) -> (DMatrix<f64>, DVector<f64>);
-
-    fn stats(name: &str, build: Build, expected: usize, spread: f64, seed: u64) {
+    fn stats(name: &str, build: Builder, expected: usize, spread: f64, seed: u64) {
         let count = 1000;
         let mut rng = SplitMix64(seed);
-        let (mut fail_runs, mut short_runs, mut short_merged) = ([0usize; 2], [0usize; 2], 0usize);
+        let (mut fail_runs, mut short_runs, mut short_merged, mut jumps) =
+            ([0usize; 2], [0usize; 2], 0usize, [0usize; 2]);
         let (mut counts, mut fail_hist, mut infinite) = (HashMap::new(), HashMap::new(), 0usize);
         let mut times = Vec::new();
         let mut missing_pose = 0;
@@ -1156,8 +1358,12 @@ mod tests {
             *counts.entry(sol.complex.len()).or_insert(0) += 1;
             *fail_hist.entry(sol.failed).or_insert(0) += 1;
             infinite += sol.infinite;
+            if sol.per_run_jumps.iter().any(|&j| j > 0) {
+                eprintln!("  geometry {g}: path jumps {:?}, per run found {:?}", sol.per_run_jumps, sol.per_run_found);
+            }
             for r in 0..2 {
                 fail_runs[r] += sol.per_run_failed[r];
+                jumps[r] += sol.per_run_jumps[r];
                 short_runs[r] += expected.saturating_sub(sol.per_run_found[r]);
             }
             short_merged += expected.saturating_sub(sol.complex.len());
@@ -1182,10 +1388,7 @@ mod tests {
         let mean = times.iter().sum::<f64>() / count as f64;
         eprintln!("{name}, spread {spread}: {count} geometries; root counts {counts:?} (expected {expected})");
         eprintln!("  failed paths per run {fail_runs:?} of {} each; failed paths per solve (histogram) {fail_hist:?}; infinite {infinite}", count * 64);
-        eprintln!(
-            "  roots short of {expected}: run 1 {}, run 2 {}, merged {short_merged}; geometries listed {missing_pose}",
-            short_runs[0], short_runs[1]
-        );
+        eprintln!("  roots short of {expected}: run 1 {}, run 2 {}, merged {short_merged}; geometries listed {missing_pose}; path jumps detected (retracked) per run {jumps:?}", short_runs[0], short_runs[1]);
         eprintln!(
             "  time per solve (2 runs x 64 paths): mean {:.1} ms, median {:.1} ms, max {:.1} ms",
             mean * 1e3,
@@ -1202,5 +1405,6 @@ mod tests {
         stats("ternary ground, input at hinge I", butterfly_hinge_input, 18, 0.0, 4343);
         stats("bar ground, input at A", butterfly_bar_ground, 16, 1.0, 4444);
         stats("bar ground, input at A", butterfly_bar_ground, 16, 0.0, 4242);
+        stats("ternary ground, input at H", butterfly_ternary_ground_bar_input, 16, 0.0, 4545);
     }
 }
