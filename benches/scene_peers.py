@@ -16,7 +16,6 @@ def _chain_order(d: dict) -> list[tuple]:
     pts = {k: np.asarray(v, dtype=float) for k, v in d["points"].items()}
     on = {p: [ls for ls in d["links"].values() if p in ls] for p in pts}
     known = set(d["links"][d["ground"]])
-    piv = d["input"]["pivot"]
     order: list[tuple] = []
     for p in d["links"][d["input"]["link"]]:
         if p not in known:
@@ -39,7 +38,6 @@ def _chain_order(d: dict) -> list[tuple]:
             raise ValueError(f"not dyadic: no chain for {remaining}")
         known.add(order[-1][1])
         remaining.remove(order[-1][1])
-    del piv
     return order
 
 
@@ -146,8 +144,8 @@ class PylinkageScene:
         coords = []
         for k in self.names:
             v = self.pts[k] - self.pts[self.piv]
-            coords.append(tuple(self.pts[k]) if k != self.crank_tip else
-                          tuple(self.pts[self.piv] + [c * v[0] - s * v[1], s * v[0] + c * v[1]]))  # fmt: skip
+            turned = self.pts[self.piv] + [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+            coords.append(tuple(turned) if k == self.crank_tip else tuple(self.pts[k]))
         self.linkage.set_coords(coords)
 
     def run(self) -> np.ndarray:

@@ -5,6 +5,7 @@
 //! input angles ([`sweep`]).
 
 pub mod assemble;
+mod columns;
 mod dyad;
 mod group;
 pub mod plan;

@@ -477,13 +477,7 @@ impl Plan {
             check("angular velocity", w.len(), n * nl)?;
         }
         if !self.has_group() {
-            let mut s = Solver::new(self, *opts);
-            for (k, &t) in theta.iter().enumerate() {
-                poll.tick()?;
-                s.eval(t);
-                s.write(k, &mut out);
-            }
-            return Ok(());
+            return super::columns::sweep(self, theta, opts, &mut out, &poll);
         }
         let limit = Status::Limit.code();
         self.continuation(theta, 0..n, opts, &mut out, false, &poll)?;

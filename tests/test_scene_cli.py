@@ -1,0 +1,122 @@
+"""The scene commands: planarkin analyze SCENE, animate SCENE, circuits SCENE, scenes —
+their files checked against the NumPy reference and the four-bar's own classification."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+
+import numpy as np
+import planarkin as pk
+import pytest
+from planarkin import cli
+from planarkin.reference_scene import scene_sweep
+
+
+def run(*argv, capsys=None):
+    code = cli.main(list(argv))
+    return code
+
+
+def test_analyze_scene_writes_what_the_reference_computes(tmp_path, capsys):
+    out = tmp_path / "o"
+    assert cli.main(["analyze", "jansen", "--out", str(out), "--no-figures", "--step", "5"]) == 0
+    text = capsys.readouterr().out
+    assert "plan step 1" in text and "dyad" in text
+    s = json.loads((out / "summary.json").read_text())
+    assert s["converged"] == s["angles"] == 73 and s["mobility"] == 1
+    assert [st["kind"] for st in s["plan"]] == ["dyad"] * len(s["plan"])
+    rows = list(csv.DictReader((out / "results.csv").open()))
+    theta = np.radians([float(r["theta [deg]"]) for r in rows])
+    foot = np.array([[float(r["foot_x"]), float(r["foot_y"])] for r in rows])
+    ref = scene_sweep(pk.scenes.data("jansen"), theta)
+    np.testing.assert_allclose(foot, ref.points["foot"], atol=1e-9)
+    # velocities by central differences of the reference
+    h = 1e-6
+    fd = (scene_sweep(pk.scenes.data("jansen"), theta + h).points["foot"]
+          - scene_sweep(pk.scenes.data("jansen"), theta - h).points["foot"]) / (2 * h)  # fmt: skip
+    omega = 100 * 2 * math.pi / 60  # the default --rpm
+    v = np.array([[float(r["foot_vx"]), float(r["foot_vy"])] for r in rows])
+    np.testing.assert_allclose(v, fd * omega, atol=1e-5 * np.abs(fd * omega).max())
+
+
+def test_analyze_scene_figures(tmp_path):
+    out = tmp_path / "f"
+    code = cli.main(["analyze", "stephenson3", "--out", str(out), "--step", "10", "--dpi", "40"])
+    assert code == 0
+    for name in ("scene_linkage.png", "scene_conditioning.png", "scene_tracers.png"):
+        assert (out / name).stat().st_size > 1000
+
+
+def test_analyze_a_scene_file(tmp_path):
+    p = pk.scenes.load("fourbar").save(tmp_path / "mine.toml")
+    assert cli.main(["analyze", str(p), "--out", str(tmp_path), "--no-figures"]) == 0
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["converged"] == 361
+
+
+def test_circuits_command_matches_the_grashof_class(tmp_path, capsys):
+    fb = pk.FourBar(6, 2, 5, 5)
+    assert fb.grashof().kind == "crank-rocker"
+    assert cli.main(["circuits", "fourbar", "--theta", "30", "--out", str(tmp_path)]) == 0
+    s = json.loads((tmp_path / "circuits.json").read_text())
+    # a crank-rocker: two circuits (open, crossed), the crank turning fully on each
+    assert len(s["circuits"]) == 2 and all(c["full_turn"] for c in s["circuits"])
+    assert (tmp_path / "circuits.png").stat().st_size > 1000
+    assert "circuit 2" in capsys.readouterr().out
+
+
+def test_circuits_of_a_triple_rocker(tmp_path):
+    r = (4.0, 3.0, 1.5, 2.0)
+    fb = pk.FourBar(*r)
+    t3, _ = fb.closed_form(0.0)
+    d = {
+        "points": {
+            "O2": [0, 0],
+            "O4": [4, 0],
+            "A": [3, 0],
+            "B": [3 + 1.5 * math.cos(t3), 1.5 * math.sin(t3)],
+        },  # fmt: skip
+        "links": {"g": ["O2", "O4"], "c": ["O2", "A"], "k": ["A", "B"], "r": ["O4", "B"]},
+        "ground": "g",
+        "input": {"link": "c", "pivot": "O2"},
+    }
+    p = tmp_path / "tr.json"
+    p.write_text(json.dumps(d))
+    assert cli.main(["circuits", str(p), "--out", str(tmp_path), "--no-figures", "--json"]) == 0
+    s = json.loads((tmp_path / "circuits.json").read_text())
+    (c,) = s["circuits"]
+    assert not c["full_turn"]
+    np.testing.assert_allclose(
+        sorted(c["turning_points_deg"]), sorted(np.degrees(fb.limits().toggles)), atol=1e-7
+    )
+
+
+def test_animate_scene(tmp_path):
+    code = cli.main(["animate", "klann", "--out", str(tmp_path), "--frames", "4", "--dpi", "30"])
+    assert code == 0
+    assert (tmp_path / "linkage.gif").stat().st_size > 1000
+    assert "<html" in (tmp_path / "linkage.html").read_text()
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["analyze", "nosuch"], "SCENE must be a .json/.toml file or a built-in name"),
+        (["analyze", "missing.json"], "does not exist"),
+        (["circuits", "fourbar", "--theta", "nan"], "--theta must be finite"),
+        (["analyze", "jansen", "--step", "0"], "--step must be in (0, 360]"),
+    ],
+)
+def test_scene_command_errors_are_one_line(argv, message, capsys, tmp_path):
+    assert cli.main([*argv, "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1
+
+
+def test_scenes_lists_the_built_ins(capsys):
+    assert cli.main(["scenes"]) == 0
+    out = capsys.readouterr().out
+    for name in pk.scenes.names():
+        assert name in out
