@@ -88,7 +88,9 @@ class SceneSweep:
     angular_velocity_array: np.ndarray | None = None
 
     @classmethod
-    def build(cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel):  # noqa: ANN001, ANN206, E501
+    def build(
+        cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel
+    ):  # noqa: ANN001, ANN206, E501
         return cls(
             plan=plan,
             theta=theta,

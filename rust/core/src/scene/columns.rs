@@ -34,7 +34,13 @@ pub(super) fn sweep(
     let np = plan.npoints;
     let vel = opts.omega.is_some();
     let nv = if vel { np * B } else { 0 };
-    let mut c = Columns { x: vec![0.0; np * B], y: vec![0.0; np * B], vx: vec![0.0; nv], vy: vec![0.0; nv], st: vec![OK; np * B] };
+    let mut c = Columns {
+        x: vec![0.0; np * B],
+        y: vec![0.0; np * B],
+        vx: vec![0.0; nv],
+        vy: vec![0.0; nv],
+        st: vec![OK; np * B],
+    };
     for &(p, xy) in &plan.fixed {
         c.x[p * B..(p + 1) * B].fill(xy[0]);
         c.y[p * B..(p + 1) * B].fill(xy[1]);
