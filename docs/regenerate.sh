@@ -12,11 +12,24 @@ planarkin animate --frames 36 --fps 9 --dpi 60 --out anim > /dev/null
 cp figures/*.png anim/linkage.gif "$docs/"
 python - "$docs" <<'PY'
 import sys
+
+import planarkin as pk
+from planarkin.scene import plot
+
+docs = sys.argv[1]
+sc = pk.scenes.load("jansen")
+plot.linkage(sc, sc.sweep(outputs="all"), poses=4).savefig(f"{docs}/scene_jansen.png", dpi=80)
+sc = pk.scenes.load("double-butterfly-2")
+fig = plot.circuits(sc, sc.circuits(), sc.input_angle)
+fig.savefig(f"{docs}/circuits_double_butterfly.png", dpi=70)
+PY
+python - "$docs" <<'PY'
+import sys
 from pathlib import Path
 
 from PIL import Image
 
-for png in Path(sys.argv[1]).glob("figure_*.png"):
+for png in [*Path(sys.argv[1]).glob("figure_*.png"), *Path(sys.argv[1]).glob("scene_*.png"), *Path(sys.argv[1]).glob("circuits_*.png")]:
     with Image.open(png) as im:
         small = im.convert("RGB").quantize(colors=96, method=Image.Quantize.MEDIANCUT)
     small.save(png, optimize=True, dpi=(80, 80))
