@@ -78,6 +78,7 @@ pub struct SceneSweepOut<'a> {
 #[derive(Clone, Copy, Debug)]
 struct Tangent {
     theta: f64,
+    phi: [f64; MAX],
     dphi: [f64; MAX],
 }
 
@@ -102,16 +103,24 @@ impl GroupState {
         if h.abs() > 4.0 * max_step {
             return x;
         }
-        if let Some(t1) = self.tangent {
-            let curv = self.previous.filter(|t0| t0.theta != t1.theta);
-            for (k, xk) in x.iter_mut().enumerate().take(n) {
-                let mut dx = t1.dphi[k] * h;
-                if let Some(t0) = curv {
-                    dx += 0.5 * (t1.dphi[k] - t0.dphi[k]) / (t1.theta - t0.theta) * h * h;
+        let Some(t1) = self.tangent else { return x };
+        let t0 = self.previous.filter(|t0| t0.theta != t1.theta);
+        for (k, xk) in x.iter_mut().enumerate().take(n) {
+            let dx = match t0 {
+                // the cubic through both solutions with both tangents (Hermite), one step on
+                Some(t0) => {
+                    let s = t1.theta - t0.theta;
+                    let dp = wrap_angle(t1.phi[k] - t0.phi[k]);
+                    let (a, b) = (t0.dphi[k], t1.dphi[k]);
+                    let c2 = (3.0 * dp / s - 2.0 * a - b) / s;
+                    let c3 = (a + b - 2.0 * dp / s) / (s * s);
+                    let x1 = s + h;
+                    (a * x1 + c2 * x1 * x1 + c3 * x1 * x1 * x1) - dp
                 }
-                if dx.is_finite() {
-                    *xk += dx;
-                }
+                None => t1.dphi[k] * h,
+            };
+            if dx.is_finite() {
+                *xk += dx;
             }
         }
         x
@@ -306,7 +315,7 @@ impl<'p> Solver<'p> {
         for nd in &g.nodes {
             self.pst[nd.point] = Status::Converged;
         }
-        let t = Tangent { theta, dphi: out.dphi };
+        let t = Tangent { theta, phi: out.phi, dphi: out.dphi };
         let st = self.groups[i].as_mut().expect("a group has a state");
         st.previous = st.tangent.filter(|t0| t0.theta != theta);
         st.tangent = Some(t);
