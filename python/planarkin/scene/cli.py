@@ -16,6 +16,7 @@ import numpy as np
 
 from .. import scenes
 from .._types import Status
+from ..cli import _jsonable
 from ._model import Scene
 from ._results import SceneSweep
 
@@ -169,18 +170,6 @@ def _write_csv(path: Path, sw: SceneSweep) -> None:
                     row += [repr(float(v)) for v in sw.velocities[n][i]]
             row += [repr(math.degrees(sw.angles[n][i])) for n in sw.angles]
             w.writerow(row)
-
-
-def _jsonable(x: object) -> object:
-    if isinstance(x, dict):
-        return {k: _jsonable(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_jsonable(v) for v in x]
-    if isinstance(x, np.generic):
-        x = x.item()
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    return x
 
 
 def run_analyze(args: argparse.Namespace) -> int:
