@@ -277,9 +277,57 @@ def _verdict(ok: bool | None) -> str:
     return "n/a" if ok is None else ("**met**" if ok else "**missed**")
 
 
+def scene_targets(bench: Bench) -> list[tuple[str, str, str, str]]:
+    """(target, measured, ratio, verdict) for the scenes issue's targets."""
+    out = []
+    pk, pl, npc = (bench.median(k) for k in ("scene_jansen_pk", "scene_jansen_pylinkage",
+                                             "scene_jansen_numpy"))  # fmt: skip
+    if pk and pl:
+        out.append(
+            (
+                "Jansen's leg (foot, 361 angles) >= 3x faster than pylinkage + numba",
+                f"{_t(pk)} vs {_t(pl)}",
+                f"{pl / pk:.2f}x faster",
+                _verdict(pl / pk >= 3),
+            )
+        )
+    if pk and npc:
+        out.append(
+            (
+                "Jansen's leg faster than a vectorized NumPy circle-intersection chain",
+                f"{_t(pk)} vs {_t(npc)}",
+                f"{npc / pk:.2f}x faster",
+                _verdict(npc > pk),
+            )
+        )
+    for name in ("double-butterfly-1", "double-butterfly-2"):
+        row = bench.get(f"scene_group_{name}")
+        if row:
+            nit = row["extra_info"]["nit_mean"]
+            out.append(
+                (
+                    f"{name}: Newton iterations per solved angle < 1.5 (tol 1e-9, 1 deg)",
+                    f"{nit:.2f} it/pt over {row['extra_info']['solved']} angles",
+                    "-",
+                    _verdict(nit < 1.5),
+                )
+            )
+    one, full = bench.median("scene_plan_first_dyad"), bench.median("scene_plan_all")
+    if one and full:
+        out.append(
+            (
+                "Watt II: one requested dyad measurably cheaper than the whole plan",
+                f"{_t(one)} vs {_t(full)}",
+                f"{one / full:.2f}",
+                _verdict(one < 0.8 * full),
+            )
+        )
+    return out
+
+
 def targets(bench: Bench, crit: dict, trade: dict) -> list[tuple[str, str, str, str]]:
     """(target, measured, ratio, verdict) for each target in the issue."""
-    out = []
+    out = scene_targets(bench)
 
     def add(name, measured, ratio, ok):
         out.append((name, measured, ratio, _verdict(ok)))
@@ -455,6 +503,10 @@ def render() -> None:
         ("growth with N", None, None),
         ("growth with M", None, None),
         ("overhead", "ovh_solve", 1),
+        ("scene: Jansen", "scene_jansen_pk", 361),
+        ("scene: groups", None, 361),
+        ("scene: Watt", "scene_plan_all", 361),
+        ("scene: double butterfly", None, 1),
     ]
     done = set()
     for prefix, base_impl, points in order:
