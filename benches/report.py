@@ -250,6 +250,8 @@ def _info_cell(ei: dict) -> str:
         parts.append(f"{ei['nit_mean']:.2f} it/pt")
     if "max_error" in ei:
         parts.append(f"err {ei['max_error']:.1e}")
+    if "note" in ei:
+        parts.append(ei["note"])
     return ", ".join(parts)
 
 
@@ -573,10 +575,11 @@ def render() -> None:
             "",
         ]
 
-    analysis = os.path.join(HERE, "analysis.md")
-    if os.path.exists(analysis):
-        with open(analysis, encoding="utf-8") as f:
-            L += [f.read().rstrip(), ""]
+    for name in ("analysis.md", "analysis_scenes.md"):
+        analysis = os.path.join(HERE, name)
+        if os.path.exists(analysis):
+            with open(analysis, encoding="utf-8") as f:
+                L += [f.read().rstrip(), ""]
     with open(OUT, "w", encoding="utf-8") as f:
         f.write("\n".join(L))
     print(f"wrote {OUT}")

@@ -101,6 +101,9 @@ def summarize(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
         "conditioning_min": float(absdet.min()) if ok.any() else None,
         "conditioning_max": float(absdet.max()) if ok.any() else None,
         "motion_stops_deg": edges,
+        "dead_points_deg": sorted(
+            {round(math.degrees(v), 9) for v in sw.limit if math.isfinite(v)}
+        ),
         "wall_time_s": wall,
     }
 
@@ -137,6 +140,9 @@ def _table(s: dict) -> str:
         rows.append(
             ("|conditioning|", f"{s['conditioning_min']:.3g} .. {s['conditioning_max']:.3g}")
         )
+    if s["dead_points_deg"]:
+        dead = ", ".join(f"{v:.4f}" for v in s["dead_points_deg"])
+        rows.append(("dead points met (deg)", dead + " (the input must reverse there)"))
     if s["motion_stops_deg"]:
         stops = ", ".join(f"{e['deg']:.1f}" for e in s["motion_stops_deg"])
         rows.append(("motion stops near (deg)", stops))
