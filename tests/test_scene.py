@@ -503,3 +503,28 @@ def test_random_dyad_scenes_solve_and_round_trip(d):
     assert both[0]
     for n in sc.points:
         np.testing.assert_allclose(sw.points[n][both], ref.points[n][both], atol=1e-9)
+
+
+def test_a_dyad_hung_from_a_group():
+    # the Stephenson III with a dyad on its group and a ground point: a plan [group, dyad],
+    # the dyad solved by the per-angle path after the group's continuation
+    d = pk.scenes.data("stephenson3")
+    j4, j5 = np.array(d["points"]["j4"]), np.array(d["points"]["j5"])
+    g = (j4 + j5) / 2 + np.array([0.3, 2.0])
+    d["points"]["G"] = g.tolist()
+    d["points"]["X"] = ((j4 + g) / 2 + np.array([-0.4, 0.1])).tolist()
+    d["links"][d["ground"]] = [*d["links"][d["ground"]], "G"]
+    d["links"]["x1"] = ["j4", "X"]
+    d["links"]["x2"] = ["G", "X"]
+    d["outputs"] = ["X"]
+    sc = pk.Scene.from_dict(d)
+    assert [s.kind for s in sc.plan()] == ["group", "dyad"]
+    t = sc.input_angle + np.linspace(0, 0.6, 31)
+    sw = sc.sweep(t, omega=1.0)
+    ref = scene_sweep(sc.to_dict(), t)
+    both = sw.success & (ref.status == 0)
+    assert both.sum() > 20
+    np.testing.assert_allclose(sw.points["X"][both], ref.points["X"][both], atol=1e-10)
+    h = 1e-6
+    fd = (sc.sweep(t + h).points["X"] - sc.sweep(t - h).points["X"]) / (2 * h)
+    np.testing.assert_allclose(sw.velocities["X"][both], fd[both], atol=1e-6)
