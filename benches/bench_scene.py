@@ -42,7 +42,7 @@ def test_jansen_planarkin(benchmark, jansen):
     sc, truth = jansen
     sw = benchmark(sc.sweep, outputs=["foot"])
     assert sw.success.all()
-    record(benchmark, "scene_jansen_pk", "**planarkin sc.sweep(outputs=['foot'])**",
+    record(benchmark, "scene_jansen_pk", "planarkin sc.sweep(outputs=['foot'])",
            max_error=float(np.abs(sw.points["foot"] - truth).max()))  # fmt: skip
 
 
