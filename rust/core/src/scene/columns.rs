@@ -3,6 +3,9 @@
 //! on columns of coordinates (tight loops, no per-angle dispatch), and the rows of the
 //! outputs are written once per block. Same numbers as [`super::sweep`]'s per-angle path.
 
+// the column loops index several arrays (and an offset into each) by the same angle
+#![allow(clippy::needless_range_loop)]
+
 use super::dyad::{Dyad, DyadOut};
 use super::plan::{Op, Plan};
 use super::sweep::{SceneSweepOptions, SceneSweepOut};
