@@ -323,3 +323,19 @@ def test_bad_arguments():
         sc.trace(step=-1)
     with pytest.raises(ValueError, match="start"):
         sc.trace({"A": (0, 0)})
+
+
+def test_labels_follow_an_assembly_as_the_input_moves():
+    # a label is the joints' elbow signs: along a sweep (one assembly followed by
+    # continuation) the label of the assembly nearest the sweep's pose stays the same
+    sc = pk.scenes.load("stephenson3")
+    t = sc.input_angle + np.linspace(0, 0.3, 7)
+    sw = sc.sweep(t, outputs="all")
+    labels = []
+    for k, th in enumerate(t):
+        a = sc.assemblies(th)
+        gap = [max(math.dist(x[p], sw.points[p][k]) for p in sc.points) for x in a]
+        labels.append(a[int(np.argmin(gap))].label)
+        assert min(gap) < 1e-9
+    assert len(set(labels)) == 1
+    assert len({x.label for x in sc.assemblies()}) == len(sc.assemblies())

@@ -159,8 +159,10 @@ class SceneSweep:
 class Assembly(dict):
     """One real assembly: a dict point name -> (x, y) holding every point of the scene,
     with its signed, scale-free conditioning ``det`` (the product of ``step_det``) and a
-    mode ``label`` (one token per plan step: a dyad's side "+"/"-", a group's conditioning
-    sign and rank among its same-sign solutions, e.g. "+1")."""
+    mode ``label``: one token per plan step, a dyad's side ("+"/"-"), a group's elbows in
+    parentheses (the sign of the angle at each of its joints, e.g. "(+-+-)", with a
+    letter added where two solutions share them). A label changes only where a joint's two
+    links fall in line, so it follows an assembly as the input angle moves."""
 
     det: float
     step_det: tuple[float, ...]

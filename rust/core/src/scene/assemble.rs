@@ -17,8 +17,10 @@ pub struct Assembly {
     /// Signed conditioning of each step; `det` is their product.
     pub step_det: Vec<f64>,
     pub det: f64,
-    /// Mode label: one token per step, a dyad's side ("+" / "-"), a group's conditioning
-    /// sign and rank among its solutions of that sign by the first link's rotation ("+1").
+    /// Mode label: one token per step: a dyad's side ("+" / "-"); a group's elbows in
+    /// parentheses, the sign of the angle at each of its joints ("(+-+-)"), followed by a
+    /// letter in the rare case two of its solutions share them. A label changes only where
+    /// a joint's two links fall in line.
     pub label: String,
 }
 
@@ -122,17 +124,27 @@ impl Walk<'_> {
                 let sol = unit_circle_solutions(&a, &b, &self.opts)?;
                 self.out.complex_counts[self.group_slot[i]].push(sol.complex.len());
                 self.out.failed_paths += sol.failed;
-                let mut real: Vec<(f64, Vec<f64>)> =
-                    sol.real.into_iter().map(|phi| (g.conditioning_with(&phi, &delta[..nc]), phi)).collect();
-                real.sort_by(|x, y| x.1[0].total_cmp(&y.1[0]));
                 let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
-                let mut rank = [0usize; 2];
-                for (det, phi) in real {
-                    let r = &mut rank[usize::from(det < 0.0)];
-                    *r += 1;
-                    g.place(&phi, &anchors, |p, xy| pos[p] = xy);
-                    dets.push(det);
-                    labels.push(format!("{}{}", if det < 0.0 { '-' } else { '+' }, r));
+                // each solution's elbows (the joints' assembly modes) label it
+                let mut real: Vec<(String, f64, Vec<f64>)> = sol
+                    .real
+                    .into_iter()
+                    .map(|phi| {
+                        let mut at = pos.to_vec();
+                        g.place(&phi, &anchors, |p, xy| at[p] = xy);
+                        (g.elbow_label(|p| at[p]), g.conditioning_with(&phi, &delta[..nc]), phi)
+                    })
+                    .collect();
+                real.sort_by(|x, y| x.0.cmp(&y.0).then(x.2[0].total_cmp(&y.2[0])));
+                for k in 0..real.len() {
+                    let (elbows, det, phi) = &real[k];
+                    // solutions with the same elbows (rare) are told apart by a letter
+                    let same = real.iter().filter(|r| &r.0 == elbows).count();
+                    let nth = real[..k].iter().filter(|r| &r.0 == elbows).count();
+                    let tag = if same > 1 { char::from(b'a' + (nth % 26) as u8).to_string() } else { String::new() };
+                    g.place(phi, &anchors, |p, xy| pos[p] = xy);
+                    dets.push(*det);
+                    labels.push(format!("({elbows}){tag}"));
                     self.walk(i + 1, pos, dets, labels)?;
                     dets.pop();
                     labels.pop();

@@ -72,6 +72,10 @@ pub(super) struct Group {
     /// Per link: two of its points (base, other) and their drawn difference, to read the
     /// link's rotation off positions.
     pub arms: Vec<(usize, usize, Xy)>,
+    /// Per joint of two or more group links: (joint, a point of the first link, a point
+    /// of the second). The sign of cross(a - joint, b - joint) is the joint's elbow: the
+    /// assembly mode there, which changes only where the two links fall in line.
+    pub elbows: Vec<(usize, usize, usize)>,
     /// Sign of the signed conditioning at the drawn pose: the branch to follow.
     pub sign: f64,
 }
@@ -187,6 +191,16 @@ impl Group {
             })
             .collect();
         let joints = nodes.len();
+        let mut elbows = Vec::new();
+        for nd in &nodes[..joints] {
+            let on: Vec<&&[usize]> = link_points.iter().filter(|pts| pts.contains(&nd.point)).take(2).collect();
+            if let [l1, l2] = on[..] {
+                let other = |pts: &[usize]| pts.iter().copied().find(|&q| q != nd.point);
+                if let (Some(a), Some(b)) = (other(l1), other(l2)) {
+                    elbows.push((nd.point, a, b));
+                }
+            }
+        }
         for (j, pts) in link_points.iter().enumerate() {
             for &y in pts.iter().filter(|&&y| !is_joint(y)) {
                 let gb = base[j];
@@ -194,7 +208,7 @@ impl Group {
                 nodes.push(Node { point: y, base: gb, link: j, v: sub(xy[y], xy[bp]) });
             }
         }
-        Some(Group { links: links.to_vec(), anchors, nodes, joints, closures, arms, sign: 0.0 })
+        Some(Group { links: links.to_vec(), anchors, nodes, joints, closures, arms, elbows, sign: 0.0 })
     }
 
     /// Residuals and Jacobian of the closures at rotations `phi` (any number of them):
@@ -252,6 +266,21 @@ impl Group {
             b[2 * c + 1] = -delta[c][1];
         }
         (a, b)
+    }
+
+    /// The elbow signs of the group's joints at positions `pos`: "+" / "-" per joint.
+    pub fn elbow_label(&self, pos: impl Fn(usize) -> Xy) -> String {
+        self.elbows
+            .iter()
+            .map(|&(p, a, b)| {
+                let (u, v) = (sub(pos(a), pos(p)), sub(pos(b), pos(p)));
+                if u[0] * v[1] - u[1] * v[0] < 0.0 {
+                    '-'
+                } else {
+                    '+'
+                }
+            })
+            .collect()
     }
 
     /// Rotations of the group's links from their drawn pose, read off positions.
