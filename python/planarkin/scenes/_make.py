@@ -615,9 +615,10 @@ def main():
     made["stephenson3"], *_ = stephenson3()
     for kind in (1, 2):
         base, sc, lo, hi, full, w, trial, seed = double_butterfly(kind)
-        if not full:  # redraw 5 deg inside the lower end so the default sweep covers it
-            sc = redraw(sc, lo + 5 * DEG)
-            lo, hi = -5 * DEG, hi - lo - 5 * DEG
+        if not full:  # redraw in the middle of the range: a typical pose, far from both
+            mid = 0.5 * (lo + hi)  # dead points (sweeps go forward, then back from it)
+            sc = redraw(sc, mid)
+            lo, hi = lo - mid, hi - mid
         ground = "a binary bar" if kind == 1 else "the ternary B-D-E"
         inp = (
             "the adjacent ternary A-B-C, pivoted at A; output the ternary K-H-I pivoted at K"
@@ -644,8 +645,9 @@ def main():
                 if full
                 else f"The input moves through {(hi - lo) / DEG:.2f} deg between two dead "
                 f"points, input angle {(t0 + lo) / DEG:.2f} to {(t0 + hi) / DEG:.2f} deg "
-                "(unwrapped); drawn 5 deg inside the lower one, so the default sweep runs "
-                "through the range and then fails past the upper dead point."
+                "(unwrapped); drawn in the middle of that range. A sweep from the drawn "
+                "angle reaches the upper dead point going forward (angles past it are "
+                "LIMIT) and the lower one going back from the drawn pose."
             )
         )
         sc["units"] = "arbitrary length units"

@@ -20,7 +20,7 @@ use crate::{wrap_angle, Status};
 /// How many times a failing continuation step is halved.
 const MAX_HALVINGS: u32 = 16;
 /// Newton steps per continuation step before it is halved (at most the user's max_iter).
-const STEP_ITER: u32 = 8;
+const STEP_ITER: u32 = 5;
 /// A converged group whose rotations moved more than this from the prediction (with a
 /// prediction made over at most one `max_step`) has jumped to another solution.
 const JUMP: f64 = 0.25;
