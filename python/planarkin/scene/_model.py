@@ -300,9 +300,13 @@ class Scene:
         assembly: from the drawn angle to ``theta[0]``, then along ``theta`` in order.
 
         Every angle gets a status; a point that cannot be solved is NaN with its status, and
-        points that do not depend on it are still solved. ``omega`` (input angular velocity)
-        adds point velocities and link angular velocities. ``tol`` and ``max_iter`` are the
-        Newton criteria of group steps, ``max_step`` their largest continuation step.
+        points that do not depend on it are still solved. Dyads are closed forms on their
+        drawn side. Groups follow by continuation in steps of at most ``max_step``, each
+        given at most ``min(max_iter, 5)`` Newton steps to reach ``tol`` before it is halved
+        (down to ``max_step / 2**16``). An angle past a group's dead point is LIMIT, with
+        the dead point's angle in ``sw.limit``; the part of the drawn circuit that lies the
+        other way round is then solved backwards from the drawn pose. ``omega`` (input
+        angular velocity) adds point velocities and link angular velocities.
         """
         plan, core = self._compiled(outputs)
         if theta is None:
