@@ -26,7 +26,7 @@ pub fn closed_form_into(
     theta4: &mut [f64],
     status: &mut [i8],
 ) {
-    let trig: Vec<(f64, f64)> = theta2.iter().map(|t| t.sin_cos()).collect();
+    let trig = crate::sweep::sin_cos(theta2);
     closed_form_trig(fb, theta2, &trig, mode, singular, theta3, theta4, Some(status));
 }
 
@@ -43,6 +43,10 @@ pub(crate) fn closed_form_trig(
     theta4: &mut [f64],
     mut status: Option<&mut [i8]>,
 ) {
+    if crate::simd::enabled() {
+        let spec = crate::simd::closed_form::RowSpec { mode, singular, nan_singular: false };
+        return crate::simd::closed_form::closed_form_row(fb, theta2, trig, spec, theta3, theta4, status);
+    }
     for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
         let (t3, t4, st) = if !t2.is_finite() {
             (f64::NAN, f64::NAN, Status::NonFinite)

@@ -81,6 +81,9 @@ pub fn sweep_batch(
     out: BatchOut<'_>,
     threads: Option<usize>,
 ) -> Result<(), Error> {
+    if opts.method == crate::sweep::Method::Newton && crate::simd::enabled() {
+        return crate::simd::newton::sweep_batch(links, theta2, opts, out, threads);
+    }
     let n = theta2.len();
     let mn = links.len() * n;
     check("theta3", out.theta3.len(), mn)?;

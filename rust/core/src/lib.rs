@@ -13,6 +13,7 @@ pub mod homotopy;
 pub mod limits;
 pub mod newton;
 pub mod scene;
+pub mod simd;
 pub mod status;
 pub mod sweep;
 

@@ -10,6 +10,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 mod scene;
+mod simd;
 
 /// The one place core errors become Python exceptions.
 pub(crate) fn err(e: core::Error) -> PyErr {
@@ -342,6 +343,7 @@ fn closed_form_batch<'py>(
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyFourBar>()?;
     scene::register(m)?;
+    simd::register(m)?;
     m.add_function(wrap_pyfunction!(transmission, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_batch, m)?)?;
     m.add_function(wrap_pyfunction!(closed_form_batch, m)?)?;
