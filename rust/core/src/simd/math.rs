@@ -8,28 +8,28 @@
 
 /// 1.5 * 2^52: adding and subtracting it rounds to the nearest integer (|x| < 2^51), and
 /// the low bits of the sum are that integer in two's complement.
-const ROUND: f64 = 6_755_399_441_055_744.0;
-const TWO_OVER_PI: f64 = std::f64::consts::FRAC_2_PI;
+pub(crate) const ROUND: f64 = 6_755_399_441_055_744.0;
+pub(crate) const TWO_OVER_PI: f64 = std::f64::consts::FRAC_2_PI;
 /// pi/2 in four parts (fdlibm's pio2_1, pio2_2, pio2_3, pio2_3t; the first three have 33
 /// bits, so q * part is exact for |q| < 2^20; the last keeps sin near multiples of pi exact).
-const PIO2_1: f64 = 1.570_796_326_734_125_614_17;
-const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
-const PIO2_3: f64 = 2.022_266_248_711_166_455_80e-21;
-const PIO2_3T: f64 = 8.478_427_660_368_899_569_97e-32;
+pub(crate) const PIO2_1: f64 = 1.570_796_326_734_125_614_17;
+pub(crate) const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
+pub(crate) const PIO2_3: f64 = 2.022_266_248_711_166_455_80e-21;
+pub(crate) const PIO2_3T: f64 = 8.478_427_660_368_899_569_97e-32;
 
 /// fdlibm __kernel_sin / __kernel_cos coefficients on [-pi/4, pi/4].
-const S1: f64 = -1.666_666_666_666_663_243_48e-01;
-const S2: f64 = 8.333_333_333_322_489_461_24e-03;
-const S3: f64 = -1.984_126_982_985_794_931_34e-04;
-const S4: f64 = 2.755_731_370_707_006_767_89e-06;
-const S5: f64 = -2.505_076_025_340_686_341_95e-08;
-const S6: f64 = 1.589_690_995_211_550_102_21e-10;
-const C1: f64 = 4.166_666_666_666_660_190_37e-02;
-const C2: f64 = -1.388_888_888_887_410_957_49e-03;
-const C3: f64 = 2.480_158_728_947_672_941_78e-05;
-const C4: f64 = -2.755_731_435_139_066_330_35e-07;
-const C5: f64 = 2.087_572_321_298_174_827_90e-09;
-const C6: f64 = -1.135_964_755_778_819_482_65e-11;
+pub(crate) const S1: f64 = -1.666_666_666_666_663_243_48e-01;
+pub(crate) const S2: f64 = 8.333_333_333_322_489_461_24e-03;
+pub(crate) const S3: f64 = -1.984_126_982_985_794_931_34e-04;
+pub(crate) const S4: f64 = 2.755_731_370_707_006_767_89e-06;
+pub(crate) const S5: f64 = -2.505_076_025_340_686_341_95e-08;
+pub(crate) const S6: f64 = 1.589_690_995_211_550_102_21e-10;
+pub(crate) const C1: f64 = 4.166_666_666_666_660_190_37e-02;
+pub(crate) const C2: f64 = -1.388_888_888_887_410_957_49e-03;
+pub(crate) const C3: f64 = 2.480_158_728_947_672_941_78e-05;
+pub(crate) const C4: f64 = -2.755_731_435_139_066_330_35e-07;
+pub(crate) const C5: f64 = 2.087_572_321_298_174_827_90e-09;
+pub(crate) const C6: f64 = -1.135_964_755_778_819_482_65e-11;
 
 /// Largest |x| the reduction handles to within 2 ulp; callers route larger arguments to libm.
 pub const SIN_COS_MAX: f64 = 1.0e5;

@@ -6,6 +6,8 @@
 //! path's (any lane that leaves the common path is solved by the scalar code); angles
 //! agree with it to a few ulp (the tests bound them at 1e-12 rad).
 
+#[cfg(target_arch = "x86_64")]
+mod avx2;
 pub mod closed_form;
 pub mod math;
 pub mod newton;

@@ -7,7 +7,7 @@
 
 use std::f64::consts::PI;
 
-use nalgebra::{Matrix2, Vector2};
+use nalgebra::Vector2;
 use rayon::prelude::*;
 
 use super::math::{sin_cos, SIN_COS_MAX};
@@ -26,10 +26,16 @@ const LOCKSTEP_STEPS: u32 = 8;
 type V = [f64; W];
 type M = [bool; W];
 
+/// `[expr for each lane l]`, as a plain loop: a closure (`array::from_fn`) would not be
+/// inlined into the `target_feature` function and would lose AVX2 and FMA.
 macro_rules! lanes {
-    (|$l:ident| $e:expr) => {
-        std::array::from_fn::<_, W, _>(|$l| $e)
-    };
+    (|$l:ident| $e:expr) => {{
+        let mut o = [Default::default(); W];
+        for $l in 0..W {
+            o[$l] = $e;
+        }
+        o
+    }};
 }
 
 fn check(name: &str, got: usize, expected: usize) -> Result<(), Error> {
@@ -102,7 +108,7 @@ fn group(
         unsafe { group_avx2(fbs, theta2, trig, opts, t3, t4, st, nit, res) };
         return;
     }
-    group_body(fbs, theta2, trig, opts, t3, t4, st, nit, res)
+    group_body::<false>(fbs, theta2, trig, opts, t3, t4, st, nit, res)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -119,7 +125,7 @@ unsafe fn group_avx2(
     nit: &mut [u32],
     res: &mut [f64],
 ) {
-    group_body(fbs, theta2, trig, opts, t3, t4, st, nit, res)
+    group_body::<true>(fbs, theta2, trig, opts, t3, t4, st, nit, res)
 }
 
 /// The last converged point of every lane, with the predictor's rates.
@@ -128,6 +134,30 @@ struct Prev {
     x: [V; 2],
     v: [V; 2],
     a: [V; 2],
+}
+
+/// `sweep::predictor_rates` lane by lane (same operations), from the Jacobians of
+/// converged lanes (whose determinants are non-zero: the step was taken with them).
+#[inline(always)]
+fn rates(r2: &V, s2: f64, c2: f64, j: &[V; 4], p: Predictor) -> ([V; 2], [V; 2]) {
+    let zero = [[0.0; W]; 2];
+    if p == Predictor::Previous {
+        return (zero, zero);
+    }
+    let [j00, j01, j10, j11] = j;
+    let d: V = lanes!(|l| j00[l] * j11[l] - j01[l] * j10[l]);
+    let (b0, b1): (V, V) = (lanes!(|l| r2[l] * s2), lanes!(|l| -(r2[l] * c2)));
+    let v0: V = lanes!(|l| (b0[l] * j11[l] - b1[l] * j01[l]) / d[l]);
+    let v1: V = lanes!(|l| (j00[l] * b1[l] - j10[l] * b0[l]) / d[l]);
+    if p == Predictor::Tangent {
+        return ([v0, v1], zero);
+    }
+    let (w3s, w4s): (V, V) = (lanes!(|l| v0[l] * v0[l]), lanes!(|l| v1[l] * v1[l]));
+    let c0: V = lanes!(|l| r2[l] * c2 + j10[l] * w3s[l] + j11[l] * w4s[l]);
+    let c1: V = lanes!(|l| r2[l] * s2 - j00[l] * w3s[l] - j01[l] * w4s[l]);
+    let a0: V = lanes!(|l| (c0[l] * j11[l] - c1[l] * j01[l]) / d[l]);
+    let a1: V = lanes!(|l| (j00[l] * c1[l] - j10[l] * c0[l]) / d[l]);
+    ([v0, v1], [a0, a1])
 }
 
 /// Lane-wise wrap to (-pi, pi]: the identity in range (as `wrap_angle`), libm's remainder
@@ -143,9 +173,47 @@ fn wrap(x: V) -> V {
     x
 }
 
+/// One Newton evaluation of [`W`] linkages at crank (sin, cos) = (s2, c2) and iterates
+/// (x3, x4): residuals, the residual over the scale, the Jacobian, its determinant,
+/// sin(theta4 - theta3), the Newton correction and its largest component.
+pub(crate) struct Eval {
+    pub f1: V,
+    pub f2: V,
+    pub j: [V; 4],
+    pub residual: V,
+    pub det: V,
+    pub sin34: V,
+    pub dx: [V; 2],
+    pub step: V,
+}
+
+/// The scalar `Loop::eval`, `newton::solve` and `cramer` lane by lane, in their
+/// operation order (with the polynomial sin/cos).
+#[inline(always)]
+pub(crate) fn eval_lanes(r: &[V; 4], scale: &V, r3r4: &V, s2: f64, c2: f64, x: &[V; 2]) -> Eval {
+    let [r1, r2, r3, r4] = r;
+    let sc3: [(f64, f64); W] = lanes!(|l| sin_cos(x[0][l]));
+    let sc4: [(f64, f64); W] = lanes!(|l| sin_cos(x[1][l]));
+    let (s3, c3): (V, V) = (lanes!(|l| sc3[l].0), lanes!(|l| sc3[l].1));
+    let (s4, c4): (V, V) = (lanes!(|l| sc4[l].0), lanes!(|l| sc4[l].1));
+    let f1: V = lanes!(|l| r2[l] * c2 + r3[l] * c3[l] - r4[l] * c4[l] - r1[l]);
+    let f2: V = lanes!(|l| r2[l] * s2 + r3[l] * s3[l] - r4[l] * s4[l]);
+    let j00: V = lanes!(|l| -r3[l] * s3[l]);
+    let j01: V = lanes!(|l| r4[l] * s4[l]);
+    let j10: V = lanes!(|l| r3[l] * c3[l]);
+    let j11: V = lanes!(|l| -r4[l] * c4[l]);
+    let residual: V = lanes!(|l| 0.0f64.max(f1[l].abs()).max(f2[l].abs()) / scale[l]);
+    let det: V = lanes!(|l| j00[l] * j11[l] - j01[l] * j10[l]);
+    let sin34: V = lanes!(|l| -det[l] / r3r4[l]);
+    let dx0: V = lanes!(|l| (-f1[l] * j11[l] - -f2[l] * j01[l]) / det[l]);
+    let dx1: V = lanes!(|l| (j00[l] * -f2[l] - j10[l] * -f1[l]) / det[l]);
+    let step: V = lanes!(|l| dx0[l].abs().max(dx1[l].abs()));
+    Eval { f1, f2, j: [j00, j01, j10, j11], residual, det, sin34, dx: [dx0, dx1], step }
+}
+
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn group_body(
+fn group_body<const AVX: bool>(
     fbs: &[FourBar],
     theta2: &[f64],
     trig: &[(f64, f64)],
@@ -157,7 +225,7 @@ fn group_body(
     res_out: &mut [f64],
 ) {
     let n = theta2.len();
-    let r: [V; 4] = std::array::from_fn(|k| lanes!(|l| fbs[l].lengths()[k]));
+    let r: [V; 4] = [0, 1, 2, 3].map(|k| lanes!(|l| fbs[l].lengths()[k]));
     let [r1, r2, r3, r4] = r;
     let scale: V = lanes!(|l| fbs[l].longest());
     let cond_scale: V = lanes!(|l| r3[l].min(r4[l]) / scale[l]);
@@ -227,23 +295,16 @@ fn group_body(
         let mut jac: [V; 4] = [zero; 4];
         let mut iter = 0;
         while active.iter().any(|&a| a) {
-            let sc3: [(f64, f64); W] = lanes!(|l| sin_cos(x[0][l]));
-            let sc4: [(f64, f64); W] = lanes!(|l| sin_cos(x[1][l]));
-            let (s3, c3): (V, V) = (lanes!(|l| sc3[l].0), lanes!(|l| sc3[l].1));
-            let (s4, c4): (V, V) = (lanes!(|l| sc4[l].0), lanes!(|l| sc4[l].1));
-            // the scalar Loop::eval, newton::solve and cramer, in their operation order
-            let f1: V = lanes!(|l| r2[l] * c2 + r3[l] * c3[l] - r4[l] * c4[l] - r1[l]);
-            let f2: V = lanes!(|l| r2[l] * s2 + r3[l] * s3[l] - r4[l] * s4[l]);
-            let j00: V = lanes!(|l| -r3[l] * s3[l]);
-            let j01: V = lanes!(|l| r4[l] * s4[l]);
-            let j10: V = lanes!(|l| r3[l] * c3[l]);
-            let j11: V = lanes!(|l| -r4[l] * c4[l]);
-            let residual: V = lanes!(|l| 0.0f64.max(f1[l].abs()).max(f2[l].abs()) / scale[l]);
-            let det: V = lanes!(|l| j00[l] * j11[l] - j01[l] * j10[l]);
-            let sin34: V = lanes!(|l| -det[l] / r3r4[l]);
-            let dx0: V = lanes!(|l| (-f1[l] * j11[l] - -f2[l] * j01[l]) / det[l]);
-            let dx1: V = lanes!(|l| (j00[l] * -f2[l] - j10[l] * -f1[l]) / det[l]);
-            let step: V = lanes!(|l| dx0[l].abs().max(dx1[l].abs()));
+            #[cfg(target_arch = "x86_64")]
+            let e = if AVX {
+                // SAFETY: AVX is true only in group_avx2, called after the run-time check.
+                unsafe { super::avx2::eval4(&r, &scale, &r3r4, s2, c2, &x) }
+            } else {
+                eval_lanes(&r, &scale, &r3r4, s2, c2, &x)
+            };
+            #[cfg(not(target_arch = "x86_64"))]
+            let e = eval_lanes(&r, &scale, &r3r4, s2, c2, &x);
+            let Eval { f1, f2, j: [j00, j01, j10, j11], residual, det, sin34, dx: [dx0, dx1], step } = e;
             let small: M = lanes!(|l| residual[l] < tol);
             let conv: M = lanes!(|l| small[l] & (step[l] < tol));
             let bad: M = lanes!(|l| {
@@ -290,6 +351,7 @@ fn group_body(
             }
         }
         let xf = [wrap(xf[0]), wrap(xf[1])];
+        let (v, a) = rates(&r2, s2, c2, &jac, opts.predictor);
         for l in 0..W {
             if done[l] {
                 let p = Point {
@@ -300,14 +362,12 @@ fn group_body(
                     residual: resid[l],
                 };
                 write(l, i, &p);
-                let j = Matrix2::new(jac[0][l], jac[1][l], jac[2][l], jac[3][l]);
-                let (v, a) = predictor_rates(&fbs[l], (s2, c2), &j, opts.predictor);
                 prev.x[0][l] = xf[0][l];
                 prev.x[1][l] = xf[1][l];
-                prev.v[0][l] = v[0];
-                prev.v[1][l] = v[1];
-                prev.a[0][l] = a[0];
-                prev.a[1][l] = a[1];
+                prev.v[0][l] = v[0][l];
+                prev.v[1][l] = v[1][l];
+                prev.a[0][l] = a[0][l];
+                prev.a[1][l] = a[1][l];
                 prev.ok[l] = true;
             } else if not_asm[l] && prev.ok[l] {
                 write(l, i, &Point::failed(Status::NotAssemblable, 0, f64::NAN));
