@@ -166,11 +166,27 @@ pub(crate) fn sweep_unchecked(
     guess: Option<[f64; 2]>,
     opts: &SweepOptions,
     out: SweepOut<'_>,
-    mut motion: Option<MotionOut<'_>>,
+    motion: Option<MotionOut<'_>>,
 ) {
     if opts.method == Method::ClosedForm {
         return closed_form_sweep(fb, theta2, trig, opts, out, motion);
     }
+    if crate::simd::enabled() {
+        return crate::simd::sweep::newton_row(fb, theta2, trig, guess, opts, out, motion);
+    }
+    newton_sweep(fb, theta2, trig, guess, opts, out, motion)
+}
+
+/// The scalar Newton continuation sweep (bit-identical to the NumPy reference).
+pub(crate) fn newton_sweep(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    mut motion: Option<MotionOut<'_>>,
+) {
     let mut prev: Option<Prev> = None;
     for (i, &t2) in theta2.iter().enumerate() {
         let start = match &prev {

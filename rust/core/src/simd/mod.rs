@@ -11,6 +11,7 @@ mod avx2;
 pub mod closed_form;
 pub mod math;
 pub mod newton;
+pub(crate) mod sweep;
 
 use std::sync::atomic::{AtomicU8, Ordering};
 

@@ -139,7 +139,7 @@ struct Prev {
 /// `sweep::predictor_rates` lane by lane (same operations), from the Jacobians of
 /// converged lanes (whose determinants are non-zero: the step was taken with them).
 #[inline(always)]
-fn rates(r2: &V, s2: f64, c2: f64, j: &[V; 4], p: Predictor) -> ([V; 2], [V; 2]) {
+pub(crate) fn rates(r2: &V, s2: f64, c2: f64, j: &[V; 4], p: Predictor) -> ([V; 2], [V; 2]) {
     let zero = [[0.0; W]; 2];
     if p == Predictor::Previous {
         return (zero, zero);
@@ -163,7 +163,7 @@ fn rates(r2: &V, s2: f64, c2: f64, j: &[V; 4], p: Predictor) -> ([V; 2], [V; 2])
 /// Lane-wise wrap to (-pi, pi]: the identity in range (as `wrap_angle`), libm's remainder
 /// only for the lanes out of range.
 #[inline(always)]
-fn wrap(x: V) -> V {
+pub(crate) fn wrap(x: V) -> V {
     let mut x = x;
     if !x.iter().all(|&a| a > -PI && a <= PI) {
         for a in x.iter_mut() {
@@ -420,7 +420,7 @@ mod tests {
                 nit: &mut k[rg.clone()],
                 residual: &mut r[rg],
             };
-            sweep_unchecked(fb, t2, &trig, None, opts, row, None);
+            crate::sweep::newton_sweep(fb, t2, &trig, None, opts, row, None);
         }
         (a, b, s, k)
     }
@@ -485,5 +485,49 @@ mod tests {
         }
         assert!(worst <= 1e-12, "worst {worst:e} rad");
         eprintln!("SIMD Newton vs scalar: worst {worst:e} rad, nit differs by 1 at {nit_diffs} of {points} points");
+    }
+
+    type Row = (Vec<f64>, Vec<f64>, Vec<i8>, Vec<u32>, Vec<f64>);
+
+    fn out(x: &mut Row) -> SweepOut<'_> {
+        let (theta3, theta4, status, nit, residual) = x;
+        SweepOut { theta3, theta4, status, nit, residual }
+    }
+
+    #[test]
+    fn single_sweep_agrees_with_the_scalar_sweep_in_status_everywhere_and_to_1e12_rad() {
+        let links = linkages();
+        let mut t2 = default_angles(361);
+        t2[17] = f64::NAN;
+        t2[200] = f64::INFINITY;
+        let trig: Vec<(f64, f64)> = t2.iter().map(|t| t.sin_cos()).collect();
+        let n = t2.len();
+        let (mut worst, mut nit_diffs, mut points) = (0.0f64, 0, 0);
+        for mode in [Mode::Open, Mode::Crossed] {
+            for predictor in [Predictor::Quadratic, Predictor::Tangent, Predictor::Previous] {
+                for guess in [None, Some([1.0, 2.0])] {
+                    let opts =
+                        SweepOptions { mode, newton: NewtonOptions::default(), predictor, method: Method::Newton };
+                    for fb in &links {
+                        let mut a: Row = (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
+                        let mut b = a.clone();
+                        crate::sweep::newton_sweep(fb, &t2, &trig, guess, &opts, out(&mut a), None);
+                        crate::simd::sweep::newton_row(fb, &t2, &trig, guess, &opts, out(&mut b), None);
+                        assert_eq!(a.2, b.2, "{mode:?} {predictor:?} {:?}", fb.lengths());
+                        nit_diffs += a.3.iter().zip(&b.3).filter(|(p, q)| p != q).count();
+                        points += n;
+                        for i in 0..n {
+                            assert_eq!(a.0[i].is_nan(), b.0[i].is_nan());
+                            if !a.0[i].is_nan() {
+                                worst =
+                                    worst.max(wrap_angle(a.0[i] - b.0[i]).abs()).max(wrap_angle(a.1[i] - b.1[i]).abs());
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(worst <= 1e-12 && nit_diffs * 1000 <= points, "worst {worst:e} rad, nit {nit_diffs}");
+        eprintln!("SIMD single sweep vs scalar: worst {worst:e} rad, nit differs at {nit_diffs} of {points} points");
     }
 }
