@@ -114,3 +114,12 @@ pub(crate) fn eval4(r: &[V; 4], scale: &V, r3r4: &V, s2: f64, c2: f64, x: &[V; 2
         step: st(step),
     }
 }
+
+/// (sin x3, cos x3, sin x4, cos x4) in one 4-lane call (lanes x3, x4, x3, x4).
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(crate) fn sin_cos2(x3: f64, x4: f64) -> [f64; 4] {
+    let (s, c) = sin_cos4(_mm256_set_pd(x4, x3, x4, x3));
+    let (s, c) = (st(s), st(c));
+    [s[0], c[0], s[1], c[1]]
+}

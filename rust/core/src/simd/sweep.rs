@@ -7,9 +7,11 @@
 
 use nalgebra::Vector2;
 
-use super::newton::{eval_lanes, rates, wrap, Eval, W};
+use nalgebra::Matrix2;
+
+use super::math::{sin_cos, SIN_COS_MAX};
 use crate::fourbar::{FourBar, Point};
-use crate::sweep::{fill_motion, sweep_point, MotionOut, Predictor, SweepOptions, SweepOut};
+use crate::sweep::{fill_motion, predictor_rates, sweep_point, MotionOut, Predictor, SweepOptions, SweepOut};
 use crate::{wrap_angle, Status};
 
 /// Newton steps tried on the fast path before the scalar path takes the point over.
@@ -60,12 +62,10 @@ fn row_body<const AVX: bool>(
     mut motion: Option<MotionOut<'_>>,
 ) {
     let [r1, r2, r3, r4] = fb.lengths();
-    // lanes 0 and 1 carry the two unknowns' sines and cosines (x3 in lane 0 of the first
-    // vector, x4 in lane 0 of the second): one linkage in every lane
-    let r = [[r1; W], [r2; W], [r3; W], [r4; W]];
-    let scale = [fb.longest(); W];
-    let cond_scale = r3.min(r4) / fb.longest();
-    let r3r4 = [r3 * r4; W];
+    let r = [r1, r2, r3, r4];
+    let scale = fb.longest();
+    let cond_scale = r3.min(r4) / scale;
+    let r3r4 = r3 * r4;
     let sign = opts.mode.sign();
     let (tol, singular, max_iter) = (opts.newton.tol, opts.newton.singular, opts.newton.max_iter);
     let cap = max_iter.min(FAST_STEPS);
@@ -95,17 +95,15 @@ fn row_body<const AVX: bool>(
             if d != 0.0 && !((q1 >= 0.0) & (q2 >= 0.0) & (q3 >= 0.0)) {
                 result = Some((Point::failed(Status::NotAssemblable, 0, f64::NAN), [f64::NAN; 4]));
             } else if d != 0.0 {
-                result =
-                    fast_newton::<AVX>(&r, &scale, &r3r4, cond_scale, s2, c2, x0, sign, tol, singular, max_iter, cap);
+                result = fast_newton::<AVX>(r, scale, r3r4, cond_scale, s2, c2, x0, sign, tol, singular, max_iter, cap);
             }
         }
         let (point, j) = match result {
-            Some(pj) => pj,
+            Some((p, [j00, j01, j10, j11])) => (p, Matrix2::new(j00, j01, j10, j11)),
             None => {
                 let sys = fb.at_sin_cos(s2, c2);
                 let first = if i == 0 { guess.map(Vector2::from) } else { start.map(Vector2::from) };
-                let (p, j) = sweep_point(fb, &sys, first, opts);
-                (p, [j[(0, 0)], j[(0, 1)], j[(1, 0)], j[(1, 1)]])
+                sweep_point(fb, &sys, first, opts)
             }
         };
         out.theta3[i] = point.theta3;
@@ -118,23 +116,23 @@ fn row_body<const AVX: bool>(
             fill_motion(fb, t2, &point, converged, i, m, opts.newton.singular);
         }
         prev = if converged {
-            let jac = [[j[0]; W], [j[1]; W], [j[2]; W], [j[3]; W]];
-            let (v, a) = rates(&r[1], s2, c2, &jac, opts.predictor);
-            Some(([point.theta3, point.theta4], [v[0][0], v[1][0]], [a[0][0], a[1][0]]))
+            let (v, a) = predictor_rates(fb, (s2, c2), &j, opts.predictor);
+            Some(([point.theta3, point.theta4], [v[0], v[1]], [a[0], a[1]]))
         } else {
             None
         };
     }
 }
 
-/// Newton from `x0` as `newton::solve` does it, with the mode check; `None` (the scalar
-/// path takes over) unless it converges on the mode within `cap` steps.
+/// Newton from `x0` as `newton::solve` does it (the scalar `Loop::eval` and `cramer`
+/// in their operation order), with the mode check; `None` (the scalar path takes over)
+/// unless it converges on the mode within `cap` steps.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn fast_newton<const AVX: bool>(
-    r: &[[f64; W]; 4],
-    scale: &[f64; W],
-    r3r4: &[f64; W],
+    r: [f64; 4],
+    scale: f64,
+    r3r4: f64,
     cond_scale: f64,
     s2: f64,
     c2: f64,
@@ -145,37 +143,47 @@ fn fast_newton<const AVX: bool>(
     max_iter: u32,
     cap: u32,
 ) -> Option<(Point, [f64; 4])> {
+    let [r1, r2, r3, r4] = r;
     let mut x = x0;
     let mut nit = 0;
     let mut last_small = f64::INFINITY;
     loop {
-        let xs = [[x[0]; W], [x[1]; W]];
-        #[cfg(target_arch = "x86_64")]
-        let e = if AVX {
-            // SAFETY: AVX is true only inside row_avx2, called after the run-time check.
-            unsafe { super::avx2::eval4(r, scale, r3r4, s2, c2, &xs) }
-        } else {
-            eval_lanes(r, scale, r3r4, s2, c2, &xs)
-        };
-        #[cfg(not(target_arch = "x86_64"))]
-        let e = eval_lanes(r, scale, r3r4, s2, c2, &xs);
-        let Eval { f1, f2, j, residual, det, sin34, dx, step } = e;
-        let finite = f1[0].is_finite()
-            && f2[0].is_finite()
-            && x[0].abs() <= super::math::SIN_COS_MAX
-            && x[1].abs() <= super::math::SIN_COS_MAX;
-        if !finite || sin34[0].abs() * cond_scale < singular || det[0] == 0.0 {
+        if !(x[0].abs() <= SIN_COS_MAX && x[1].abs() <= SIN_COS_MAX) {
             return None;
         }
-        let (res, step) = (residual[0], step[0]);
-        if res < tol {
+        #[cfg(target_arch = "x86_64")]
+        let [s3, c3, s4, c4] = if AVX {
+            // SAFETY: AVX is true only inside row_avx2, called after the run-time check.
+            unsafe { super::avx2::sin_cos2(x[0], x[1]) }
+        } else {
+            let ((s3, c3), (s4, c4)) = (sin_cos(x[0]), sin_cos(x[1]));
+            [s3, c3, s4, c4]
+        };
+        #[cfg(not(target_arch = "x86_64"))]
+        let [s3, c3, s4, c4] = {
+            let ((s3, c3), (s4, c4)) = (sin_cos(x[0]), sin_cos(x[1]));
+            [s3, c3, s4, c4]
+        };
+        let f1 = r2 * c2 + r3 * c3 - r4 * c4 - r1;
+        let f2 = r2 * s2 + r3 * s3 - r4 * s4;
+        let (j00, j01, j10, j11) = (-r3 * s3, r4 * s4, r3 * c3, -r4 * c4);
+        let residual = 0.0f64.max(f1.abs()).max(f2.abs()) / scale;
+        let det = j00 * j11 - j01 * j10;
+        let sin34 = -det / r3r4;
+        if !(f1.is_finite() && f2.is_finite()) || sin34.abs() * cond_scale < singular || det == 0.0 {
+            return None;
+        }
+        let dx0 = (-f1 * j11 - -f2 * j01) / det;
+        let dx1 = (j00 * -f2 - j10 * -f1) / det;
+        let step = dx0.abs().max(dx1.abs());
+        if residual < tol {
             if step < tol {
-                if sin34[0] * sign < 0.0 {
+                if sin34 * sign < 0.0 {
                     return None;
                 }
-                let (t3, t4) = (wrap_angle(x[0] + dx[0][0]), wrap_angle(x[1] + dx[1][0]));
-                let p = Point { theta3: t3, theta4: t4, status: Status::Converged, nit, residual: res };
-                return Some((p, [j[0][0], j[1][0], j[2][0], j[3][0]]));
+                let (t3, t4) = (wrap_angle(x[0] + dx0), wrap_angle(x[1] + dx1));
+                let p = Point { theta3: t3, theta4: t4, status: Status::Converged, nit, residual };
+                return Some((p, [j00, j01, j10, j11]));
             }
             if step > 0.5 * last_small {
                 return None;
@@ -185,8 +193,7 @@ fn fast_newton<const AVX: bool>(
         if nit >= max_iter || nit >= cap {
             return None;
         }
-        let w = wrap([x[0] + dx[0][0], x[1] + dx[1][0], 0.0, 0.0]);
-        x = [w[0], w[1]];
+        x = [wrap_angle(x[0] + dx0), wrap_angle(x[1] + dx1)];
         nit += 1;
     }
 }
