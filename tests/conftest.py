@@ -26,6 +26,7 @@ def scalar_path():
     with pk.use_simd(False):
         yield
 
+
 SEED_LINKAGE = (6.0, 2.0, 5.0, 5.0)
 
 

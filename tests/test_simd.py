@@ -42,7 +42,9 @@ def assert_close(a, b, tol=TOL):
 
 
 def _links(rng, n):
-    seed = np.array([SEED_LINKAGE, (6.0, 2.0, 6.0, 2.0), (2.0, 5.0, 2.5, 2.0), (1.0, 1.0, 1.0, 1.0)])
+    seed = np.array(
+        [SEED_LINKAGE, (6.0, 2.0, 6.0, 2.0), (2.0, 5.0, 2.5, 2.0), (1.0, 1.0, 1.0, 1.0)]
+    )
     parts = [seed, random_links(rng, n, "grashof"), random_links(rng, n, "non-grashof")]
     return np.vstack(parts)
 
@@ -124,7 +126,12 @@ def test_closed_form_within_1e12_of_the_reference_and_statuses_equal(rng, mode):
 def test_toggles_and_indeterminate_positions():
     """Angles on and next to the toggles of a triple rocker, and the crank pin on O4 with
     r3 = r4 (indeterminate) or r3 != r4: the scalar path's statuses."""
-    for r in [(2.0, 5.0, 2.5, 2.0), (1.0, 1.0, 1.0, 1.0), (1.0, 1.0, 2.0, 1.5), (6.0, 2.0, 6.0, 2.0)]:
+    for r in [
+        (2.0, 5.0, 2.5, 2.0),
+        (1.0, 1.0, 1.0, 1.0),
+        (1.0, 1.0, 2.0, 1.5),
+        (6.0, 2.0, 6.0, 2.0),
+    ]:
         fb = pk.FourBar(*r)
         lim = fb.limits()
         t2 = [0.0, np.pi, np.nextafter(0.0, 1.0)]
