@@ -123,3 +123,98 @@ pub(crate) fn sin_cos2(x3: f64, x4: f64) -> [f64; 4] {
     let (s, c) = (st(s), st(c));
     [s[0], c[0], s[1], c[1]]
 }
+
+/// The lock-step state of [`super::newton`]'s group kernel, advanced one Newton
+/// evaluation by [`iterate4`].
+pub(crate) struct Lanes<'a> {
+    pub x: &'a mut [V; 2],
+    pub nit: &'a mut [u32; 4],
+    pub last_small: &'a mut V,
+    pub active: &'a mut [bool; 4],
+    pub done: &'a mut [bool; 4],
+    pub fail: &'a mut [bool; 4],
+    pub xf: &'a mut [V; 2],
+    pub resid: &'a mut V,
+    pub jac: &'a mut [V; 4],
+}
+
+/// Fixed parameters of a group: lengths, scales and the stopping criteria.
+pub(crate) struct Params<'a> {
+    pub r: &'a [V; 4],
+    pub scale: &'a V,
+    pub r3r4: &'a V,
+    pub cond_scale: &'a V,
+    pub sign: f64,
+    pub tol: f64,
+    pub singular: f64,
+    pub max_iter: u32,
+}
+
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn mask_of(b: &[bool; 4]) -> __m256d {
+    let m = |v: bool| if v { -1i64 } else { 0 };
+    _mm256_castsi256_pd(_mm256_set_epi64x(m(b[3]), m(b[2]), m(b[1]), m(b[0])))
+}
+
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn bools(m: __m256d) -> [bool; 4] {
+    let b = _mm256_movemask_pd(m);
+    [b & 1 != 0, b & 2 != 0, b & 4 != 0, b & 8 != 0]
+}
+
+/// One lock-step Newton evaluation with the masks of the portable loop in
+/// `newton::group_body` (the same decisions, lane for lane), all in AVX2 registers.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(crate) fn iterate4(p: &Params<'_>, s2: f64, c2: f64, l: Lanes<'_>) {
+    let e = eval4(p.r, p.scale, p.r3r4, s2, c2, l.x);
+    let (and, or, andn) = (_mm256_and_pd, _mm256_or_pd, _mm256_andnot_pd);
+    let cmp_lt = |a, b| _mm256_cmp_pd::<_CMP_LT_OQ>(a, b);
+    let (f1, f2, x0, x1) = (ld(&e.f1), ld(&e.f2), ld(&l.x[0]), ld(&l.x[1]));
+    let (dx0, dx1, step, sin34) = (ld(&e.dx[0]), ld(&e.dx[1]), ld(&e.step), ld(&e.sin34));
+    let inf = splat(f64::INFINITY);
+    let max = splat(super::math::SIN_COS_MAX);
+    let finite = and(
+        and(cmp_lt(abs(f1), inf), cmp_lt(abs(f2), inf)),
+        and(_mm256_cmp_pd::<_CMP_LE_OQ>(abs(x0), max), _mm256_cmp_pd::<_CMP_LE_OQ>(abs(x1), max)),
+    );
+    let sing = or(
+        cmp_lt(_mm256_mul_pd(abs(sin34), ld(p.cond_scale)), splat(p.singular)),
+        _mm256_cmp_pd::<_CMP_EQ_OQ>(ld(&e.det), splat(0.0)),
+    );
+    let small = cmp_lt(ld(&e.residual), splat(p.tol));
+    let conv = and(small, cmp_lt(step, splat(p.tol)));
+    let ploss = andn(conv, and(small, _mm256_cmp_pd::<_CMP_GT_OQ>(step, _mm256_mul_pd(splat(0.5), ld(l.last_small)))));
+    let nit = _mm256_set_pd(l.nit[3] as f64, l.nit[2] as f64, l.nit[1] as f64, l.nit[0] as f64);
+    let out_of_steps = andn(or(conv, ploss), _mm256_cmp_pd::<_CMP_GE_OQ>(nit, splat(p.max_iter as f64)));
+    let branch_jump = and(conv, cmp_lt(_mm256_mul_pd(sin34, splat(p.sign)), splat(0.0)));
+    let bad = or(
+        or(andn(finite, _mm256_castsi256_pd(_mm256_set1_epi64x(-1))), sing),
+        or(or(ploss, out_of_steps), branch_jump),
+    );
+    let active = mask_of(l.active);
+    let finished = andn(bad, and(active, conv));
+    let go_on = andn(bad, andn(conv, active));
+    let failed = and(active, bad);
+    let blend = |old: __m256d, new: __m256d, m| _mm256_blendv_pd(old, new, m);
+    let (x0n, x1n) = (_mm256_add_pd(x0, dx0), _mm256_add_pd(x1, dx1));
+    *l.xf = [st(blend(ld(&l.xf[0]), x0n, finished)), st(blend(ld(&l.xf[1]), x1n, finished))];
+    *l.resid = st(blend(ld(l.resid), ld(&e.residual), finished));
+    for k in 0..4 {
+        l.jac[k] = st(blend(ld(&l.jac[k]), ld(&e.j[k]), finished));
+    }
+    *l.last_small = st(blend(ld(l.last_small), step, and(go_on, small)));
+    *l.x = [st(blend(x0, x0n, go_on)), st(blend(x1, x1n, go_on))];
+    let go = bools(go_on);
+    for k in 0..4 {
+        l.nit[k] += go[k] as u32;
+    }
+    let (fin, fl) = (bools(finished), bools(failed));
+    for k in 0..4 {
+        l.done[k] |= fin[k];
+        l.fail[k] |= fl[k];
+    }
+    *l.active = go;
+}

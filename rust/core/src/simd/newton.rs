@@ -295,55 +295,78 @@ fn group_body<const AVX: bool>(
         let mut jac: [V; 4] = [zero; 4];
         let mut iter = 0;
         while active.iter().any(|&a| a) {
+            let mut handled = false;
             #[cfg(target_arch = "x86_64")]
-            let e = if AVX {
+            if AVX {
+                let params = super::avx2::Params {
+                    r: &r,
+                    scale: &scale,
+                    r3r4: &r3r4,
+                    cond_scale: &cond_scale,
+                    sign,
+                    tol,
+                    singular,
+                    max_iter,
+                };
+                let lanes = super::avx2::Lanes {
+                    x: &mut x,
+                    nit: &mut nit,
+                    last_small: &mut last_small,
+                    active: &mut active,
+                    done: &mut done,
+                    fail: &mut fail,
+                    xf: &mut xf,
+                    resid: &mut resid,
+                    jac: &mut jac,
+                };
                 // SAFETY: AVX is true only in group_avx2, called after the run-time check.
-                unsafe { super::avx2::eval4(&r, &scale, &r3r4, s2, c2, &x) }
-            } else {
-                eval_lanes(&r, &scale, &r3r4, s2, c2, &x)
-            };
-            #[cfg(not(target_arch = "x86_64"))]
-            let e = eval_lanes(&r, &scale, &r3r4, s2, c2, &x);
-            let Eval { f1, f2, j: [j00, j01, j10, j11], residual, det, sin34, dx: [dx0, dx1], step } = e;
-            let small: M = lanes!(|l| residual[l] < tol);
-            let conv: M = lanes!(|l| small[l] & (step[l] < tol));
-            let bad: M = lanes!(|l| {
-                let finite = f1[l].is_finite()
-                    & f2[l].is_finite()
-                    & (x[0][l].abs() <= SIN_COS_MAX)
-                    & (x[1][l].abs() <= SIN_COS_MAX);
-                let ploss = small[l] & !conv[l] & (step[l] > 0.5 * last_small[l]);
-                let out_of_steps = !conv[l] & !ploss & (nit[l] >= max_iter);
-                let branch_jump = conv[l] & (sin34[l] * sign < 0.0);
-                !finite
-                    | (sin34[l].abs() * cond_scale[l] < singular)
-                    | (det[l] == 0.0)
-                    | ploss
-                    | out_of_steps
-                    | branch_jump
-            });
-            let finished: M = lanes!(|l| active[l] & !bad[l] & conv[l]);
-            let go_on: M = lanes!(|l| active[l] & !bad[l] & !conv[l]);
-            fail = lanes!(|l| fail[l] | (active[l] & bad[l]));
-            done = lanes!(|l| done[l] | finished[l]);
-            xf = [
-                lanes!(|l| if finished[l] { x[0][l] + dx0[l] } else { xf[0][l] }),
-                lanes!(|l| if finished[l] { x[1][l] + dx1[l] } else { xf[1][l] }),
-            ];
-            resid = lanes!(|l| if finished[l] { residual[l] } else { resid[l] });
-            jac = [
-                lanes!(|l| if finished[l] { j00[l] } else { jac[0][l] }),
-                lanes!(|l| if finished[l] { j01[l] } else { jac[1][l] }),
-                lanes!(|l| if finished[l] { j10[l] } else { jac[2][l] }),
-                lanes!(|l| if finished[l] { j11[l] } else { jac[3][l] }),
-            ];
-            last_small = lanes!(|l| if go_on[l] & small[l] { step[l] } else { last_small[l] });
-            x = [
-                wrap(lanes!(|l| if go_on[l] { x[0][l] + dx0[l] } else { x[0][l] })),
-                wrap(lanes!(|l| if go_on[l] { x[1][l] + dx1[l] } else { x[1][l] })),
-            ];
-            nit = lanes!(|l| nit[l] + go_on[l] as u32);
-            active = go_on;
+                unsafe { super::avx2::iterate4(&params, s2, c2, lanes) };
+                x = [wrap(x[0]), wrap(x[1])];
+                handled = true;
+            }
+            if !handled {
+                let e = eval_lanes(&r, &scale, &r3r4, s2, c2, &x);
+                let Eval { f1, f2, j: [j00, j01, j10, j11], residual, det, sin34, dx: [dx0, dx1], step } = e;
+                let small: M = lanes!(|l| residual[l] < tol);
+                let conv: M = lanes!(|l| small[l] & (step[l] < tol));
+                let bad: M = lanes!(|l| {
+                    let finite = f1[l].is_finite()
+                        & f2[l].is_finite()
+                        & (x[0][l].abs() <= SIN_COS_MAX)
+                        & (x[1][l].abs() <= SIN_COS_MAX);
+                    let ploss = small[l] & !conv[l] & (step[l] > 0.5 * last_small[l]);
+                    let out_of_steps = !conv[l] & !ploss & (nit[l] >= max_iter);
+                    let branch_jump = conv[l] & (sin34[l] * sign < 0.0);
+                    !finite
+                        | (sin34[l].abs() * cond_scale[l] < singular)
+                        | (det[l] == 0.0)
+                        | ploss
+                        | out_of_steps
+                        | branch_jump
+                });
+                let finished: M = lanes!(|l| active[l] & !bad[l] & conv[l]);
+                let go_on: M = lanes!(|l| active[l] & !bad[l] & !conv[l]);
+                fail = lanes!(|l| fail[l] | (active[l] & bad[l]));
+                done = lanes!(|l| done[l] | finished[l]);
+                xf = [
+                    lanes!(|l| if finished[l] { x[0][l] + dx0[l] } else { xf[0][l] }),
+                    lanes!(|l| if finished[l] { x[1][l] + dx1[l] } else { xf[1][l] }),
+                ];
+                resid = lanes!(|l| if finished[l] { residual[l] } else { resid[l] });
+                jac = [
+                    lanes!(|l| if finished[l] { j00[l] } else { jac[0][l] }),
+                    lanes!(|l| if finished[l] { j01[l] } else { jac[1][l] }),
+                    lanes!(|l| if finished[l] { j10[l] } else { jac[2][l] }),
+                    lanes!(|l| if finished[l] { j11[l] } else { jac[3][l] }),
+                ];
+                last_small = lanes!(|l| if go_on[l] & small[l] { step[l] } else { last_small[l] });
+                x = [
+                    wrap(lanes!(|l| if go_on[l] { x[0][l] + dx0[l] } else { x[0][l] })),
+                    wrap(lanes!(|l| if go_on[l] { x[1][l] + dx1[l] } else { x[1][l] })),
+                ];
+                nit = lanes!(|l| nit[l] + go_on[l] as u32);
+                active = go_on;
+            }
             iter += 1;
             if iter > cap {
                 fail = lanes!(|l| fail[l] | active[l]);
