@@ -208,8 +208,8 @@ pub(crate) fn iterate4(p: &Params<'_>, s2: f64, c2: f64, l: Lanes<'_>) {
     *l.last_small = st(blend(ld(l.last_small), step, and(go_on, small)));
     *l.x = [st(blend(x0, x0n, go_on)), st(blend(x1, x1n, go_on))];
     let go = bools(go_on);
-    for k in 0..4 {
-        l.nit[k] += go[k] as u32;
+    for (n, g) in l.nit.iter_mut().zip(go) {
+        *n += g as u32;
     }
     let (fin, fl) = (bools(finished), bools(failed));
     for k in 0..4 {
