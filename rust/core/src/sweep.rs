@@ -264,6 +264,8 @@ fn closed_form_sweep(
 
 /// Solves one sweep point: continuation from `start` first, then, if that fails in any
 /// way, the closed form of the mode as the starting guess. `nit` counts both attempts.
+/// Always inlined: the scalar sweep's cost per point is unchanged by its SIMD callers.
+#[inline(always)]
 pub(crate) fn sweep_point(
     fb: &FourBar,
     sys: &Loop<'_>,
