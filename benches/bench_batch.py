@@ -64,6 +64,44 @@ def test_planarkin_closed_form_batch(benchmark, m, threads):
     )
 
 
+def _scalar(f, *args, **kw):
+    with pk.use_simd(False):
+        return f(*args, **kw)
+
+
+def test_planarkin_batches_scalar_path(benchmark):
+    """The bit-exact scalar path (SIMD kernels off), 1 thread, M = 10 000: the SIMD speed-up."""
+    m = 10_000
+    benchmark.group = _group(m)
+    arr = links(m)
+    b = benchmark(_scalar, pk.sweep_batch, arr, THETA2, threads=1)
+    assert b.success.all()
+    record(
+        benchmark,
+        "pk_batch_t1_scalar",
+        "planarkin sweep_batch, 1 thread, pk.use_simd(False)",
+        m=m,
+        threads=1,
+        nit_mean=float(b.nit.mean()),
+        max_error=_check(m, b.theta3, b.theta4, 1e-8),
+    )
+
+
+def test_planarkin_closed_form_batch_scalar_path(benchmark):
+    m = 10_000
+    benchmark.group = _group(m)
+    arr = links(m)
+    t3, t4 = benchmark(_scalar, pk.closed_form_batch, arr, THETA2, threads=1)
+    record(
+        benchmark,
+        "pk_cf_batch_t1_scalar",
+        "planarkin closed_form_batch, 1 thread, pk.use_simd(False)",
+        m=m,
+        threads=1,
+        max_error=_check(m, t3, t4, 1e-14),
+    )
+
+
 @pytest.mark.parametrize("m", SIZES)
 def test_numpy_newton_batch(benchmark, m):
     benchmark.group = _group(m)

@@ -41,6 +41,22 @@ def test_planarkin_sweep(benchmark, seed_fb, predictor):
     )
 
 
+def test_planarkin_sweep_scalar_path(benchmark, seed_fb):
+    def scalar():
+        with pk.use_simd(False):
+            return seed_fb.sweep()
+
+    s = benchmark(scalar)
+    assert s.summary().converged == 361
+    record(
+        benchmark,
+        "pk_sweep_scalar",
+        "planarkin fb.sweep() with pk.use_simd(False) (bit-exact scalar path)",
+        nit_mean=float(s.nit.mean()),
+        max_error=_check(s.theta3, s.theta4),
+    )
+
+
 def test_planarkin_sweep_closed_form_method(benchmark, seed_fb):
     s = benchmark(seed_fb.sweep, method="closed-form")
     assert s.summary().converged == 361

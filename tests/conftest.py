@@ -15,6 +15,18 @@ import numpy as np
 import pytest
 
 MP_DPS = 50
+
+
+@pytest.fixture
+def scalar_path():
+    """The bit-exact scalar path (SIMD kernels off) for the duration of a test: what the
+    bit-for-bit parity tests with ``planarkin.reference`` compare."""
+    import planarkin as pk
+
+    with pk.use_simd(False):
+        yield
+
+
 SEED_LINKAGE = (6.0, 2.0, 5.0, 5.0)
 
 

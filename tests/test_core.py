@@ -5,6 +5,8 @@ angles, statuses, iteration counts, residuals, velocities, accelerations and res
 histories. Measured on this machine: 100% of points bit-identical (several thousand
 sweeps of 361 points, random Grashof and non-Grashof linkages, all predictors, both
 modes), so every comparison here is exact (``assert_array_equal``, NaN == NaN).
+That holds on the scalar path (``pk.use_simd(False)``, which every test here uses); the
+SIMD kernels' parity, at 1e-12 rad, is in ``test_simd.py``.
 """
 
 from __future__ import annotations
@@ -17,6 +19,8 @@ import pytest
 from conftest import SEED_LINKAGE, random_links
 from numpy.testing import assert_array_equal
 from planarkin import reference as ref
+
+pytestmark = pytest.mark.usefixtures("scalar_path")
 
 MODES = ("open", "crossed")
 PREDICTORS = ("quadratic", "tangent", "previous")

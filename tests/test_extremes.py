@@ -635,7 +635,7 @@ EXTREME_SCALES = [2.0**-1070, 1e-300, 1e-100, 2.0**-340, 1e-9, 1e100, 1e160, 2.0
 
 @pytest.mark.parametrize("mode", MODES)
 @pytest.mark.parametrize("scale", EXTREME_SCALES, ids=lambda s: f"{s:.3g}")
-def test_any_finite_scale_gives_the_seed_answer(mode, scale):
+def test_any_finite_scale_gives_the_seed_answer(mode, scale, scalar_path):
     """The seed linkage times any finite scale: the statuses and angles of the 50-digit
     mpmath truth of the unscaled linkage (the problem is scale-free), the same limits, and
     the NumPy reference bit for bit; a power-of-two scale is bit-identical to the seed."""

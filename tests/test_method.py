@@ -8,6 +8,9 @@ import planarkin as pk
 import pytest
 from conftest import mp_solve
 
+# bit-for-bit parity with the reference: the scalar path (SIMD parity: test_simd.py)
+pytestmark = pytest.mark.usefixtures("scalar_path")
+
 S = pk.Status
 LINKS = [(6, 2, 5, 5), (2, 5, 2.5, 2), (100, 40, 120, 80), (6, 2, 6, 2), (2, 2, 6, 6)]
 

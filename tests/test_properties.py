@@ -275,7 +275,8 @@ def test_kernel_reference_parity_arbitrary(r, t2, mode, predictor, tol, max_iter
     guesses (NaN, +-inf, huge, subnormal)."""
     fb = pk.FourBar(*r)
     kw = dict(mode=mode, tol=tol, max_iter=max_iter, guess=guess)
-    a = fb.sweep(t2, predictor=predictor, omega2=1.5, alpha2=-0.5, **kw)
+    with pk.use_simd(False):  # bit for bit: the scalar path (SIMD parity: test_simd.py)
+        a = fb.sweep(t2, predictor=predictor, omega2=1.5, alpha2=-0.5, **kw)
     b = pk.reference.sweep(fb, t2, predictor=predictor, omega2=1.5, alpha2=-0.5, **kw)
     for f in ("theta3", "theta4", "status", "nit", "residual", "omega3", "omega4", "alpha3",
               "alpha4"):  # fmt: skip

@@ -22,6 +22,7 @@ from ._types import (
 )
 from .fourbar import FourBar, closed_form_batch, sweep_batch
 from .scene import Plan, Scene, SceneSweep, Step
+from .simd import set_simd, simd_available, simd_enabled, use_simd
 
 __all__ = [
     "BUILD_PROFILE",
@@ -42,5 +43,9 @@ __all__ = [
     "closed_form_batch",
     "reference",
     "scenes",
+    "set_simd",
+    "simd_available",
+    "simd_enabled",
     "sweep_batch",
+    "use_simd",
 ]

@@ -3,6 +3,8 @@
 //! Newton solve, and a small batch. `benches/report.py` compares the seed-sweep time with
 //! the same sweep called from Python to measure the Python-side overhead.
 //!
+//! Rows ending in `_scalar` run with the SIMD kernels off (the bit-exact scalar path).
+//!
 //! Run: `cargo bench -p planarkin-core --bench sweep` (add `-- --quick` for a short run).
 
 use std::hint::black_box;
@@ -12,7 +14,7 @@ use planarkin_core::arrays::closed_form_into;
 use planarkin_core::batch::{closed_form_batch, sweep_batch, validate_links, BatchOut};
 use planarkin_core::newton::SINGULAR_THRESHOLD;
 use planarkin_core::sweep::{default_angles, sweep_into, Method, SweepOut};
-use planarkin_core::{FourBar, Mode, Never, NewtonOptions, Predictor, SweepOptions};
+use planarkin_core::{simd, FourBar, Mode, Never, NewtonOptions, Predictor, SweepOptions};
 
 const N: usize = 361;
 
@@ -75,6 +77,28 @@ fn seed_sweep(c: &mut Criterion) {
             closed_form_into(fb, t2, Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st, &Never).unwrap()
         })
     });
+    // the bit-exact scalar path, for the SIMD speed-up
+    let was = simd::set_enabled(false);
+    let mut b = Bufs::new(N);
+    g.bench_function("quadratic_scalar", |bch| {
+        bch.iter(|| sweep_into(black_box(&fb), black_box(&t2), None, &o, b.out(), None, &Never).unwrap())
+    });
+    g.bench_function("closed_form_scalar", |bch| {
+        bch.iter(|| {
+            closed_form_into(
+                black_box(&fb),
+                black_box(&t2),
+                Mode::Open,
+                SINGULAR_THRESHOLD,
+                &mut t3,
+                &mut t4,
+                &mut st,
+                &Never,
+            )
+            .unwrap()
+        })
+    });
+    simd::set_enabled(was);
     g.finish();
 }
 
@@ -123,12 +147,36 @@ fn batch(c: &mut Criterion) {
         });
     }
     let (mut t3, mut t4) = (vec![0.0; m * N], vec![0.0; m * N]);
-    g.bench_function("closed_form_threads_1", |bch| {
-        bch.iter(|| {
-            closed_form_batch(&fbs, &t2, Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, None, Some(1), &Never)
-                .unwrap()
-        })
-    });
+    for scalar in [false, true] {
+        // the bit-exact scalar path, for the SIMD speed-up
+        let was = simd::set_enabled(!scalar);
+        let tag = if scalar { "_scalar" } else { "" };
+        g.bench_function(format!("closed_form_threads_1{tag}"), |bch| {
+            bch.iter(|| {
+                closed_form_batch(&fbs, &t2, Mode::Open, SINGULAR_THRESHOLD, &mut t3, &mut t4, None, Some(1), &Never)
+                    .unwrap()
+            })
+        });
+        if scalar {
+            g.bench_function("sweep_threads_1_scalar", |bch| {
+                bch.iter_batched_ref(
+                    || Bufs::new(m * N),
+                    |b| {
+                        let out = BatchOut {
+                            theta3: &mut b.t3,
+                            theta4: &mut b.t4,
+                            status: &mut b.st,
+                            nit: &mut b.nit,
+                            residual: &mut b.res,
+                        };
+                        sweep_batch(&fbs, &t2, &o, out, Some(1), &Never).unwrap()
+                    },
+                    BatchSize::LargeInput,
+                )
+            });
+        }
+        simd::set_enabled(was);
+    }
     g.finish();
 }
 

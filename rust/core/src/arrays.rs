@@ -30,13 +30,25 @@ pub fn closed_form_into(
     status: &mut [i8],
     interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
+    // blocks of angles: the (sin, cos) table of each (4 at a time with SIMD) stays small,
+    // and the interrupt is asked between blocks
+    const BLOCK: usize = 4096;
     let poll = Poll::new(interrupt);
-    for (i, &t2) in theta2.iter().enumerate() {
-        poll.tick()?;
-        let (s2, c2) = t2.sin_cos();
-        let st;
-        (theta3[i], theta4[i], st) = closed_point(fb, t2, s2, c2, mode, singular);
-        status[i] = st.code();
+    let mut trig = vec![(0.0, 0.0); BLOCK.min(theta2.len())];
+    for (k, t) in theta2.chunks(BLOCK).enumerate() {
+        for _ in t {
+            poll.tick()?;
+        }
+        let (o, e) = (k * BLOCK, k * BLOCK + t.len());
+        let tr = &mut trig[..t.len()];
+        if crate::simd::enabled() {
+            crate::simd::sin_cos_into(t, tr);
+        } else {
+            for (x, a) in tr.iter_mut().zip(t) {
+                *x = a.sin_cos();
+            }
+        }
+        closed_form_trig(fb, t, tr, mode, singular, &mut theta3[o..e], &mut theta4[o..e], Some(&mut status[o..e]));
     }
     Ok(())
 }
@@ -70,6 +82,10 @@ pub(crate) fn closed_form_trig(
     theta4: &mut [f64],
     mut status: Option<&mut [i8]>,
 ) {
+    if crate::simd::enabled() {
+        let spec = crate::simd::closed_form::RowSpec { mode, singular, nan_singular: false };
+        return crate::simd::closed_form::closed_form_row(fb, theta2, trig, spec, theta3, theta4, status);
+    }
     for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
         let (t3, t4, st) = closed_point(fb, t2, s2, c2, mode, singular);
         theta3[i] = t3;

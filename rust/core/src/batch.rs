@@ -41,7 +41,7 @@ const WATCH_ABOVE: u128 = 1 << 22;
 
 /// Runs `work` on the pool with the caller's `interrupt` watched from this thread when
 /// the work is large ([`watched`]); `work` polls the flag it gets.
-fn run<T: Send>(
+pub(crate) fn run<T: Send>(
     threads: Option<usize>,
     size: u128,
     interrupt: &dyn Interrupt,
@@ -98,6 +98,9 @@ pub fn sweep_batch(
     threads: Option<usize>,
     interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
+    if opts.method == crate::sweep::Method::Newton && crate::simd::enabled() {
+        return crate::simd::newton::sweep_batch(links, theta2, opts, out, threads, interrupt);
+    }
     let n = theta2.len();
     let mn = links.len() * n;
     check("theta3", out.theta3.len(), mn)?;

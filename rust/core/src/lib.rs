@@ -17,6 +17,7 @@ pub mod interrupt;
 pub mod limits;
 pub mod newton;
 pub mod scene;
+pub mod simd;
 pub mod status;
 pub mod sweep;
 

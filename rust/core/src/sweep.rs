@@ -152,10 +152,15 @@ pub fn sweep_into(
     sweep_unchecked(fb, theta2, &sin_cos(theta2)?, guess, opts, out, motion, &Poll::new(interrupt))
 }
 
-/// (sin, cos) of every crank angle: computed once, shared by every linkage of a batch.
-/// Allocated fallibly ([`Error::Allocation`]).
+/// (sin, cos) of every crank angle: computed once, shared by every linkage of a batch
+/// (4 at a time by polynomials when [`crate::simd::enabled`], libm otherwise). Allocated
+/// fallibly ([`Error::Allocation`]).
 pub fn sin_cos(theta2: &[f64]) -> Result<Vec<(f64, f64)>, Error> {
     let mut v = try_zeros::<(f64, f64)>(|| format!("sin and cos of {} crank angles", theta2.len()), theta2.len())?;
+    if crate::simd::enabled() {
+        crate::simd::sin_cos_into(theta2, &mut v);
+        return Ok(v);
+    }
     for (o, t) in v.iter_mut().zip(theta2) {
         *o = t.sin_cos();
     }
@@ -171,12 +176,30 @@ pub(crate) fn sweep_unchecked(
     guess: Option<[f64; 2]>,
     opts: &SweepOptions,
     out: SweepOut<'_>,
-    mut motion: Option<MotionOut<'_>>,
+    motion: Option<MotionOut<'_>>,
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
     if opts.method == Method::ClosedForm {
         return closed_form_sweep(fb, theta2, trig, opts, out, motion, poll);
     }
+    if crate::simd::enabled() {
+        return crate::simd::sweep::newton_row(fb, theta2, trig, guess, opts, out, motion, poll);
+    }
+    newton_sweep(fb, theta2, trig, guess, opts, out, motion, poll)
+}
+
+/// The scalar Newton continuation sweep (bit-identical to the NumPy reference).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn newton_sweep(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    mut motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
     let mut prev: Option<Prev> = None;
     for (i, &t2) in theta2.iter().enumerate() {
         poll.tick()?;
@@ -224,6 +247,9 @@ fn closed_form_sweep(
     mut motion: Option<MotionOut<'_>>,
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
+    if crate::simd::enabled() {
+        return crate::simd::closed_form::sweep(fb, theta2, trig, opts, out, motion, poll);
+    }
     for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
         poll.tick()?;
         let status = if !t2.is_finite() {
@@ -256,7 +282,9 @@ fn closed_form_sweep(
 
 /// Solves one sweep point: continuation from `start` first, then, if that fails in any
 /// way, the closed form of the mode as the starting guess. `nit` counts both attempts.
-fn sweep_point(
+/// Always inlined: the scalar sweep's cost per point is unchanged by its SIMD callers.
+#[inline(always)]
+pub(crate) fn sweep_point(
     fb: &FourBar,
     sys: &Loop<'_>,
     start: Option<Vector2<f64>>,
@@ -287,7 +315,12 @@ fn sweep_point(
 /// dx/dtheta2 and d2x/dtheta2^2 at unit crank speed, as far as the predictor needs them.
 /// Both reuse the Jacobian at the solution (r3 c3 = J10, r3 s3 = -J00, r4 c4 = -J11,
 /// r4 s4 = J01), so a prediction costs no trigonometry.
-fn predictor_rates(fb: &FourBar, (s2, c2): (f64, f64), j: &Matrix2<f64>, p: Predictor) -> (Vector2<f64>, Vector2<f64>) {
+pub(crate) fn predictor_rates(
+    fb: &FourBar,
+    (s2, c2): (f64, f64),
+    j: &Matrix2<f64>,
+    p: Predictor,
+) -> (Vector2<f64>, Vector2<f64>) {
     let zero = Vector2::zeros();
     if p == Predictor::Previous {
         return (zero, zero);
@@ -302,7 +335,15 @@ fn predictor_rates(fb: &FourBar, (s2, c2): (f64, f64), j: &Matrix2<f64>, p: Pred
     (v, cramer(j, &b).unwrap_or(zero))
 }
 
-fn fill_motion(fb: &FourBar, t2: f64, p: &Point, converged: bool, i: usize, m: &mut MotionOut<'_>, singular: f64) {
+pub(crate) fn fill_motion(
+    fb: &FourBar,
+    t2: f64,
+    p: &Point,
+    converged: bool,
+    i: usize,
+    m: &mut MotionOut<'_>,
+    singular: f64,
+) {
     let (w, a) = if converged {
         let (w, _) = fb.velocity(t2, p.theta3, p.theta4, m.omega2, singular);
         let a = m
@@ -405,7 +446,9 @@ mod tests {
             match fb.closed_form(t, Mode::Crossed) {
                 Assembly::Closed { theta3, .. } => {
                     assert_eq!(s.status[i], 0);
-                    assert_eq!(s.theta3[i].to_bits(), theta3.to_bits());
+                    // bit for bit on the scalar path; the SIMD path's crank trigonometry and
+                    // atan2 differ from libm's by ulps
+                    assert!((s.theta3[i] - theta3).abs() <= 1e-12);
                 }
                 _ => assert_eq!(s.status[i], Status::NotAssemblable.code()),
             }

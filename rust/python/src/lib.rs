@@ -13,6 +13,7 @@ use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyValueError};
 use pyo3::prelude::*;
 
 mod scene;
+mod simd;
 
 /// The one place core errors become Python exceptions: invalid input is ValueError, an
 /// output too large MemoryError; an interruption re-raises what the signal handler raised.
@@ -426,6 +427,7 @@ fn closed_form_batch<'py>(
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyFourBar>()?;
     scene::register(m)?;
+    simd::register(m)?;
     m.add_function(wrap_pyfunction!(transmission, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_batch, m)?)?;
     m.add_function(wrap_pyfunction!(closed_form_batch, m)?)?;

@@ -1,0 +1,161 @@
+//! The four-bar closed form over many crank angles, branch-free so that the loop runs 4
+//! (AVX2) angles at a time: one sqrt for |A O4|, one for the triangle's height, two
+//! polynomial atan2. The same formulas and operation order as `FourBar::geometry` and
+//! `Triangle::angles`, so only the atan2 differs from the scalar path (by <= 2 ulp).
+
+use super::math::atan2;
+use crate::fourbar::{FourBar, Mode};
+use crate::Status;
+
+const CONVERGED: i8 = Status::Converged as i8;
+const NON_FINITE: i8 = Status::NonFinite as i8;
+const SINGULAR: i8 = Status::Singular as i8;
+const NOT_ASSEMBLABLE: i8 = Status::NotAssemblable as i8;
+
+/// What a closed-form row computes; `nan_singular` gives NaN angles at singular points
+/// (the sweep's convention) rather than the closed form's angles (the arrays' one).
+#[derive(Clone, Copy)]
+pub(crate) struct RowSpec {
+    pub mode: Mode,
+    pub singular: f64,
+    pub nan_singular: bool,
+}
+
+#[inline(always)]
+fn row_body<const STATUS: bool>(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    spec: RowSpec,
+    theta3: &mut [f64],
+    theta4: &mut [f64],
+    status: &mut [i8],
+) {
+    let n = theta2.len();
+    let (trig, theta3, theta4) = (&trig[..n], &mut theta3[..n], &mut theta4[..n]);
+    let status = if STATUS { &mut status[..n] } else { status };
+    let [r1, r2, r3, r4] = fb.unit_lengths();
+    let cond_scale = r3.min(r4) / fb.longest();
+    let (k, r3r4, sign) = ((r3 - r4) * (r3 + r4), r3 * r4, spec.mode.sign());
+    let indeterminate = if r3 == r4 { SINGULAR } else { NOT_ASSEMBLABLE };
+    let slack = crate::fourbar::FLAT_ULPS * f64::EPSILON * fb.longest();
+    for i in 0..n {
+        let (s2, c2) = trig[i];
+        let ux = r1 - r2 * c2;
+        let uy = -(r2 * s2);
+        let d2 = ux * ux + uy * uy;
+        let d = d2.sqrt();
+        // as the scalar geometry: within FLAT_ULPS ulp of closing, a triangle is flat
+        let flat = |q: f64| if (q < 0.0) & (q >= -slack) { 0.0 } else { q };
+        let q1 = flat(d + r3 - r4);
+        let q2 = flat(d - r3 + r4);
+        let q3 = flat(r3 + r4 - d);
+        let tri = (q1 >= 0.0) & (q2 >= 0.0) & (q3 >= 0.0) & (d != 0.0);
+        let two_dh = ((r3 + r4 + d) * q1 * q2 * q3).sqrt();
+        let h = sign * two_dh;
+        let (ca, cb) = (k + d2, k - d2);
+        let t3 = atan2(uy * ca + ux * h + 0.0, ux * ca - uy * h);
+        let t4 = atan2(uy * cb + ux * h + 0.0, ux * cb - uy * h);
+        let sin34 = h / (2.0 * r3r4);
+        let well = (sin34.abs() * cond_scale) >= spec.singular;
+        let finite = theta2[i].is_finite();
+        let st = if !finite {
+            NON_FINITE
+        } else if tri {
+            if well {
+                CONVERGED
+            } else {
+                SINGULAR
+            }
+        } else if d == 0.0 {
+            indeterminate
+        } else {
+            NOT_ASSEMBLABLE
+        };
+        let keep = finite & tri & (well | !spec.nan_singular);
+        theta3[i] = if keep { t3 } else { f64::NAN };
+        theta4[i] = if keep { t4 } else { f64::NAN };
+        if STATUS {
+            status[i] = st;
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn row_avx2<const STATUS: bool>(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    spec: RowSpec,
+    theta3: &mut [f64],
+    theta4: &mut [f64],
+    status: &mut [i8],
+) {
+    row_body::<STATUS>(fb, theta2, trig, spec, theta3, theta4, status)
+}
+
+/// The closed form of one linkage at every crank angle (with its precomputed (sin, cos)),
+/// with the statuses of the scalar path: NonFinite, NotAssemblable, Singular (below
+/// `singular`, or indeterminate), Converged. The status is written only when given.
+pub(crate) fn closed_form_row(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    spec: RowSpec,
+    theta3: &mut [f64],
+    theta4: &mut [f64],
+    status: Option<&mut [i8]>,
+) {
+    #[cfg(target_arch = "x86_64")]
+    if super::available() {
+        // SAFETY: the CPU has AVX2 and FMA (checked at run time just above).
+        unsafe {
+            match status {
+                Some(s) => row_avx2::<true>(fb, theta2, trig, spec, theta3, theta4, s),
+                None => row_avx2::<false>(fb, theta2, trig, spec, theta3, theta4, &mut []),
+            }
+        }
+        return;
+    }
+    match status {
+        Some(s) => row_body::<true>(fb, theta2, trig, spec, theta3, theta4, s),
+        None => row_body::<false>(fb, theta2, trig, spec, theta3, theta4, &mut []),
+    }
+}
+
+/// The closed-form sweep (`Method::ClosedForm`) of one linkage: NaN angles unless
+/// Converged, `nit` 0, residual NaN, then velocities and accelerations when asked for.
+pub(crate) fn sweep(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    opts: &crate::sweep::SweepOptions,
+    out: crate::sweep::SweepOut<'_>,
+    mut motion: Option<crate::sweep::MotionOut<'_>>,
+    poll: &crate::interrupt::Poll<'_>,
+) -> Result<(), crate::Error> {
+    for _ in theta2 {
+        poll.tick()?; // the whole row is checked first: closed-form points cost nanoseconds
+    }
+    let spec = RowSpec { mode: opts.mode, singular: opts.newton.singular, nan_singular: true };
+    closed_form_row(fb, theta2, trig, spec, out.theta3, out.theta4, Some(&mut *out.status));
+    out.nit.fill(0);
+    out.residual.fill(f64::NAN);
+    if let Some(m) = motion.as_mut() {
+        for (i, &t2) in theta2.iter().enumerate() {
+            // fill_motion reads the angles and the flag only
+            let ok = out.status[i] == CONVERGED;
+            let status = if ok { Status::Converged } else { Status::Singular };
+            let p = crate::fourbar::Point {
+                theta3: out.theta3[i],
+                theta4: out.theta4[i],
+                status,
+                nit: 0,
+                residual: f64::NAN,
+            };
+            crate::sweep::fill_motion(fb, t2, &p, ok, i, m, opts.newton.singular);
+        }
+    }
+    Ok(())
+}
