@@ -18,6 +18,9 @@ __all__ = [
     "STATUSES",
     "__version__",
     "closed_form_batch",
+    "set_simd",
+    "simd_available",
+    "simd_enabled",
     "sweep_batch",
     "transmission",
 ]

@@ -3,8 +3,9 @@ the scalar path, which is bit-identical to ``planarkin.reference``.
 
 The SIMD kernels evaluate sin/cos/atan2 by polynomials (within 2 ulp of glibc) 4 values
 at a time; their statuses are the scalar path's, their angles agree with it and with the
-NumPy reference to 1e-12 rad (measured: below 5e-14 rad on the Newton batch, 2 ulp on
-the closed form). ``PLANARKIN_SIMD=0`` in the environment starts with the scalar path.
+NumPy reference to 1e-12 rad (measured: below 1e-13 rad, most points within a few ulp;
+see benches/analysis.md). ``PLANARKIN_SIMD=0`` in the environment starts with the scalar
+path.
 
 >>> import planarkin as pk
 >>> with pk.use_simd(False):

@@ -308,36 +308,36 @@ fn group_body<const AVX: bool>(
         let mut jac: [V; 4] = [zero; 4];
         let mut iter = 0;
         while active.iter().any(|&a| a) {
-            let mut handled = false;
-            #[cfg(target_arch = "x86_64")]
+            // AVX is never true off x86_64 (group_avx2 exists only there)
             if AVX {
-                let params = super::avx2::Params {
-                    r: &r,
-                    scale: &scale,
-                    r3r4: &r3r4,
-                    cond_scale: &cond_scale,
-                    sign,
-                    tol,
-                    singular,
-                    max_iter,
-                };
-                let lanes = super::avx2::Lanes {
-                    x: &mut x,
-                    nit: &mut nit,
-                    last_small: &mut last_small,
-                    active: &mut active,
-                    done: &mut done,
-                    fail: &mut fail,
-                    xf: &mut xf,
-                    resid: &mut resid,
-                    jac: &mut jac,
-                };
-                // SAFETY: AVX is true only in group_avx2, called after the run-time check.
-                unsafe { super::avx2::iterate4(&params, s2, c2, lanes) };
-                x = [wrap(x[0]), wrap(x[1])];
-                handled = true;
-            }
-            if !handled {
+                #[cfg(target_arch = "x86_64")]
+                {
+                    let params = super::avx2::Params {
+                        r: &r,
+                        scale: &scale,
+                        r3r4: &r3r4,
+                        cond_scale: &cond_scale,
+                        sign,
+                        tol,
+                        singular,
+                        max_iter,
+                    };
+                    let lanes = super::avx2::Lanes {
+                        x: &mut x,
+                        nit: &mut nit,
+                        last_small: &mut last_small,
+                        active: &mut active,
+                        done: &mut done,
+                        fail: &mut fail,
+                        xf: &mut xf,
+                        resid: &mut resid,
+                        jac: &mut jac,
+                    };
+                    // SAFETY: AVX is true only in group_avx2, called after the run-time check.
+                    unsafe { super::avx2::iterate4(&params, s2, c2, lanes) };
+                    x = [wrap(x[0]), wrap(x[1])];
+                }
+            } else {
                 let e = eval_lanes(&r, &scale, &r3r4, s2, c2, &x);
                 let Eval { f1, f2, j: [j00, j01, j10, j11], residual, det, sin34, dx: [dx0, dx1], step } = e;
                 let small: M = lanes!(|l| residual[l] < tol);
