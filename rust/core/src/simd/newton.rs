@@ -14,7 +14,7 @@ use super::math::{sin_cos, SIN_COS_MAX};
 use crate::batch::BatchOut;
 use crate::error::Error;
 use crate::fourbar::{FourBar, Point};
-use crate::interrupt::{Flag, Interrupt, Never, Poll};
+use crate::interrupt::{Flag, Interrupt, Poll};
 use crate::sweep::{predictor_rates, sweep_point, sweep_unchecked, Predictor, SweepOptions, SweepOut};
 use crate::{wrap_angle, Status};
 
@@ -86,8 +86,7 @@ pub fn sweep_batch(
                     return Err(Error::Interrupted);
                 }
                 if fbs.len() == W {
-                    group(fbs, theta2, &trig, opts, t3, t4, st, nit, res);
-                    return Ok(());
+                    return group(fbs, theta2, &trig, opts, t3, t4, st, nit, res, &Poll::new(&flag));
                 }
                 let rows = t3.chunks_mut(n).zip(t4.chunks_mut(n)).zip(st.chunks_mut(n));
                 let rows = rows.zip(nit.chunks_mut(n)).zip(res.chunks_mut(n)).zip(fbs);
@@ -111,14 +110,14 @@ fn group(
     st: &mut [i8],
     nit: &mut [u32],
     res: &mut [f64],
-) {
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
     #[cfg(target_arch = "x86_64")]
     if super::available() {
         // SAFETY: AVX2 and FMA checked at run time.
-        unsafe { group_avx2(fbs, theta2, trig, opts, t3, t4, st, nit, res) };
-        return;
+        return unsafe { group_avx2(fbs, theta2, trig, opts, t3, t4, st, nit, res, poll) };
     }
-    group_body::<false>(fbs, theta2, trig, opts, t3, t4, st, nit, res)
+    group_body::<false>(fbs, theta2, trig, opts, t3, t4, st, nit, res, poll)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -134,8 +133,9 @@ unsafe fn group_avx2(
     st: &mut [i8],
     nit: &mut [u32],
     res: &mut [f64],
-) {
-    group_body::<true>(fbs, theta2, trig, opts, t3, t4, st, nit, res)
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
+    group_body::<true>(fbs, theta2, trig, opts, t3, t4, st, nit, res, poll)
 }
 
 /// The last converged point of every lane, with the predictor's rates.
@@ -233,7 +233,8 @@ fn group_body<const AVX: bool>(
     st: &mut [i8],
     nit_out: &mut [u32],
     res_out: &mut [f64],
-) {
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
     let n = theta2.len();
     let r: [V; 4] = [0, 1, 2, 3].map(|k| lanes!(|l| fbs[l].unit_lengths()[k]));
     let [r1, r2, r3, r4] = r;
@@ -256,6 +257,7 @@ fn group_body<const AVX: bool>(
     };
 
     for i in 0..n {
+        poll.tick()?;
         let t2 = theta2[i];
         if !t2.is_finite() {
             for l in 0..W {
@@ -412,11 +414,7 @@ fn group_body<const AVX: bool>(
                 let fb = &fbs[l];
                 let sys = fb.at_sin_cos(s2, c2);
                 let x0 = if prev.ok[l] { Some(Vector2::new(start[0][l], start[1][l])) } else { None };
-                // the batch asks the interrupt between groups: never here
-                let (p, j) = match sweep_point(fb, &sys, x0, opts, &Poll::new(&Never)) {
-                    Ok(r) => r,
-                    Err(_) => unreachable!("Never interrupts nothing"),
-                };
+                let (p, j) = sweep_point(fb, &sys, x0, opts, poll)?;
                 write(l, i, &p);
                 if p.status == Status::Converged {
                     let (v, a) = predictor_rates(fb, (s2, c2), &j, opts.predictor);
@@ -433,6 +431,7 @@ fn group_body<const AVX: bool>(
             }
         }
     }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -460,7 +459,7 @@ mod tests {
                 nit: &mut k[rg.clone()],
                 residual: &mut r[rg],
             };
-            crate::sweep::newton_sweep(fb, t2, &trig, None, opts, row, None, &Poll::new(&Never)).unwrap();
+            crate::sweep::newton_sweep(fb, t2, &trig, None, opts, row, None, &Poll::new(&crate::Never)).unwrap();
         }
         (a, b, s, k)
     }
@@ -470,7 +469,7 @@ mod tests {
         let (mut a, mut b, mut s, mut k, mut r) =
             (vec![0.0; mn], vec![0.0; mn], vec![0i8; mn], vec![0u32; mn], vec![0.0; mn]);
         let out = BatchOut { theta3: &mut a, theta4: &mut b, status: &mut s, nit: &mut k, residual: &mut r };
-        sweep_batch(links, t2, opts, out, Some(1), &Never).unwrap();
+        sweep_batch(links, t2, opts, out, Some(1), &crate::Never).unwrap();
         (a, b, s, k)
     }
 
@@ -551,8 +550,17 @@ mod tests {
                     for fb in &links {
                         let mut a: Row = (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
                         let mut b = a.clone();
-                        crate::sweep::newton_sweep(fb, &t2, &trig, guess, &opts, out(&mut a), None, &Poll::new(&Never))
-                            .unwrap();
+                        crate::sweep::newton_sweep(
+                            fb,
+                            &t2,
+                            &trig,
+                            guess,
+                            &opts,
+                            out(&mut a),
+                            None,
+                            &Poll::new(&crate::Never),
+                        )
+                        .unwrap();
                         crate::simd::sweep::newton_row(
                             fb,
                             &t2,
@@ -561,7 +569,7 @@ mod tests {
                             &opts,
                             out(&mut b),
                             None,
-                            &Poll::new(&Never),
+                            &Poll::new(&crate::Never),
                         )
                         .unwrap();
                         assert_eq!(a.2, b.2, "{mode:?} {predictor:?} {:?}", fb.lengths());
