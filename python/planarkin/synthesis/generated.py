@@ -36,6 +36,10 @@ def _rot(v: np.ndarray, a: np.ndarray) -> np.ndarray:
     return np.stack([c * v[0] - s * v[1], s * v[0] + c * v[1]], axis=-1)
 
 
+def _unit(a: np.ndarray) -> np.ndarray:
+    return np.stack([np.cos(a), np.sin(a)], axis=-1)
+
+
 def _wrap(a: np.ndarray) -> np.ndarray:
     return np.angle(np.exp(1j * np.asarray(a)))
 
@@ -88,7 +92,8 @@ class SeedPlan:
 
     def _solve(
         self, phi_in: np.ndarray, phi_out: np.ndarray, signs: Sequence[int]
-    ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
+    ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray, tuple[int, int, int]]:
+        # a sign 0 takes the root nearest the drawn pose at the first sample
         t, p0 = self.t, self.p0
         n = phi_in.shape[0]
         known: dict[str, np.ndarray] = {}
@@ -100,15 +105,26 @@ class SeedPlan:
                     known[p] = p0[pivot] + _rot(p0[p] - p0[pivot], phi)
         self._complete(known)
         rads = []
+        used = []
         for (x, a, b), sign in zip(t.dyads, signs[:2], strict=True):
             ra = float(np.linalg.norm(p0[x] - p0[a]))
             rb = float(np.linalg.norm(p0[x] - p0[b]))
             d = known[a] - known[b]
             c1, c2 = 2 * ra * d[:, 0], 2 * ra * d[:, 1]
             c3 = rb * rb - ra * ra - (d * d).sum(axis=1)
+            if sign == 0:
+                sign = min(
+                    (1, -1),
+                    key=lambda sg: float(
+                        np.abs(
+                            known[a][0] + ra * _unit(half_angle(c1, c2, c3, sg)[0])[0] - p0[x]
+                        ).sum()
+                    ),
+                )
             ang, rad = half_angle(c1, c2, c3, sign)
-            known[x] = known[a] + ra * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
+            known[x] = known[a] + ra * _unit(ang)
             rads.append(rad)
+            used.append(sign)
             self._complete(known)
         q, v, s = t.final
         pivot = t.output[1]
@@ -118,21 +134,18 @@ class SeedPlan:
         c1 = w[:, 0] * h[0] + w[:, 1] * h[1]
         c2 = w[:, 1] * h[0] - w[:, 0] * h[1]
         c3 = 0.5 * (length * length - (w * w).sum(axis=1) - h @ h)
-        th, rad = half_angle(c1, c2, c3, signs[2])
+        sign = signs[2]
+        if sign == 0:
+            sign = min((1, -1), key=lambda sg: abs(float(_wrap(half_angle(c1, c2, c3, sg)[0][0]))))
+        th, rad = half_angle(c1, c2, c3, sign)
         rads.append(rad)
-        return known, _wrap(th), np.stack(rads, axis=1)
+        used.append(sign)
+        return known, _wrap(th), np.stack(rads, axis=1), (used[0], used[1], used[2])
 
     def _drawn_signs(self) -> tuple[int, int, int]:
         # the signs whose solution is the drawn pose itself (zero input and output)
         z = np.zeros(1)
-        best: tuple[float, tuple[int, int, int]] = (math.inf, (1, 1, 1))
-        for signs in SIGN_COMBINATIONS:
-            known, th, _ = self._solve(z, z, signs)
-            err = sum(float(np.abs(known[p][0] - self.p0[p]).sum()) for p in known)
-            err += abs(float(th[0]))
-            if err < best[0]:
-                best = (err, signs)
-        return best[1]
+        return self._solve(z, z, (0, 0, 0))[3]
 
     @property
     def drawn_signs(self) -> tuple[int, int, int]:
@@ -146,11 +159,13 @@ class SeedPlan:
         signs: Sequence[int] | None = None,
         *,
         relative: bool = True,
+        with_k: bool = True,
     ) -> Generated:
         """Generated output rotations at input rotations ``phi_in`` and prescribed output
         rotations ``phi_out`` (radians from the drawn pose). ``signs``: (s1, s2, s3) with
         each +1 or -1; with ``relative`` (default) relative to the drawn pose's signs
-        (+1: the drawn branch of that loop), else the absolute half-angle roots."""
+        (+1: the drawn branch of that loop), else the absolute half-angle roots. ``k`` is
+        a central difference in the prescribed output (NaN without ``with_k``)."""
         pi = np.atleast_1d(np.asarray(phi_in, dtype=np.float64))
         po = np.atleast_1d(np.asarray(phi_out, dtype=np.float64))
         if pi.shape != po.shape or pi.ndim != 1:
@@ -159,10 +174,16 @@ class SeedPlan:
             signs = (1, 1, 1)
         if len(signs) != 3 or any(s not in (1, -1) for s in signs):
             raise ValueError(f"signs must be three of +1 / -1, got {signs!r}")
-        sg = tuple(int(s) * d for s, d in zip(signs, self._drawn, strict=True)) if relative else tuple(signs)
-        _, th, rad = self._solve(pi, po, sg)
-        h = 1e-6
-        _, th2, _ = self._solve(pi, po + h, sg)
-        _, th1, _ = self._solve(pi, po - h, sg)
-        k = _wrap(th2 - th1) / (2 * h)
+        sg = (
+            tuple(int(s) * d for s, d in zip(signs, self._drawn, strict=True))
+            if relative
+            else tuple(signs)
+        )
+        _, th, rad, _ = self._solve(pi, po, sg)
+        k = np.full(pi.shape, np.nan)
+        if with_k:
+            h = 1e-6
+            _, th2, _, _ = self._solve(pi, po + h, sg)
+            _, th1, _, _ = self._solve(pi, po - h, sg)
+            k = _wrap(th2 - th1) / (2 * h)
         return Generated(th, rad, k, (int(sg[0]), int(sg[1]), int(sg[2])))
