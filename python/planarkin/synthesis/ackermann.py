@@ -18,7 +18,7 @@ OUTER_DEG = math.degrees(math.atan(1.0 / (1.0 / math.tan(math.radians(INNER_DEG)
 #: the compact box: every joint within |x|, |y| <= BOX (wheelbases)
 BOX = 0.35
 #: the smallest |conditioning| allowed over the range (well away from a dead point)
-DET_MARGIN = 0.05
+DET_MARGIN = 0.1
 KINGPINS = {"KL": (-TRACK / 2, 0.0), "KR": (TRACK / 2, 0.0)}
 
 

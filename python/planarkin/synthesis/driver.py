@@ -38,6 +38,8 @@ class StartResult:
     message: str
     nit: int
     phases: list[dict[str, Any]] = field(default_factory=list)
+    #: the branch combination of the closed form (relative to the drawn pose)
+    signs: tuple[int, int, int] = (1, 1, 1)
 
 
 class _Cache:
@@ -214,6 +216,7 @@ def run_start(
         message=message,
         nit=nit,
         phases=phases,
+        signs=problem.signs,
     )
 
 
@@ -258,6 +261,12 @@ class SynthesisResult:
     objective: str
 
 
+def _signs(s: Sequence[int]) -> tuple[int, int, int]:
+    if len(s) != 3 or any(v not in (1, -1) for v in s):
+        raise ValueError(f"sign_combinations must hold three of +1 / -1 each, got {s!r}")
+    return (int(s[0]), int(s[1]), int(s[2]))
+
+
 def _default_executor(workers: int | None) -> Executor:
     return ProcessPoolExecutor(max_workers=workers or min(2, os.cpu_count() or 1))
 
@@ -273,10 +282,13 @@ def synthesize(
     sampler: Callable[[np.random.Generator], np.ndarray] | None = None,
     maxiter: int = 200,
     minimax: bool = True,
+    sign_combinations: Sequence[tuple[int, int, int]] = (),
 ) -> SynthesisResult:
     """Multistart SLSQP. ``starts`` runs: the given ``x0`` first, then the best of
     ``samples`` random candidates (``seed``); on ``executor`` (default a process pool of
-    up to 2 workers; a dask.distributed Client's ``get_executor()`` works the same)."""
+    up to 2 workers; a dask.distributed Client's ``get_executor()`` works the same).
+    ``sign_combinations`` (objectives on the seed's closed form): start i uses combination
+    i modulo their number, so the starts cover the branch combinations."""
     if starts < 1:
         raise ValueError(f"starts must be >= 1, got {starts}")
     if samples < 0:
@@ -296,7 +308,16 @@ def synthesize(
     own = executor is None
     ex: Executor = _default_executor(None) if executor is None else executor
     try:
-        futs = [ex.submit(run_start, problem, x, maxiter=maxiter, minimax=minimax) for x in xs]
+        probs = [
+            replace(problem, signs=_signs(sign_combinations[i % len(sign_combinations)]))
+            if sign_combinations
+            else problem
+            for i in range(len(xs))
+        ]
+        futs = [
+            ex.submit(run_start, p, x, maxiter=maxiter, minimax=minimax)
+            for p, x in zip(probs, xs, strict=True)
+        ]
         runs = [f.result() for f in futs]
     finally:
         if own:

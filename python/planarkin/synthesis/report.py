@@ -101,23 +101,44 @@ def conditioning_figure(problem: Problem, x: np.ndarray, dense: int = 1001) -> F
 
 
 def linkage_figure(problem: Problem, x: np.ndarray, angles_deg: Any = None) -> Figure:
-    """The linkage drawn at several input rotations (default 5 across the range)."""
+    """The linkage drawn at several input rotations (default: both ends of the range, their
+    midpoints and the drawn pose), with the compact box of the drawn pose dashed."""
     t = problem.target
     sc = problem.space.scene(x)
+    lo, hi = float(t.dense_in[0]), float(t.dense_in[-1])
     if angles_deg is None:
-        angles = np.linspace(t.dense_in[0], t.dense_in[-1], 5)
+        angles = (
+            np.array(sorted({lo, lo / 2, 0.0, hi / 2, hi}))
+            if lo < 0 < hi
+            else np.linspace(lo, hi, 5)
+        )
     else:
         angles = np.radians(np.asarray(angles_deg, dtype=np.float64))
     sw = sc.sweep(sc.input_angle + angles, outputs="all", tol=1e-12)
+    allxy = np.concatenate([sw.points[n] for n in sw.points])
+    allxy = allxy[np.all(np.isfinite(allxy), axis=1)]
+    pad = 0.05 * float(np.ptp(allxy, axis=0).max())
+    (x0, y0), (x1, y1) = allxy.min(axis=0) - pad, allxy.max(axis=0) + pad
+    sp = problem.space
+    box = (float(np.min(sp.lower)), float(np.max(sp.upper)))
     fig = Figure(figsize=(3.2 * angles.size, 3.6), layout="constrained")
     for i, a in enumerate(angles):
         ax = fig.add_subplot(1, angles.size, i + 1)
         xy = {n: sw.points[n][i] for n in sw.points}
         draw_pose(ax, sc, xy)
+        if abs(a) < 1e-12:
+            ax.plot(
+                [box[0], box[1], box[1], box[0], box[0]],
+                [box[0], box[0], box[1], box[1], box[0]],
+                "k--",
+                lw=0.7,
+            )
+            ax.set_title("input 0 deg (as drawn; design box dashed)", fontsize=9)
+        else:
+            ax.set_title(f"input {math.degrees(a):+.1f} deg", fontsize=9)
         ax.set_aspect("equal")
-        ax.set_title(f"input {math.degrees(a):+.1f} deg", fontsize=9)
-        ax.set_xlim(-0.45, 0.45)
-        ax.set_ylim(-0.45, 0.45)
+        ax.set_xlim(x0, x1)
+        ax.set_ylim(y0, y1)
         ax.grid(alpha=0.2)
     return fig
 
