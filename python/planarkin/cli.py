@@ -250,6 +250,17 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--json", action="store_true", help="print the JSON instead of the table")
     c.set_defaults(func=run_circuits)
 
+    y = sub.add_parser(
+        "synthesize",
+        help="defect-free synthesis of a double butterfly (seed 003): ackermann",
+        description="Synthesize a double butterfly by multistart SLSQP on the true linkage's "
+        "error, verify it, and write design.json, report.json and the seed's figures.",
+    )
+    from .synthesis import cli as synthesis_cli
+
+    synthesis_cli.add_arguments(y)
+    y.set_defaults(func=synthesis_cli.run_synthesize)
+
     t = sub.add_parser("tradeoff", help="measure the speed/accuracy trade-off")
     tradeoff.add_arguments(t)
     t.set_defaults(func=tradeoff.run)

@@ -1,0 +1,55 @@
+"""Defect-free dimensional synthesis of double butterfly linkages (seed 003): the seed's
+loop choice and generated output in closed form, SLSQP multistarts on the true linkage
+(the Rust scene solver), verification, and the Ackermann steering example.
+
+>>> from planarkin.synthesis import admissible_loop_choices, TYPE_I_LINKS
+>>> len(admissible_loop_choices(TYPE_I_LINKS, "1", "2", "5"))
+26
+"""
+
+from . import ackermann
+from .driver import StartResult, SynthesisResult, run_start, synthesize
+from .generated import SIGN_COMBINATIONS, Generated, SeedPlan, half_angle
+from .problem import OBJECTIVES, DesignSpace, FunctionTarget, PathTarget, Problem
+from .topology import (
+    STEERING_KNUCKLE,
+    STEERING_LEVER,
+    TEMPLATES,
+    TYPE_I,
+    TYPE_I_LINKS,
+    LoopChoice,
+    Template,
+    admissible_loop_choices,
+    loops,
+)
+from .verify import linear_sensitivity, tolerance_sensitivity, true_error, verify
+
+__all__ = [
+    "OBJECTIVES",
+    "SIGN_COMBINATIONS",
+    "STEERING_KNUCKLE",
+    "STEERING_LEVER",
+    "TEMPLATES",
+    "TYPE_I",
+    "TYPE_I_LINKS",
+    "DesignSpace",
+    "FunctionTarget",
+    "Generated",
+    "LoopChoice",
+    "PathTarget",
+    "Problem",
+    "SeedPlan",
+    "StartResult",
+    "SynthesisResult",
+    "Template",
+    "ackermann",
+    "admissible_loop_choices",
+    "half_angle",
+    "linear_sensitivity",
+    "loops",
+    "run_start",
+    "synthesize",
+    "tolerance_sensitivity",
+    "true_error",
+    "verify",
+]

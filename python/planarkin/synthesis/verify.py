@@ -1,0 +1,186 @@
+"""Verification of a design before it is returned: the true linkage swept through the
+whole input range (status, branch, jumps), its true error, the generated error of the
+seed's closed form, conditioning, link ratios and tolerance sensitivity."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from ..scene import Scene
+from .generated import SeedPlan
+from .problem import FunctionTarget, Problem, link_lengths
+from .topology import Template
+
+
+def _wrap(a: np.ndarray) -> np.ndarray:
+    return np.angle(np.exp(1j * np.asarray(a)))
+
+
+def output_rotation(sc: Scene, phi_in: np.ndarray, tol: float = 1e-12) -> tuple[np.ndarray, Any]:
+    """The true output rotation (from the drawn pose) at input rotations ``phi_in``, and
+    the sweep (from the drawn pose to phi_in[0], then along phi_in)."""
+    out = sc.output
+    if out is None:
+        raise ValueError("scene must have an output link")
+    link, pivot = out
+    pts = sc.points
+    first = next(p for p in sc.links[link] if p != pivot)
+    a0 = math.atan2(pts[first][1] - pts[pivot][1], pts[first][0] - pts[pivot][0])
+    sw = sc.sweep(sc.input_angle + np.asarray(phi_in), outputs=[link], tol=tol)
+    return _wrap(sw.angles[link] - a0), sw
+
+
+def sign_changes(det: np.ndarray) -> int:
+    """Sign changes along a sweep (a failed angle counts as one)."""
+    s = np.sign(np.where(np.isfinite(det), det, 0.0))
+    return int(np.count_nonzero(s[1:] != s[:-1]))
+
+
+def true_error(
+    sc: Scene, phi_in: np.ndarray, phi_out: np.ndarray
+) -> tuple[np.ndarray, dict[str, Any]]:
+    """True output error (radians) of scene ``sc`` at ``phi_in`` against ``phi_out``, with
+    the sweep's verdict: all converged, det sign changes, min |det|, largest output jump
+    between neighbours relative to the input step."""
+    rot, sw = output_rotation(sc, phi_in)
+    err = rot - phi_out
+    ok = bool(np.all(sw.status == 0))
+    dphi = np.abs(np.diff(phi_in))
+    jump = float(np.max(np.abs(_wrap(np.diff(rot))) / dphi)) if ok and dphi.size else math.inf
+    info = {
+        "converged": ok,
+        "det_sign_changes": sign_changes(sw.det),
+        "min_abs_conditioning": float(np.nanmin(np.abs(sw.det))) if ok else 0.0,
+        "max_output_rate": jump,
+    }
+    return err, info
+
+
+def link_ratio(points: Mapping[str, Sequence[float]], template: Template) -> float:
+    """Longest over shortest distance between two joints of one link."""
+    ls = link_lengths(points, template)
+    return float(ls.max() / ls.min())
+
+
+def tolerance_sensitivity(
+    sc: Scene,
+    phi_in: np.ndarray,
+    phi_out: np.ndarray,
+    sigmas: Sequence[float] = (1e-5, 1e-4, 1e-3),
+    samples: int = 200,
+    seed: int = 0,
+) -> list[dict[str, float]]:
+    """Median and 95th percentile of the true max error (degrees) when every joint
+    coordinate gets Gaussian noise of standard deviation sigma (scene units); a noisy
+    linkage that fails to move through the range counts as infinite error."""
+    if samples < 1:
+        raise ValueError(f"samples must be >= 1, got {samples}")
+    rng = np.random.default_rng(seed)
+    d = sc.to_dict()
+    names = list(d["points"])
+    out = []
+    for sigma in sigmas:
+        if not (math.isfinite(sigma) and sigma >= 0):
+            raise ValueError(f"sigmas must be finite and >= 0, got {sigma}")
+        errs = []
+        for _ in range(samples):
+            dd = dict(d)
+            dd["points"] = {
+                n: [
+                    d["points"][n][0] + rng.normal(0, sigma),
+                    d["points"][n][1] + rng.normal(0, sigma),
+                ]
+                for n in names
+            }
+            try:
+                e, info = true_error(Scene.from_dict(dd), phi_in, phi_out)
+                errs.append(float(np.degrees(np.max(np.abs(e)))) if info["converged"] else math.inf)
+            except ValueError:
+                errs.append(math.inf)
+        a = np.array(errs)
+        out.append(
+            {
+                "sigma": float(sigma),
+                "samples": samples,
+                "median_max_error_deg": float(np.median(a)),
+                "p95_max_error_deg": float(np.percentile(a, 95))
+                if np.isfinite(a).sum()
+                else math.inf,
+                "failed": int(np.count_nonzero(~np.isfinite(a))),
+            }
+        )
+    return out
+
+
+def verify(problem: Problem, x: np.ndarray, dense: int = 1001) -> dict[str, Any]:
+    """Every figure of a function-generation design: true error at the design points and
+    on ``dense`` points over the range, the generated error of the seed's closed form
+    (drawn signs) with k, branch and conditioning, link ratio, the bounding box."""
+    t = problem.target
+    if not isinstance(t, FunctionTarget):
+        raise ValueError("verify needs a function-generation target")
+    sp = problem.space
+    sc = sp.scene(x)
+    pts = sp.points_of(x)
+    e31, info31 = true_error(sc, t.phi_in, t.phi_out)
+    lo, hi = float(t.dense_in[0]), float(t.dense_in[-1])
+    grid = np.linspace(lo, hi, dense)
+    interp_out = _dense_out(problem, grid)
+    ed, infod = true_error(sc, grid, interp_out)
+    plan = SeedPlan(sp.template, pts)
+    g = plan.generated(t.phi_in, t.phi_out)
+    eg = g.theta - t.phi_out
+    xy = np.array(list(pts.values()))
+    return {
+        "generated_max_error_deg": float(np.degrees(np.max(np.abs(eg)))),
+        "generated_rms_over_range": float(np.sqrt(np.mean(eg**2)) / t.scale),
+        "generated_signs": list(g.signs),
+        "generated_min_radicand": float(np.min(g.radicand)),
+        "k_range": [float(np.min(g.k)), float(np.max(g.k))],
+        "corrected_max_error_deg": float(np.degrees(np.max(np.abs(eg / (1 - g.k))))),
+        "true_max_error_deg": float(np.degrees(np.max(np.abs(e31)))),
+        "true_rms_over_range": float(np.sqrt(np.mean(e31**2)) / t.scale),
+        f"true_max_error_deg_{dense}": float(np.degrees(np.max(np.abs(ed)))),
+        "design_points": int(t.phi_in.size),
+        "dense_points": dense,
+        "converged": bool(info31["converged"] and infod["converged"]),
+        "det_sign_changes": int(infod["det_sign_changes"]),
+        "min_abs_conditioning": float(infod["min_abs_conditioning"]),
+        "max_output_rate": float(infod["max_output_rate"]),
+        "link_ratio": link_ratio(pts, sp.template),
+        "shortest_link": float(link_lengths(pts, sp.template).min()),
+        "longest_link": float(link_lengths(pts, sp.template).max()),
+        "max_abs_x": float(np.max(np.abs(xy[:, 0]))),
+        "max_abs_y": float(np.max(np.abs(xy[:, 1]))),
+    }
+
+
+def _dense_out(problem: Problem, grid: np.ndarray) -> np.ndarray:
+    t = problem.target
+    assert isinstance(t, FunctionTarget)
+    if t.function is not None:
+        return np.asarray(t.function(grid), dtype=np.float64)
+    return np.interp(grid, t.dense_in, t.dense_out)
+
+
+def linear_sensitivity(
+    sc: Scene, phi_in: np.ndarray, phi_out: np.ndarray, h: float = 1e-7
+) -> float:
+    """RMS over ``phi_in`` of the first-order output error (degrees) per unit of Gaussian
+    noise on every joint coordinate: sqrt(mean_i sum_j (d e_i / d x_j)^2), forward
+    differences of the true linkage. Times sigma, the expected RMS error under noise."""
+    d = sc.to_dict()
+    e0, _ = true_error(sc, phi_in, phi_out)
+    rows = []
+    for n in d["points"]:
+        for k in (0, 1):
+            dd = {**d, "points": {m: list(v) for m, v in d["points"].items()}}
+            dd["points"][n][k] += h
+            e1, _ = true_error(Scene.from_dict(dd), phi_in, phi_out)
+            rows.append((e1 - e0) / h)
+    j = np.array(rows)
+    return float(np.degrees(np.sqrt(np.mean(np.sum(j**2, axis=0)))))
