@@ -338,7 +338,8 @@ def test_python_dash_m_runs_the_same_command():
 def test_subcommands_and_tradeoff_registration():
     parser = cli.build_parser()
     (sub,) = [a for a in parser._actions if a.dest == "command"]
-    assert set(sub.choices) == {"analyze", "animate", "circuits", "scenes", "synthesize", "tradeoff"}
+    commands = {"analyze", "animate", "circuits", "scenes", "synthesize", "tradeoff"}
+    assert set(sub.choices) == commands
     assert sub.choices["tradeoff"].get_default("func") is tradeoff.run
     help_text = sub.choices["analyze"].format_help()
     for opt in ("--links", "--mode", "--step", "--tol", "--rpm", "--coupler", "--out",
