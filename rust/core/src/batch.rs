@@ -98,9 +98,6 @@ pub fn sweep_batch(
     threads: Option<usize>,
     interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
-    if opts.method == crate::sweep::Method::Newton && crate::simd::enabled() {
-        return crate::simd::newton::sweep_batch(links, theta2, opts, out, threads, interrupt);
-    }
     let n = theta2.len();
     let mn = links.len() * n;
     check("theta3", out.theta3.len(), mn)?;
@@ -110,6 +107,9 @@ pub fn sweep_batch(
     check("residual", out.residual.len(), mn)?;
     if n == 0 {
         return Ok(());
+    }
+    if opts.method == crate::sweep::Method::Newton && crate::simd::enabled() {
+        return crate::simd::newton::sweep_batch(links, theta2, opts, out, threads, interrupt);
     }
     let trig = sin_cos(theta2)?;
     let size = mn as u128 * (u128::from(opts.newton.max_iter) + 1);

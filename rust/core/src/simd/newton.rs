@@ -39,17 +39,10 @@ macro_rules! lanes {
     }};
 }
 
-fn check(name: &str, got: usize, expected: usize) -> Result<(), Error> {
-    if got == expected {
-        Ok(())
-    } else {
-        Err(Error::Shape { name: name.into(), got, expected })
-    }
-}
-
 /// [`crate::batch::sweep_batch`] for `Method::Newton` with the lane kernel: groups of
 /// [`W`] linkages, rayon-parallel over groups; a last group of fewer rows runs scalar.
-pub fn sweep_batch(
+/// The caller has checked the output lengths and that there is at least one angle.
+pub(crate) fn sweep_batch(
     links: &[FourBar],
     theta2: &[f64],
     opts: &SweepOptions,
@@ -59,14 +52,6 @@ pub fn sweep_batch(
 ) -> Result<(), Error> {
     let n = theta2.len();
     let mn = links.len() * n;
-    check("theta3", out.theta3.len(), mn)?;
-    check("theta4", out.theta4.len(), mn)?;
-    check("status", out.status.len(), mn)?;
-    check("nit", out.nit.len(), mn)?;
-    check("residual", out.residual.len(), mn)?;
-    if n == 0 {
-        return Ok(());
-    }
     let trig = crate::sweep::sin_cos(theta2)?;
     let g = W * n;
     let size = mn as u128 * (u128::from(opts.newton.max_iter) + 1);
