@@ -35,6 +35,19 @@ PREDICTORS = ("previous", "tangent", "quadratic")
 METHODS = ("newton", "closed-form")
 
 
+def wrap(a: float) -> float:
+    """Wraps to (-pi, pi]; angles already there are returned unchanged."""
+    if -math.pi < a <= math.pi:
+        return a
+    if not math.isfinite(a):
+        return float("nan")
+    r = math.fmod(a + math.pi, TAU)
+    if r < 0.0:
+        r += TAU
+    r -= math.pi
+    return math.pi if r <= -math.pi else r
+
+
 class Status(IntEnum):
     """How one solve ended. Arrays of results carry these codes as ``int8``."""
 

@@ -30,6 +30,7 @@ from ._types import (
     check_options,
     motion_args,
     sweep_args,
+    wrap,
 )
 from .reference_scene import SceneReference, scene_sweep  # noqa: E402, F401
 
@@ -63,19 +64,6 @@ def unit_lengths(r: tuple[float, float, float, float]) -> tuple[float, float, fl
 def _lengths(fb: object) -> tuple[float, float, float, float]:
     """The validated unit lengths of ``fb`` (what every computation uses)."""
     return unit_lengths(_raw_lengths(fb))
-
-
-def wrap(a: float) -> float:
-    """Wraps to (-pi, pi]; angles already there are returned unchanged."""
-    if -math.pi < a <= math.pi:
-        return a
-    if not math.isfinite(a):
-        return _NAN
-    r = math.fmod(a + math.pi, TAU)
-    if r < 0.0:
-        r += TAU
-    r -= math.pi
-    return math.pi if r <= -math.pi else r
 
 
 #: As the kernel: sides that close within this many ulp of the longest link are flat.

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._types import Status
+from ._types import Status, wrap
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -50,17 +50,6 @@ class SceneReference:
     def success(self) -> np.ndarray:
         """(N,) bool: where the status is CONVERGED."""
         return self.status == Status.CONVERGED
-
-
-def _wrap(a: float) -> float:
-    """Wraps to (-pi, pi]."""
-    if -math.pi < a <= math.pi:
-        return a
-    r = math.fmod(a + math.pi, TAU)
-    if r < 0.0:
-        r += TAU
-    r -= math.pi
-    return math.pi if r <= -math.pi else r
 
 
 class _System:
@@ -218,7 +207,7 @@ class _System:
     def normalize(self, x: np.ndarray) -> np.ndarray:
         """Rotations kept in (-pi, pi]: iterates that wander lose bits."""
         for i in range(len(self.free)):
-            x[3 * i + 2] = _wrap(float(x[3 * i + 2]))
+            x[3 * i + 2] = wrap(float(x[3 * i + 2]))
         return x
 
     def sign(self, x: np.ndarray, theta: float) -> float:
@@ -348,7 +337,7 @@ def scene_sweep(
             continue
         if not hist:
             # the drawn state, re-labelled t minus the wrapped shortest difference
-            hist = [(t - _wrap(t - sys_.theta0), *drawn)]  # type: ignore[misc]
+            hist = [(t - wrap(t - sys_.theta0), *drawn)]  # type: ignore[misc]
         x, s, k, h = _march(sys_, hist, t, tol, max_iter, max_step)
         nit[i] = k
         status[i] = s
@@ -360,13 +349,13 @@ def scene_sweep(
             pts[p][i] = v
         for link, (a, b) in ang_pts.items():
             d = pose[b] - pose[a]
-            angles[link][i] = _wrap(math.atan2(d[1], d[0]))
+            angles[link][i] = wrap(math.atan2(d[1], d[0]))
     for p in sys_.carriers:
         if sys_.home[p] == sys_.ground:
             pts[p][:] = sys_.points[p]
     a, b = ang_pts[sys_.ground]
     d = sys_.points[b] - sys_.points[a]
-    angles[sys_.ground][:] = _wrap(math.atan2(d[1], d[0]))
+    angles[sys_.ground][:] = wrap(math.atan2(d[1], d[0]))
     return SceneReference(theta=th, points=pts, angles=angles, status=status, nit=nit)
 
 

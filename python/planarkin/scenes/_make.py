@@ -92,7 +92,7 @@ def motion(scene, margin=5 * DEG):
     of the Jacobian met on it more than ``margin`` from its ends (dead points)."""
     hi, tr, xe = reach(scene, +1)
     if hi >= 2 * math.pi - 1e-12:
-        closed = np.max(np.abs(np.array([ref._wrap(v) for v in xe]))) < 1e-8
+        closed = np.max(np.abs(np.array([ref.wrap(v) for v in xe]))) < 1e-8
         return 0.0, 2 * math.pi, bool(closed), min(r for _, r in tr)
     lo, tr2, _ = reach(scene, -1)
     inner = [r for t, r in tr if t < hi - margin] + [r for t, r in tr2 if t < lo - margin]
