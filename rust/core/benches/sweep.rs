@@ -10,11 +10,11 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
-use planarkin_core::arrays::closed_form_into;
-use planarkin_core::batch::{closed_form_batch, sweep_batch, validate_links, BatchOut};
-use planarkin_core::newton::SINGULAR_THRESHOLD;
-use planarkin_core::sweep::{default_angles, sweep_into, Method, SweepOut};
-use planarkin_core::{simd, FourBar, Mode, Never, NewtonOptions, Predictor, SweepOptions};
+use planarkin_core::fourbar::{
+    closed_form_batch, closed_form_into, default_angles, sweep_batch, sweep_into, validate_links, BatchOut, SweepOut,
+};
+use planarkin_core::solve::newton::SINGULAR_THRESHOLD;
+use planarkin_core::{simd, FourBar, Method, Mode, Never, NewtonOptions, Predictor, SweepOptions};
 
 const N: usize = 361;
 

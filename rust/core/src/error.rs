@@ -69,6 +69,15 @@ pub fn try_zeros<T: Clone + Default>(what: impl FnOnce() -> String, len: usize) 
     }
 }
 
+/// Makes room for `additional` more values in `v`, fallibly: an [`Error::Allocation`]
+/// naming `what` (and the bytes the grown vector needs) instead of an abort.
+pub(crate) fn try_grow<T>(v: &mut Vec<T>, additional: usize, what: impl FnOnce() -> String) -> Result<(), Error> {
+    v.try_reserve(additional).map_err(|_| Error::Allocation {
+        what: what(),
+        bytes: (v.len() as u128 + additional as u128) * std::mem::size_of::<T>() as u128,
+    })
+}
+
 /// Checks that `value` is finite and > 0.
 pub(crate) fn positive_finite(name: impl Into<String>, value: f64) -> Result<f64, Error> {
     if value.is_finite() && value > 0.0 {

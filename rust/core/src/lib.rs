@@ -1,33 +1,35 @@
 //! planarkin-core: planar linkage kinematics in pure Rust (no Python types).
 //!
-//! A Newton-Raphson solver generic over the number of unknowns ([`newton`]), the
-//! four-bar linkage that plugs into it ([`fourbar`]), continuation sweeps over crank
-//! angles ([`sweep`]) and rayon-parallel batches of linkages ([`batch`]).
+//! The crate is organised by subject, one folder each:
+//! - [`fourbar`]: the four-bar linkage: validated lengths, closed form, Newton sweeps and
+//!   batches, pointwise kernels, limit positions, Grashof and Barker classes, and the
+//!   four-bar's SIMD kernels;
+//! - [`scene`]: any one-degree-of-freedom planar linkage described as data: validation,
+//!   the plan its outputs need, sweeps, every assembly, circuits;
+//! - [`solve`]: the solvers the subjects share: Newton-Raphson generic over the number
+//!   of unknowns, and the all-solutions homotopy.
+//!
+//! Shared leaves at the top, which the subjects use and which use no subject: [`error`],
+//! [`status`], [`interrupt`], [`parallel`] (thread pools), [`simd`] (the SIMD switch and
+//! polynomial sin/cos/atan2), and [`wrap_angle`].
 
 // `!(x >= t)` is deliberate throughout: it is true for NaN, which must fail every check.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-pub mod arrays;
-pub mod batch;
 pub mod error;
 pub mod fourbar;
-pub mod grashof;
-pub mod homotopy;
 pub mod interrupt;
-pub mod limits;
-pub mod newton;
+pub mod parallel;
 pub mod scene;
 pub mod simd;
+pub mod solve;
 pub mod status;
-pub mod sweep;
 
 pub use error::Error;
-pub use fourbar::{Assembly, FourBar, Mode};
-pub use grashof::{Barker, Grashof, GrashofClass};
+pub use fourbar::{ClosedForm, FourBar, Method, Mode, Predictor, SweepOptions};
 pub use interrupt::{Interrupt, Never};
-pub use newton::{NewtonOptions, System};
+pub use solve::newton::{NewtonOptions, System};
 pub use status::Status;
-pub use sweep::{Method, Predictor, SweepOptions};
 
 use std::f64::consts::{PI, TAU};
 

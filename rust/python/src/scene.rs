@@ -1,19 +1,22 @@
-//! Bindings of the scene solver: convert, release the GIL, map errors.
+//! Bindings of the scene solver: `Scene` (validation, assemblies, trace, circuits) and
+//! its compiled `Plan` (sweeps). Convert, release the GIL, map errors; nothing numeric.
 
-use numpy::ndarray::{Array2, Array3};
-use numpy::{IntoPyArray, PyArray2, PyArray3, PyReadonlyArray1, PyReadonlyArray2};
-use planarkin_core::homotopy::HomotopyOptions;
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use planarkin_core::scene::{
     Assemblies, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace, TraceOptions,
 };
+use planarkin_core::solve::homotopy::HomotopyOptions;
 use planarkin_core::NewtonOptions;
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::{err, grid_len, slice, zeros, Arr1, Signals};
+use crate::buffers::{cube, grid, grid_len, slice, zeros, Arr1, Arr2, Arr3};
+use crate::errors::{err, Signals};
 
 /// A validated scene (see `planarkin.Scene`, which wraps it).
 #[pyclass(frozen, module = "planarkin._core", name = "Scene")]
-pub struct PyScene {
+pub(crate) struct PyScene {
     inner: Scene,
 }
 
@@ -54,16 +57,16 @@ impl PyScene {
 
     /// Number of joints (a point on m links counts m - 1).
     #[getter]
-    fn joints(&self) -> usize {
-        self.inner.joints()
+    fn joint_count(&self) -> usize {
+        self.inner.joint_count()
     }
 
     /// Every real assembly at `theta`: ([(points (P,2), label, det, step_det)],
     /// complex counts per group step, failed homotopy paths).
     #[pyo3(signature = (theta, seed, runs))]
-    fn assemblies<'py>(&self, py: Python<'py>, theta: f64, seed: u64, runs: u32) -> PyResult<AssembliesOut<'py>> {
-        let opts = homotopy_options(seed, runs)?;
-        let a = py.detach(|| self.inner.assemblies(theta, &opts)).map_err(err)?;
+    fn assemblies<'py>(&self, py: Python<'py>, theta: f64, seed: u64, runs: i64) -> PyResult<AssembliesOut<'py>> {
+        let opts = HomotopyOptions::new(seed, runs).map_err(err)?;
+        let a = Signals::detach(py, |signals| self.inner.assemblies(theta, &opts, signals))?;
         Ok(assemblies_out(py, a))
     }
 
@@ -75,11 +78,11 @@ impl PyScene {
         py: Python<'py>,
         start: Option<PyReadonlyArray2<'py, f64>>,
         step: f64,
-        max_points: usize,
+        max_points: i64,
     ) -> PyResult<TraceOut<'py>> {
         let opts = TraceOptions::new(step, max_points).map_err(err)?;
         let start = start.map(|a| points_of("start", &a)).transpose()?;
-        let t = py.detach(|| self.inner.trace(start.as_deref(), &opts)).map_err(err)?;
+        let t = Signals::detach(py, |signals| self.inner.trace(start.as_deref(), &opts, signals))?;
         Ok(trace_out(py, t, self.inner.point_names().len()))
     }
 
@@ -91,13 +94,13 @@ impl PyScene {
         py: Python<'py>,
         theta: f64,
         seed: u64,
-        runs: u32,
+        runs: i64,
         step: f64,
-        max_points: usize,
+        max_points: i64,
     ) -> PyResult<(AssembliesOut<'py>, Vec<CircuitOut<'py>>)> {
-        let hopts = homotopy_options(seed, runs)?;
+        let hopts = HomotopyOptions::new(seed, runs).map_err(err)?;
         let topts = TraceOptions::new(step, max_points).map_err(err)?;
-        let (a, cs) = py.detach(|| self.inner.circuits(theta, &hopts, &topts)).map_err(err)?;
+        let (a, cs) = Signals::detach(py, |signals| self.inner.circuits(theta, &hopts, &topts, signals))?;
         let np = self.inner.point_names().len();
         let circuits = cs
             .into_iter()
@@ -115,12 +118,10 @@ impl PyScene {
 
 /// A compiled plan.
 #[pyclass(frozen, module = "planarkin._core", name = "Plan")]
-pub struct PyPlan {
+pub(crate) struct PyPlan {
     inner: Plan,
 }
 
-type Arr2<'py, T> = Bound<'py, PyArray2<T>>;
-type Arr3<'py, T> = Bound<'py, PyArray3<T>>;
 type SceneSweepArrays<'py> = (
     Arr3<'py, f64>,
     Arr2<'py, f64>,
@@ -180,8 +181,7 @@ impl PyPlan {
         let (mut step_status, mut step_det, mut point_status) =
             (zeros(what, nsn)?, zeros(what, nsn)?, zeros(what, npn / 2)?);
         let mut vel = omega.map(|_| Ok::<_, PyErr>((zeros(what, npn)?, zeros(what, nln)?))).transpose()?;
-        let signals = Signals::default();
-        py.detach(|| {
+        Signals::detach(py, |signals| {
             let out = SceneSweepOut {
                 points: &mut points,
                 angles: &mut angles,
@@ -194,25 +194,19 @@ impl PyPlan {
                 point_status: &mut point_status,
                 velocity: vel.as_mut().map(|(v, w)| (v.as_mut_slice(), w.as_mut_slice())),
             };
-            plan.sweep(t, &opts, out, &signals)
-        })
-        .map_err(|e| signals.err(e))?;
-        let a2 =
-            |r: usize, c: usize, v: Vec<f64>| Array2::from_shape_vec((r, c), v).expect("r * c values").into_pyarray(py);
-        let a3 = |v: Vec<f64>| Array3::from_shape_vec((n, np, 2), v).expect("n * np * 2 values").into_pyarray(py);
-        let i2 =
-            |r: usize, c: usize, v: Vec<i8>| Array2::from_shape_vec((r, c), v).expect("r * c values").into_pyarray(py);
+            plan.sweep(t, &opts, out, signals)
+        })?;
         Ok((
-            a3(points),
-            a2(n, nl, angles),
+            cube(py, (n, np, 2), points),
+            grid(py, n, nl, angles),
             status.into_pyarray(py),
             nit.into_pyarray(py),
             det.into_pyarray(py),
             limit.into_pyarray(py),
-            i2(n, ns, step_status),
-            a2(n, ns, step_det),
-            i2(n, np, point_status),
-            vel.map(|(v, w)| (a3(v), a2(n, nl, w))),
+            grid(py, n, ns, step_status),
+            grid(py, n, ns, step_det),
+            grid(py, n, np, point_status),
+            vel.map(|(v, w)| (cube(py, (n, np, 2), v), grid(py, n, nl, w))),
         ))
     }
 }
@@ -221,13 +215,6 @@ type AssemblyOut<'py> = (Arr2<'py, f64>, String, f64, Vec<f64>);
 type AssembliesOut<'py> = (Vec<AssemblyOut<'py>>, Vec<Vec<usize>>, usize, usize);
 type TraceOut<'py> = (Arr1<'py, f64>, Arr3<'py, f64>, Arr1<'py, f64>, Vec<f64>, bool);
 type CircuitOut<'py> = (Vec<usize>, Vec<f64>, f64, (f64, f64), TraceOut<'py>);
-
-fn homotopy_options(seed: u64, runs: u32) -> PyResult<HomotopyOptions> {
-    if runs == 0 {
-        return Err(pyo3::exceptions::PyValueError::new_err("runs must be >= 1, got 0"));
-    }
-    Ok(HomotopyOptions { seed, runs, ..HomotopyOptions::default() })
-}
 
 fn xy_array(py: Python<'_>, pts: Vec<[f64; 2]>) -> Arr2<'_, f64> {
     let n = pts.len();
@@ -241,22 +228,20 @@ fn assemblies_out(py: Python<'_>, a: Assemblies) -> AssembliesOut<'_> {
 
 fn trace_out(py: Python<'_>, t: Trace, np: usize) -> TraceOut<'_> {
     let m = t.theta.len();
-    let pts = Array3::from_shape_vec((m, np, 2), t.points.into_iter().flatten().collect())
-        .expect("m * np * 2 values")
-        .into_pyarray(py);
+    let pts = cube(py, (m, np, 2), t.points.into_iter().flatten().collect());
     (t.theta.into_pyarray(py), pts, t.det.into_pyarray(py), t.turning_points, t.closed)
 }
 
 fn points_of(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<[f64; 2]>> {
     let v = a.as_array();
     if v.ncols() != 2 {
-        return Err(pyo3::exceptions::PyValueError::new_err(format!("{name} must have shape (P, 2)")));
+        return Err(PyValueError::new_err(format!("{name} must have shape (P, 2)")));
     }
     Ok(v.rows().into_iter().map(|r| [r[0], r[1]]).collect())
 }
 
 /// Adds the scene classes to the extension module.
-pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_class::<PyPlan>()?;
     Ok(())

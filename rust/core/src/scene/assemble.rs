@@ -1,13 +1,14 @@
 //! Every real assembly at one input angle: the plan's steps branched over all their
 //! solutions. A dyad has two sides (none where it cannot close); a group's real solutions
-//! come from the all-solutions homotopy on its loop equations ([`crate::homotopy`]), two
+//! come from the all-solutions homotopy on its loop equations ([`crate::solve::homotopy`]), two
 //! runs with independent random gammas merged and polished by Newton.
 
 use super::dyad::DyadOut;
 use super::plan::{Op, Plan};
-use super::{perp, Xy};
-use crate::error::Error;
-use crate::homotopy::{unit_circle_solutions, HomotopyOptions};
+use super::vec2::{perp, Xy};
+use crate::error::{try_grow, Error};
+use crate::interrupt::{Interrupt, Poll};
+use crate::solve::homotopy::{unit_circle_solutions_polled, HomotopyOptions};
 
 /// One real assembly.
 #[derive(Clone, Debug, PartialEq)]
@@ -41,6 +42,7 @@ pub struct Assemblies {
 struct Walk<'p> {
     plan: &'p Plan,
     opts: HomotopyOptions,
+    poll: Poll<'p>,
     u: Xy,
     out: Assemblies,
     /// group op index -> position in `out.complex_counts`
@@ -48,8 +50,14 @@ struct Walk<'p> {
 }
 
 impl Plan {
-    /// Every real assembly at input angle `theta` (radians).
-    pub fn assemblies(&self, theta: f64, opts: &HomotopyOptions) -> Result<Assemblies, Error> {
+    /// Every real assembly at input angle `theta` (radians). `interrupt` is asked every
+    /// few thousand homotopy steps and assemblies (Ctrl-C from Python).
+    pub fn assemblies<'p>(
+        &'p self,
+        theta: f64,
+        opts: &HomotopyOptions,
+        interrupt: &'p dyn Interrupt,
+    ) -> Result<Assemblies, Error> {
         if !theta.is_finite() {
             return Err(Error::invalid("theta", "must be finite", theta));
         }
@@ -65,6 +73,7 @@ impl Plan {
         let mut w = Walk {
             plan: self,
             opts: *opts,
+            poll: Poll::new(interrupt),
             u: [c, s],
             out: Assemblies { complex_counts: vec![Vec::new(); groups], ..Default::default() },
             group_slot,
@@ -81,9 +90,9 @@ impl Plan {
 impl Walk<'_> {
     fn walk(&mut self, i: usize, pos: &mut [Xy], dets: &mut Vec<f64>, labels: &mut Vec<String>) -> Result<(), Error> {
         let plan = self.plan;
+        self.poll.tick()?;
         let Some(op) = plan.ops.get(i) else {
-            self.emit(pos, dets, labels);
-            return Ok(());
+            return self.emit(pos, dets, labels);
         };
         match op {
             Op::Input { q, lam, mu } => {
@@ -121,7 +130,7 @@ impl Walk<'_> {
                 let nc = g.closures.len();
                 let delta = g.deltas(|p| pos[p]);
                 let (a, b) = g.linear_form(&delta[..nc]);
-                let sol = unit_circle_solutions(&a, &b, &self.opts)?;
+                let sol = unit_circle_solutions_polled(&a, &b, &self.opts, &self.poll)?;
                 self.out.complex_counts[self.group_slot[i]].push(sol.complex.len());
                 self.out.failed_paths += sol.failed;
                 let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
@@ -154,8 +163,10 @@ impl Walk<'_> {
         }
     }
 
-    fn emit(&mut self, pos: &[Xy], dets: &[f64], labels: &[String]) {
+    fn emit(&mut self, pos: &[Xy], dets: &[f64], labels: &[String]) -> Result<(), Error> {
         let plan = self.plan;
+        let n = self.out.list.len();
+        try_grow(&mut self.out.list, 1, || format!("assemblies: a list of {} assemblies", n + 1))?;
         let points =
             pos.iter().map(|p| [p[0] * plan.scale + plan.origin[0], p[1] * plan.scale + plan.origin[1]]).collect();
         self.out.list.push(Assembly {
@@ -164,5 +175,6 @@ impl Walk<'_> {
             det: dets.iter().product(),
             label: labels.concat(),
         });
+        Ok(())
     }
 }

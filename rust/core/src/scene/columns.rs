@@ -1,14 +1,14 @@
 //! The sweep of a plan with no group (dyads and rigid carries only): nothing carries over
 //! from one angle to the next, so each operation runs over a block of angles at a time,
 //! on columns of coordinates (tight loops, no per-angle dispatch), and the rows of the
-//! outputs are written once per block. Same numbers as [`super::sweep`]'s per-angle path.
+//! outputs are written once per block. Same numbers as the per-angle path of `sweep`.
 
 // the column loops index several arrays (and an offset into each) by the same angle
 #![allow(clippy::needless_range_loop)]
 
 use super::dyad::{Dyad, DyadOut};
+use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
-use super::sweep::{SceneSweepOptions, SceneSweepOut};
 use crate::error::Error;
 use crate::interrupt::Poll;
 use crate::Status;

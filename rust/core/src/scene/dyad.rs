@@ -1,7 +1,7 @@
 //! The RRR dyad: a point reached by two links from two known points, in closed form
 //! (circle intersection), on the side of the line K1 -> K2 it was drawn on.
 
-use super::{cross, dot, perp, sub, Xy};
+use super::vec2::{cross, dot, perp, sub, Xy};
 
 /// Known points closer than this fraction of r1 + r2 coincide.
 const COINCIDENT: f64 = 1e-12;
@@ -37,13 +37,13 @@ impl Dyad {
     /// Heron's formula in factored form (nothing cancels near a dead point, and
     /// power-of-two scaling is exact), no trigonometry.
     #[inline]
-    pub fn solve(&self, a: Xy, b: Xy) -> DyadOut {
+    pub(super) fn solve(&self, a: Xy, b: Xy) -> DyadOut {
         self.solve_side(a, b, self.side)
     }
 
     /// [`Dyad::solve`] on a given side (+1 / -1) instead of the drawn one.
     #[inline]
-    pub fn solve_side(&self, a: Xy, b: Xy, side: f64) -> DyadOut {
+    pub(super) fn solve_side(&self, a: Xy, b: Xy, side: f64) -> DyadOut {
         let (r1, r2) = (self.r1, self.r2);
         let u = sub(b, a);
         let d2 = dot(u, u);
@@ -71,14 +71,14 @@ impl Dyad {
 
     /// Signed sine of the angle at `p` of the triangle k1-p-k2, from positions.
     #[inline]
-    pub fn det_at(&self, p: Xy, a: Xy, b: Xy) -> f64 {
+    pub(super) fn det_at(&self, p: Xy, a: Xy, b: Xy) -> f64 {
         cross(sub(a, p), sub(b, p)) / (self.r1 * self.r2)
     }
 
     /// Velocity of the solved point from the known points' velocities: the two link
     /// lengths stay fixed, (p - k_i) . (v - v_i) = 0. `None` at a dead point.
     #[inline]
-    pub fn velocity(p: Xy, a: Xy, b: Xy, va: Xy, vb: Xy) -> Option<Xy> {
+    pub(super) fn velocity(p: Xy, a: Xy, b: Xy, va: Xy, vb: Xy) -> Option<Xy> {
         let (e1, e2) = (sub(p, a), sub(p, b));
         let det = cross(e1, e2);
         if det == 0.0 {

@@ -16,8 +16,8 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::{perp, rotate, sub, Xy};
-use crate::newton::{self, hadamard_ratio, NewtonOptions, System};
+use super::vec2::{perp, sub, turn, Xy};
+use crate::solve::newton::{self, hadamard_ratio, NewtonOptions, System};
 use crate::{wrap_angle, Status};
 
 /// Calls `$f::<N>(args)` for the runtime group size (even: two equations per closure).
@@ -96,7 +96,7 @@ impl Group {
     /// Builds the spanning tree and closures for `links` hanging from the known points;
     /// `None` when the links are not one connected rigid group over them (some link or
     /// joint unreached, or a count that does not close), or when it is singular as drawn.
-    pub fn build(links: &[usize], link_points: &[&[usize]], known: &[bool], xy: &[Xy]) -> Option<Group> {
+    pub(super) fn build(links: &[usize], link_points: &[&[usize]], known: &[bool], xy: &[Xy]) -> Option<Group> {
         let n = links.len();
         if n == 0 || n > MAX || n % 2 == 1 {
             return None;
@@ -114,7 +114,13 @@ impl Group {
     /// The spanning tree and closures of `links` over the known points, leaving `dof`
     /// unknowns free (0 for a rigid group; 1 for a whole linkage with its input among the
     /// links, as tracing uses it). Any size: the caller checks what it needs.
-    pub fn tree(links: &[usize], link_points: &[&[usize]], known: &[bool], xy: &[Xy], dof: usize) -> Option<Group> {
+    pub(super) fn tree(
+        links: &[usize],
+        link_points: &[&[usize]],
+        known: &[bool],
+        xy: &[Xy],
+        dof: usize,
+    ) -> Option<Group> {
         let n = links.len();
         let mut count = std::collections::HashMap::<usize, usize>::new();
         for pts in link_points {
@@ -213,7 +219,7 @@ impl Group {
 
     /// Residuals and Jacobian of the closures at rotations `phi` (any number of them):
     /// `f(row, value)` and `j(row, column, value)` receive the nonzero entries.
-    pub fn closure_terms(
+    pub(super) fn closure_terms(
         &self,
         phi: &[f64],
         delta: &[Xy],
@@ -238,7 +244,7 @@ impl Group {
                 if u[0] == 0.0 && u[1] == 0.0 {
                     continue;
                 }
-                let r = rotate(cs[k], *u);
+                let r = turn(cs[k], *u);
                 fx += r[0];
                 fy += r[1];
                 j(2 * c, k, -r[1]);
@@ -251,7 +257,7 @@ impl Group {
 
     /// The closures as `A z = b`, z = (cos phi_1..cos phi_N, sin phi_1..sin phi_N):
     /// R(phi) u = (c u_x - s u_y, s u_x + c u_y), b = -delta.
-    pub fn linear_form(&self, delta: &[Xy]) -> (nalgebra::DMatrix<f64>, nalgebra::DVector<f64>) {
+    pub(super) fn linear_form(&self, delta: &[Xy]) -> (nalgebra::DMatrix<f64>, nalgebra::DVector<f64>) {
         let (m, n) = (2 * self.closures.len(), self.n());
         let mut a = nalgebra::DMatrix::zeros(m, 2 * n);
         let mut b = nalgebra::DVector::zeros(m);
@@ -269,7 +275,7 @@ impl Group {
     }
 
     /// The elbow signs of the group's joints at positions `pos`: "+" / "-" per joint.
-    pub fn elbow_label(&self, pos: impl Fn(usize) -> Xy) -> String {
+    pub(super) fn elbow_label(&self, pos: impl Fn(usize) -> Xy) -> String {
         self.elbows
             .iter()
             .map(|&(p, a, b)| {
@@ -284,7 +290,7 @@ impl Group {
     }
 
     /// Rotations of the group's links from their drawn pose, read off positions.
-    pub fn rotations_from(&self, pos: impl Fn(usize) -> Xy) -> Vec<f64> {
+    pub(super) fn rotations_from(&self, pos: impl Fn(usize) -> Xy) -> Vec<f64> {
         self.arms
             .iter()
             .map(|&(a, b, e)| {
@@ -295,18 +301,18 @@ impl Group {
     }
 
     /// Signed Hadamard ratio of the group's Jacobian at rotations `phi`.
-    pub fn conditioning_with(&self, phi: &[f64], delta: &[Xy]) -> f64 {
+    pub(super) fn conditioning_with(&self, phi: &[f64], delta: &[Xy]) -> f64 {
         dispatch!(self.n(), cond_n, self, delta, phi)
     }
 
     /// Number of unknowns.
     #[inline]
-    pub fn n(&self) -> usize {
+    pub(super) fn n(&self) -> usize {
         self.links.len()
     }
 
     /// Anchor differences a_plus - a_minus per closure, from the anchors' positions.
-    pub fn deltas(&self, anchor: impl Fn(usize) -> Xy) -> [Xy; MAX / 2] {
+    pub(super) fn deltas(&self, anchor: impl Fn(usize) -> Xy) -> [Xy; MAX / 2] {
         let mut d = [[0.0; 2]; MAX / 2];
         for (c, cl) in self.closures.iter().enumerate() {
             d[c] = sub(anchor(self.anchors[cl.plus]), anchor(self.anchors[cl.minus]));
@@ -316,17 +322,17 @@ impl Group {
 
     /// Newton from `guess` with the anchors' `delta`; the tangent dphi/dtheta from the
     /// anchors' velocity differences `ddelta` when given.
-    pub fn solve(&self, delta: &[Xy], ddelta: Option<&[Xy]>, guess: &[f64], opts: &NewtonOptions) -> GroupSolve {
+    pub(super) fn solve(&self, delta: &[Xy], ddelta: Option<&[Xy]>, guess: &[f64], opts: &NewtonOptions) -> GroupSolve {
         dispatch!(self.n(), solve_n, self, delta, ddelta, guess, opts)
     }
 
     /// Positions of the nodes from the anchors' positions and the rotations.
-    pub fn place(&self, phi: &[f64], anchors: &[Xy], mut put: impl FnMut(usize, Xy)) {
+    pub(super) fn place(&self, phi: &[f64], anchors: &[Xy], mut put: impl FnMut(usize, Xy)) {
         let cs: Vec<Xy> = phi.iter().map(|a| cs_of(*a)).collect();
         let na = self.anchors.len();
         let mut pos: Vec<Xy> = anchors.to_vec();
         for nd in &self.nodes {
-            let r = rotate(cs[nd.link], nd.v);
+            let r = turn(cs[nd.link], nd.v);
             let b = pos[nd.base];
             let p = [b[0] + r[0], b[1] + r[1]];
             pos.push(p);
@@ -336,7 +342,7 @@ impl Group {
     }
 
     /// Velocities of the nodes (per unit input rate) from the anchors' velocities and dphi.
-    pub fn place_velocity(
+    pub(super) fn place_velocity(
         &self,
         dphi: &[f64],
         pos: impl Fn(usize) -> Xy,

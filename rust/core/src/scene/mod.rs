@@ -4,27 +4,28 @@
 //! steps that the requested outputs need ([`plan`]); [`Plan::sweep`] solves them over
 //! input angles ([`sweep`]).
 
-pub mod assemble;
+mod assemble;
 mod columns;
 mod dyad;
 mod group;
-pub mod plan;
-pub mod sweep;
-pub mod trace;
+mod options;
+mod plan;
+mod sweep;
+mod trace;
 mod validate;
+mod vec2;
 
 use std::collections::HashMap;
 
 pub use assemble::{Assemblies, Assembly};
+pub use options::{SceneSweepOptions, SceneSweepOut};
 pub use plan::{Plan, StepInfo, StepKind};
-pub use sweep::{SceneSweepOptions, SceneSweepOut};
 pub use trace::{Circuit, Trace, TraceOptions, Tracer};
+pub use vec2::Xy;
 
 use crate::error::Error;
-use crate::homotopy::HomotopyOptions;
-
-/// A 2-D point or vector.
-pub type Xy = [f64; 2];
+use crate::interrupt::Interrupt;
+use crate::solve::homotopy::HomotopyOptions;
 
 /// A link: a rigid body carrying the listed points (indices into the scene's points).
 #[derive(Clone, Debug, PartialEq)]
@@ -138,18 +139,13 @@ impl Scene {
     }
 
     /// Number of joints (a point on m >= 2 links counts m - 1).
-    pub fn joints(&self) -> usize {
+    pub fn joint_count(&self) -> usize {
         self.point_links.iter().map(|l| l.len().saturating_sub(1)).sum()
     }
 
     /// Index of a point by name.
     pub fn point_index(&self, name: &str) -> Option<usize> {
         self.names.iter().position(|n| n == name)
-    }
-
-    /// Index of a link by name.
-    pub fn link_index(&self, name: &str) -> Option<usize> {
-        self.links.iter().position(|l| l.name == name)
     }
 
     /// The points that define a link's angle: (pivot, tip) for the input and output links,
@@ -174,14 +170,21 @@ impl Scene {
         plan::compile(self, &points, &links)
     }
 
-    /// Every real assembly at input angle `theta` (every point solved).
-    pub fn assemblies(&self, theta: f64, opts: &HomotopyOptions) -> Result<Assemblies, Error> {
-        self.plan(None)?.assemblies(theta, opts)
+    /// Every real assembly at input angle `theta` (every point solved). `interrupt` is
+    /// asked every few thousand homotopy steps (Ctrl-C from Python).
+    pub fn assemblies(
+        &self,
+        theta: f64,
+        opts: &HomotopyOptions,
+        interrupt: &dyn Interrupt,
+    ) -> Result<Assemblies, Error> {
+        self.plan(None)?.assemblies(theta, opts, interrupt)
     }
 
     /// Traces the circuit through `start` (every point, scene coordinates; default the
     /// drawn pose) through its dead points until it closes or `opts.max_points` is reached.
-    pub fn trace(&self, start: Option<&[Xy]>, opts: &TraceOptions) -> Result<Trace, Error> {
+    /// `interrupt` is asked every few thousand steps.
+    pub fn trace(&self, start: Option<&[Xy]>, opts: &TraceOptions, interrupt: &dyn Interrupt) -> Result<Trace, Error> {
         let pos = match start {
             None => self.xy.clone(),
             Some(p) => {
@@ -191,7 +194,7 @@ impl Scene {
                 p.iter().map(|&q| self.to_frame(q)).collect()
             }
         };
-        Tracer::new(self)?.trace_from(&pos, opts)
+        Tracer::new(self)?.trace_from(&pos, opts, interrupt)
     }
 
     /// The assemblies at `theta` grouped by circuit.
@@ -200,8 +203,9 @@ impl Scene {
         theta: f64,
         hopts: &HomotopyOptions,
         topts: &TraceOptions,
+        interrupt: &dyn Interrupt,
     ) -> Result<(Assemblies, Vec<Circuit>), Error> {
-        Tracer::new(self)?.circuits(theta, hopts, topts)
+        Tracer::new(self)?.circuits(theta, hopts, topts, interrupt)
     }
 
     /// Solving-frame coordinates of a point in scene coordinates.
@@ -230,36 +234,6 @@ impl Scene {
         }
         Ok((points, links))
     }
-}
-
-/// (a - b)
-#[inline]
-pub(crate) fn sub(a: Xy, b: Xy) -> Xy {
-    [a[0] - b[0], a[1] - b[1]]
-}
-
-/// z-component of a x b.
-#[inline]
-pub(crate) fn cross(a: Xy, b: Xy) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
-
-/// a . b
-#[inline]
-pub(crate) fn dot(a: Xy, b: Xy) -> f64 {
-    a[0] * b[0] + a[1] * b[1]
-}
-
-/// `v` turned by the rotation whose (cos, sin) is `cs`.
-#[inline]
-pub(crate) fn rotate(cs: Xy, v: Xy) -> Xy {
-    [cs[0] * v[0] - cs[1] * v[1], cs[1] * v[0] + cs[0] * v[1]]
-}
-
-/// `v` turned by +90 degrees.
-#[inline]
-pub(crate) fn perp(v: Xy) -> Xy {
-    [-v[1], v[0]]
 }
 
 #[cfg(test)]

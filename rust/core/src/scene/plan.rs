@@ -7,7 +7,8 @@
 
 use super::dyad::Dyad;
 use super::group::{Group, MAX};
-use super::{cross, dot, sub, Scene, Xy};
+use super::vec2::{cross, dot, sub, Xy};
+use super::Scene;
 use crate::error::Error;
 
 /// Kind of a plan step.

@@ -8,13 +8,15 @@
 //! changed) is halved, down to `max_step / 2^16`; what still fails is reported with its
 //! status, and points that do not depend on it are solved all the same.
 
+use super::columns;
 use super::dyad::{Dyad, DyadOut};
 use super::group::{GroupSolve, MAX};
+use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
-use super::{cross, dot, perp, sub, Xy};
-use crate::error::{positive_finite, Error};
+use super::vec2::{cross, dot, perp, sub, Xy};
+use crate::error::Error;
 use crate::interrupt::{Interrupt, Poll};
-use crate::newton::NewtonOptions;
+use crate::solve::newton::NewtonOptions;
 use crate::{wrap_angle, Status};
 
 /// How many times a failing continuation step is halved.
@@ -24,56 +26,6 @@ const STEP_ITER: u32 = 5;
 /// A converged group whose rotations moved more than this from the prediction (with a
 /// prediction made over at most one `max_step`) has jumped to another solution.
 const JUMP: f64 = 0.25;
-
-/// Options of a scene sweep, validated once.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SceneSweepOptions {
-    /// Newton stopping criteria for groups; its singular threshold applies to dyads too.
-    pub newton: NewtonOptions,
-    /// Largest continuation step of a group (radians of input angle).
-    pub max_step: f64,
-    /// Input angular velocity: point and link velocities are computed when given.
-    pub omega: Option<f64>,
-}
-
-impl SceneSweepOptions {
-    /// Validates `max_step` (finite, > 0) and `omega` (finite).
-    pub fn new(newton: NewtonOptions, max_step: f64, omega: Option<f64>) -> Result<Self, Error> {
-        positive_finite("max_step", max_step)?;
-        if let Some(w) = omega {
-            if !w.is_finite() {
-                return Err(Error::invalid("omega", "must be finite", w));
-            }
-        }
-        Ok(Self { newton, max_step, omega })
-    }
-}
-
-/// Output slices of a sweep over N input angles with P reported points, L reported link
-/// angles and S steps (row-major).
-pub struct SceneSweepOut<'a> {
-    /// (N, P, 2) positions in scene units; NaN where the point is not solved.
-    pub points: &'a mut [f64],
-    /// (N, L) link angles in (-pi, pi].
-    pub angles: &'a mut [f64],
-    /// (N,) the first failing step's status, or CONVERGED.
-    pub status: &'a mut [i8],
-    /// (N,) Newton steps spent reaching each angle (groups only; dyads take none).
-    pub nit: &'a mut [u32],
-    /// (N,) product of the steps' signed conditioning.
-    pub det: &'a mut [f64],
-    /// (N,) for LIMIT angles, the input angle of the dead point that stops the motion
-    /// (where continuation last converged, within about max_step / 2^16 of it); else NaN.
-    pub limit: &'a mut [f64],
-    /// (N, S) each step's status.
-    pub step_status: &'a mut [i8],
-    /// (N, S) each step's signed conditioning.
-    pub step_det: &'a mut [f64],
-    /// (N, P) each reported point's status.
-    pub point_status: &'a mut [i8],
-    /// (N, P, 2) and (N, L): velocities and angular velocities, when `omega` is given.
-    pub velocity: Option<(&'a mut [f64], &'a mut [f64])>,
-}
 
 #[derive(Clone, Copy, Debug)]
 struct Tangent {
@@ -328,8 +280,9 @@ impl<'p> Solver<'p> {
     /// Continuation to `to` from where the groups are (the one farthest away sets the
     /// start): uniform steps of at most `max_step`, each halved while some group fails; a
     /// group that still fails at the smallest step has met a dead point there, and angles
-    /// past it are LIMIT. Ends with an evaluation at `to`.
-    fn advance(&mut self, to: f64) {
+    /// past it are LIMIT. Ends with an evaluation at `to`. Every evaluation is counted on
+    /// `poll` (a small `max_step` makes many).
+    fn advance(&mut self, to: f64, poll: &Poll<'_>) -> Result<(), Error> {
         let from = self
             .groups
             .iter()
@@ -342,7 +295,7 @@ impl<'p> Solver<'p> {
         let mut a = from;
         for k in 1..=m {
             let b = if k == m { to } else { from + h * (k as f64 / m as f64) };
-            if !self.reach(a, b, 0) {
+            if !self.reach(a, b, 0, poll)? {
                 break;
             }
             a = b;
@@ -350,11 +303,13 @@ impl<'p> Solver<'p> {
         if self.last_eval != to {
             self.eval(to);
         }
+        Ok(())
     }
 
-    fn reach(&mut self, a: f64, b: f64, depth: u32) -> bool {
+    fn reach(&mut self, a: f64, b: f64, depth: u32, poll: &Poll<'_>) -> Result<bool, Error> {
+        poll.tick()?;
         if !self.eval(b) {
-            return true;
+            return Ok(true);
         }
         if depth >= MAX_HALVINGS || !b.is_finite() {
             // what still fails this close to its last solution is at a dead point
@@ -366,10 +321,10 @@ impl<'p> Solver<'p> {
                     }
                 }
             }
-            return false;
+            return Ok(false);
         }
         let mid = 0.5 * (a + b);
-        self.reach(a, mid, depth + 1) && self.reach(mid, b, depth + 1)
+        Ok(self.reach(a, mid, depth + 1, poll)? && self.reach(mid, b, depth + 1, poll)?)
     }
 
     /// The dead point (input angle) that stops the first group at LIMIT, if any.
@@ -486,14 +441,13 @@ impl Plan {
             check("angular velocity", w.len(), n * nl)?;
         }
         if !self.has_group() {
-            return super::columns::sweep(self, theta, opts, &mut out, &poll);
+            return columns::sweep(self, theta, opts, &mut out, &poll);
         }
         let limit = Status::Limit.code();
         self.continuation(theta, 0..n, opts, &mut out, false, &poll)?;
         // the rest of the drawn circuit, backwards from the drawn pose
         if out.status.contains(&limit) {
-            let status = out.status.to_vec();
-            let last = (0..n).rev().take_while(|&k| status[k] == limit || !theta[k].is_finite()).last();
+            let last = (0..n).rev().take_while(|&k| out.status[k] == limit || !theta[k].is_finite()).last();
             if let Some(first) = last {
                 self.continuation(theta, (first..n).rev(), opts, &mut out, true, &poll)?;
             }
@@ -527,7 +481,7 @@ impl Plan {
                     // the input repeats every turn: reach theta[k] the shortest way, then
                     // relabel the states to it
                     let start = self.theta0 + wrap_angle(t - self.theta0);
-                    s.advance(start);
+                    s.advance(start, poll)?;
                     for g in s.groups.iter_mut().flatten() {
                         let shift = t - start;
                         g.theta += shift;
@@ -541,7 +495,7 @@ impl Plan {
                     s.last_eval = t;
                     started = true;
                 } else {
-                    s.advance(t);
+                    s.advance(t, poll)?;
                 }
             }
             if backward && !t.is_finite() {

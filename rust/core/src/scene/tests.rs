@@ -1,8 +1,11 @@
 //! Scene tests against independent truths: the four-bar's closed form, loop closure by
 //! substitution, rigidity.
 
+use super::vec2::{cross, sub};
 use super::*;
-use crate::newton::NewtonOptions;
+use crate::interrupt::Never;
+use crate::solve::homotopy::HomotopyOptions;
+use crate::solve::newton::NewtonOptions;
 use crate::{FourBar, Mode};
 
 fn spec(points: &[(&str, Xy)], links: &[(&str, &[&str])], ground: &str, input: (&str, &str)) -> SceneSpec {
@@ -78,7 +81,7 @@ fn fourbar_scene_matches_the_closed_form_in_both_modes() {
         let r = run(&plan, &theta);
         let fb = FourBar::new(6.0, 2.0, 5.0, 5.0).unwrap();
         for (k, &t) in theta.iter().enumerate() {
-            let crate::Assembly::Closed { theta3, theta4, .. } = fb.closed_form(t, mode) else { panic!() };
+            let crate::ClosedForm::Solved { theta3, theta4, .. } = fb.closed_form(t, mode) else { panic!() };
             assert_eq!(r.status[k], 0);
             assert!((r.angles[2 * k] - theta3).abs() < 1e-12, "{k}");
             assert!((r.angles[2 * k + 1] - theta4).abs() < 1e-12, "{k}");
@@ -168,23 +171,10 @@ fn validation_names_the_entry() {
     assert!(e.starts_with("mobility: the constraint Jacobian"), "{e}");
 }
 
-#[test]
-#[ignore]
-fn timing_fourbar_scene() {
-    let sc = Scene::new(fourbar(1.0)).unwrap();
-    let plan = sc.plan(None).unwrap();
-    let theta = grid(361);
-    let t = std::time::Instant::now();
-    for _ in 0..1000 {
-        std::hint::black_box(run(&plan, &theta));
-    }
-    eprintln!("{:?} per sweep", t.elapsed() / 1000);
-}
-
 fn four_bar_lengths(r: [f64; 4], mode: f64, t2: f64) -> SceneSpec {
     let fb = FourBar::new(r[0], r[1], r[2], r[3]).unwrap();
     let m = if mode > 0.0 { Mode::Open } else { Mode::Crossed };
-    let crate::Assembly::Closed { theta3, .. } = fb.closed_form(t2, m) else { panic!("not assemblable") };
+    let crate::ClosedForm::Solved { theta3, .. } = fb.closed_form(t2, m) else { panic!("not assemblable") };
     let a = [r[1] * t2.cos(), r[1] * t2.sin()];
     let b = [a[0] + r[2] * theta3.cos(), a[1] + r[2] * theta3.sin()];
     spec(
@@ -200,7 +190,7 @@ fn non_grashof_trace_turns_at_the_toggles_and_closes() {
     let r = [4.0, 3.0, 1.5, 2.0];
     let sc = Scene::new(four_bar_lengths(r, 1.0, 0.0)).unwrap();
     let tracer = Tracer::new(&sc).unwrap();
-    let tr = tracer.trace_from(&sc.xy, &TraceOptions::default()).unwrap();
+    let tr = tracer.trace_from(&sc.xy, &TraceOptions::default(), &Never).unwrap();
     assert!(tr.closed, "{} points", tr.theta.len());
     let np = sc.names.len();
     let m = tr.theta.len();
@@ -222,8 +212,7 @@ fn non_grashof_trace_turns_at_the_toggles_and_closes() {
 fn crank_rocker_has_two_full_turn_circuits() {
     let sc = Scene::new(fourbar(1.0)).unwrap();
     let tracer = Tracer::new(&sc).unwrap();
-    let (asm, circuits) =
-        tracer.circuits(0.3, &crate::homotopy::HomotopyOptions::default(), &TraceOptions::default()).unwrap();
+    let (asm, circuits) = tracer.circuits(0.3, &HomotopyOptions::default(), &TraceOptions::default(), &Never).unwrap();
     assert_eq!(asm.list.len(), 2);
     assert_eq!(circuits.len(), 2);
     for c in &circuits {
@@ -234,11 +223,11 @@ fn crank_rocker_has_two_full_turn_circuits() {
 }
 
 #[test]
-fn double_butterfly_assemblies_close_their_loops() {
+fn stephenson_group_assemblies_close_their_loops() {
     // the Stephenson group (4 links): 6 complex solutions
     let sc = Scene::new(stephenson()).unwrap();
     let plan = sc.plan(None).unwrap();
-    let a = plan.assemblies(sc.input_angle() + 0.1, &crate::homotopy::HomotopyOptions::default()).unwrap();
+    let a = plan.assemblies(sc.input_angle() + 0.1, &HomotopyOptions::default(), &Never).unwrap();
     assert_eq!(a.complex_counts, vec![vec![6]]);
     assert!(!a.list.is_empty() && a.list.len() <= 6 && a.list.len().is_multiple_of(2));
     let d = |a: Xy, b: Xy| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
@@ -255,4 +244,35 @@ fn double_butterfly_assemblies_close_their_loops() {
             }
         }
     }
+}
+
+#[test]
+fn long_calls_stop_when_interrupted() {
+    let yes = || true;
+    let sc = Scene::new(stephenson()).unwrap();
+    // a group sweep with a tiny step: millions of continuation steps between two angles
+    let plan = sc.plan(None).unwrap();
+    let opts = SceneSweepOptions::new(NewtonOptions::default(), 1e-9, None).unwrap();
+    let theta = [sc.input_angle() + 0.5];
+    let (np, nl, ns) = (plan.points().len(), plan.links().len(), plan.steps().len());
+    let (mut pts, mut ang, mut st, mut nit) = (vec![0.0; 2 * np], vec![0.0; nl], vec![0i8; 1], vec![0u32; 1]);
+    let (mut det, mut lim, mut sst, mut sdet, mut pst) =
+        (vec![0.0; 1], vec![0.0; 1], vec![0i8; ns], vec![0.0; ns], vec![0i8; np]);
+    let out = SceneSweepOut {
+        points: &mut pts,
+        angles: &mut ang,
+        status: &mut st,
+        nit: &mut nit,
+        det: &mut det,
+        limit: &mut lim,
+        step_status: &mut sst,
+        step_det: &mut sdet,
+        point_status: &mut pst,
+        velocity: None,
+    };
+    assert_eq!(plan.sweep(&theta, &opts, out, &yes), Err(Error::Interrupted));
+    // a trace with a tiny step, and the circuits that trace
+    let tiny = TraceOptions::new(1e-7, 1_000_000_000).unwrap();
+    assert_eq!(sc.trace(None, &tiny, &yes), Err(Error::Interrupted));
+    assert!(matches!(sc.circuits(sc.input_angle(), &HomotopyOptions::default(), &tiny, &yes), Err(Error::Interrupted)));
 }

@@ -14,9 +14,11 @@ use nalgebra::{DMatrix, DVector};
 
 use super::group::Group;
 use super::plan::Plan;
-use super::{Scene, Xy};
-use crate::error::{positive_finite, Error};
-use crate::homotopy::HomotopyOptions;
+use super::vec2::Xy;
+use super::Scene;
+use crate::error::{positive_finite, try_grow, Error};
+use crate::interrupt::{Interrupt, Poll};
+use crate::solve::homotopy::HomotopyOptions;
 use crate::wrap_angle;
 
 /// Tracing options.
@@ -35,12 +37,13 @@ impl Default for TraceOptions {
 }
 
 impl TraceOptions {
-    /// Validates `step` (finite, > 0) and `max_points` (>= 2).
-    pub fn new(step: f64, max_points: usize) -> Result<Self, Error> {
+    /// Validates `step` (finite, > 0) and `max_points` (an integer >= 2).
+    pub fn new(step: f64, max_points: i64) -> Result<Self, Error> {
         positive_finite("step", step)?;
-        if max_points < 2 {
-            return Err(Error::invalid("max_points", "must be >= 2", max_points));
-        }
+        let max_points = usize::try_from(max_points)
+            .ok()
+            .filter(|&m| m >= 2)
+            .ok_or_else(|| Error::invalid("max_points", "must be an integer >= 2", max_points))?;
         Ok(Self { step, max_points })
     }
 }
@@ -224,8 +227,9 @@ impl<'s> Tracer<'s> {
 
     /// Traces the circuit through the assembly `pos` (solving frame, every point), in the
     /// direction of increasing input angle (or along its tangent at a dead point).
-    pub fn trace_from(&self, pos: &[Xy], opts: &TraceOptions) -> Result<Trace, Error> {
-        Ok(self.trace_watching(pos, opts, None)?.0)
+    /// `interrupt` is asked every few thousand steps (Ctrl-C from Python).
+    pub fn trace_from(&self, pos: &[Xy], opts: &TraceOptions, interrupt: &dyn Interrupt) -> Result<Trace, Error> {
+        Ok(self.trace_watching(pos, opts, None, &Poll::new(interrupt))?.0)
     }
 
     /// [`Tracer::trace_from`], also returning the poses (solving frame) where the path
@@ -235,6 +239,7 @@ impl<'s> Tracer<'s> {
         pos: &[Xy],
         opts: &TraceOptions,
         watch: Option<f64>,
+        poll: &Poll<'_>,
     ) -> Result<(Trace, Vec<Vec<Xy>>), Error> {
         let mut crossings = Vec::new();
         let delta = self.delta();
@@ -247,11 +252,12 @@ impl<'s> Tracer<'s> {
         let mut out = Trace::default();
         let mut x = x0.clone();
         let mut d = self.det(x.as_slice());
-        self.record(&mut out, x.as_slice(), d);
+        self.record(&mut out, x.as_slice(), d)?;
         let mut h = opts.step;
         let hmin = opts.step * 1e-7;
         let mut travelled = 0.0;
         while out.theta.len() < opts.max_points {
+            poll.tick()?;
             let xp = &x + &t * h;
             let Some((y, it)) = self.correct(&xp, &t, &delta) else {
                 h *= 0.5;
@@ -287,14 +293,14 @@ impl<'s> Tracer<'s> {
                     let unwrapped = unwrap_like(&x0, &y);
                     if let Some((z, _)) = self.correct(&unwrapped, &t, &delta) {
                         if wrapped_gap(&z, &x0) < 1e-9 {
-                            self.record(&mut out, z.as_slice(), self.det(z.as_slice()));
+                            self.record(&mut out, z.as_slice(), self.det(z.as_slice()))?;
                             out.closed = true;
                             break;
                         }
                     }
                 }
             }
-            self.record(&mut out, y.as_slice(), dn);
+            self.record(&mut out, y.as_slice(), dn)?;
             x = y;
             t = tn;
             d = dn;
@@ -309,20 +315,23 @@ impl<'s> Tracer<'s> {
         Ok((out, crossings))
     }
 
-    fn record(&self, out: &mut Trace, x: &[f64], det: f64) {
-        let plan = &self.plan;
-        out.theta.push(self.theta(x));
-        out.det.push(det);
-        out.points.extend(
-            self.positions(x).iter().map(|p| [p[0] * plan.scale + plan.origin[0], p[1] * plan.scale + plan.origin[1]]),
-        );
+    fn record(&self, out: &mut Trace, x: &[f64], det: f64) -> Result<(), Error> {
+        self.record_pose(out, &self.positions(x), self.theta(x), det)
     }
 
-    fn record_pose(&self, out: &mut Trace, pos: &[Xy], theta: f64) {
+    /// Appends one path point, growing the trace fallibly (a long trace is the user's to
+    /// ask for: `max_points`).
+    fn record_pose(&self, out: &mut Trace, pos: &[Xy], theta: f64, det: f64) -> Result<(), Error> {
         let plan = &self.plan;
+        let (m, np) = (out.theta.len() + 1, pos.len());
+        let what = || format!("trace: {m} points of {np} scene points each");
+        try_grow(&mut out.points, pos.len(), what)?;
+        try_grow(&mut out.theta, 1, what)?;
+        try_grow(&mut out.det, 1, what)?;
         out.theta.push(theta);
-        out.det.push(plan.dets_at(pos).0);
+        out.det.push(det);
         out.points.extend(pos.iter().map(|p| [p[0] * plan.scale + plan.origin[0], p[1] * plan.scale + plan.origin[1]]));
+        Ok(())
     }
 
     /// Bisection on the conditioning's sign along the step from x (where it is `d0`).
@@ -384,8 +393,10 @@ impl<'s> Tracer<'s> {
         theta: f64,
         hopts: &HomotopyOptions,
         opts: &TraceOptions,
+        interrupt: &dyn Interrupt,
     ) -> Result<(super::Assemblies, Vec<Circuit>), Error> {
-        let mut found = self.plan.assemblies(theta, hopts)?;
+        let mut found = self.plan.assemblies(theta, hopts, interrupt)?;
+        let poll = Poll::new(interrupt);
         let plan = &self.plan;
         let to_frame = |p: &Xy| [(p[0] - plan.origin[0]) / plan.scale, (p[1] - plan.origin[1]) / plan.scale];
         let mut frames: Vec<Vec<Xy>> = found.list.iter().map(|a| a.points.iter().map(to_frame).collect()).collect();
@@ -398,12 +409,13 @@ impl<'s> Tracer<'s> {
                 continue;
             }
             let id = circuits.len();
-            let (tr, crossings) = match self.trace_watching(&frames[k], opts, Some(theta)) {
+            let (tr, crossings) = match self.trace_watching(&frames[k], opts, Some(theta), &poll) {
                 Ok(r) => r,
+                Err(e @ (Error::Interrupted | Error::Allocation { .. })) => return Err(e),
                 Err(_) => {
                     // a singular assembly Newton cannot start from: a circuit of its own
                     let mut tr = Trace::default();
-                    self.record_pose(&mut tr, &frames[k], theta);
+                    self.record_pose(&mut tr, &frames[k], theta, plan.dets_at(&frames[k]).0)?;
                     (tr, Vec::new())
                 }
             };

@@ -6,7 +6,8 @@ use std::collections::HashMap;
 
 use nalgebra::DMatrix;
 
-use super::{perp, sub, Link, Pivoted, Scene, SceneSpec, Xy};
+use super::vec2::{perp, sub, Xy};
+use super::{Link, Pivoted, Scene, SceneSpec};
 use crate::error::Error;
 
 /// Two points of one link closer than this, relative to the scene's size, coincide.

@@ -1,17 +1,13 @@
-//! SIMD kernels for the four-bar: the closed form over crank angles and the Newton batch
-//! sweep over linkages, 4 lanes (AVX2 + FMA) at a time with polynomial sin/cos and atan2
-//! ([`math`], within 2 ulp of glibc). Chosen at run time: [`enabled`] is true when the CPU
-//! has AVX2 and FMA, unless `PLANARKIN_SIMD=0` or [`set_enabled`]`(false)` asked for the
-//! scalar path, which is bit-identical to the NumPy reference. Statuses are the scalar
-//! path's (any lane that leaves the common path is solved by the scalar code); angles
-//! agree with it to a few ulp (the tests bound them at 1e-12 rad).
+//! Generic SIMD math and the process-wide switch that the SIMD kernels obey: polynomial
+//! sin/cos and atan2 within 2 ulp of glibc ([`math`]) and their 4-lane AVX2 + FMA form.
+//! [`enabled`] is true when the CPU has AVX2 and FMA, unless `PLANARKIN_SIMD=0` or
+//! [`set_enabled`]`(false)` asked for the scalar paths, which are bit-identical to the
+//! NumPy reference. The kernels that use this live with their subject (the four-bar's in
+//! `fourbar::simd`).
 
 #[cfg(target_arch = "x86_64")]
-mod avx2;
-pub mod closed_form;
+pub(crate) mod avx2;
 pub mod math;
-pub mod newton;
-pub(crate) mod sweep;
 
 use std::sync::atomic::{AtomicU8, Ordering};
 
@@ -52,39 +48,33 @@ pub fn set_enabled(on: bool) -> bool {
 }
 
 #[inline(always)]
-fn table_body(theta2: &[f64], out: &mut [(f64, f64)]) {
-    let out = &mut out[..theta2.len()];
-    for (o, &t) in out.iter_mut().zip(theta2) {
+fn table_body(theta: &[f64], out: &mut [(f64, f64)]) {
+    let out = &mut out[..theta.len()];
+    for (o, &t) in out.iter_mut().zip(theta) {
         *o = math::sin_cos(t);
     }
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn table_avx2(theta2: &[f64], out: &mut [(f64, f64)]) {
-    table_body(theta2, out)
+unsafe fn table_avx2(theta: &[f64], out: &mut [(f64, f64)]) {
+    table_body(theta, out)
 }
 
-/// (sin, cos) of every crank angle, 4 at a time; arguments beyond the polynomial's range
-/// (|x| > 1e5, infinities) go to libm.
-pub fn sin_cos_table(theta2: &[f64]) -> Vec<(f64, f64)> {
-    let mut out = vec![(0.0, 0.0); theta2.len()];
-    sin_cos_into(theta2, &mut out);
-    out
-}
-
-/// [`sin_cos_table`] into a buffer the caller allocated (fallibly, for user sizes).
-pub fn sin_cos_into(theta2: &[f64], out: &mut [(f64, f64)]) {
+/// (sin, cos) of every angle into a buffer the caller allocated (fallibly, for user
+/// sizes), 4 at a time; arguments beyond the polynomial's range (|x| > 1e5, infinities,
+/// NaN) go to libm.
+pub fn sin_cos_into(theta: &[f64], out: &mut [(f64, f64)]) {
     #[cfg(target_arch = "x86_64")]
     if available() {
         // SAFETY: AVX2 and FMA checked at run time.
-        unsafe { table_avx2(theta2, out) };
+        unsafe { table_avx2(theta, out) };
     } else {
-        table_body(theta2, out);
+        table_body(theta, out);
     }
     #[cfg(not(target_arch = "x86_64"))]
-    table_body(theta2, out);
-    for (o, &t) in out.iter_mut().zip(theta2) {
+    table_body(theta, out);
+    for (o, &t) in out.iter_mut().zip(theta) {
         if t.is_nan() || t.abs() > math::SIN_COS_MAX {
             *o = t.sin_cos();
         }

@@ -3,18 +3,12 @@
 //! same length; the bindings broadcast and allocate, these only compute. Each asks its
 //! `interrupt` every [`crate::interrupt::CHECK_EVERY`] points ([`Error::Interrupted`]).
 
+use super::model::{transmission_angle, FourBar, Mode};
+use super::options::check_len;
+use super::row::{closed_form_trig, sin_cos_fill};
 use crate::error::Error;
-use crate::fourbar::{transmission_angle, Assembly, FourBar, Mode};
 use crate::interrupt::{Interrupt, Poll};
 use crate::Status;
-
-fn same_len(name: &str, got: usize, n: usize) -> Result<(), Error> {
-    if got == n {
-        Ok(())
-    } else {
-        Err(Error::Shape { name: name.into(), got, expected: n })
-    }
-}
 
 /// Closed form of `mode` at each crank angle, with a status: Converged, NotAssemblable,
 /// Singular (conditioning below `singular`, or indeterminate), NonFinite. Angles are NaN
@@ -33,6 +27,10 @@ pub fn closed_form_into(
     // blocks of angles: the (sin, cos) table of each (4 at a time with SIMD) stays small,
     // and the interrupt is asked between blocks
     const BLOCK: usize = 4096;
+    let n = theta2.len();
+    for (name, len) in [("theta3", theta3.len()), ("theta4", theta4.len()), ("status", status.len())] {
+        check_len(name, len, n)?;
+    }
     let poll = Poll::new(interrupt);
     let mut trig = vec![(0.0, 0.0); BLOCK.min(theta2.len())];
     for (k, t) in theta2.chunks(BLOCK).enumerate() {
@@ -41,59 +39,10 @@ pub fn closed_form_into(
         }
         let (o, e) = (k * BLOCK, k * BLOCK + t.len());
         let tr = &mut trig[..t.len()];
-        if crate::simd::enabled() {
-            crate::simd::sin_cos_into(t, tr);
-        } else {
-            for (x, a) in tr.iter_mut().zip(t) {
-                *x = a.sin_cos();
-            }
-        }
+        sin_cos_fill(t, tr);
         closed_form_trig(fb, t, tr, mode, singular, &mut theta3[o..e], &mut theta4[o..e], Some(&mut status[o..e]));
     }
     Ok(())
-}
-
-/// One closed-form point from the crank angle and its sin and cos.
-#[inline]
-fn closed_point(fb: &FourBar, t2: f64, s2: f64, c2: f64, mode: Mode, singular: f64) -> (f64, f64, Status) {
-    if !t2.is_finite() {
-        return (f64::NAN, f64::NAN, Status::NonFinite);
-    }
-    match fb.closed_form_cs(c2, s2, mode) {
-        Assembly::Closed { theta3, theta4, sin34 } => {
-            let st = if fb.conditioning(sin34) < singular { Status::Singular } else { Status::Converged };
-            (theta3, theta4, st)
-        }
-        Assembly::NotAssemblable => (f64::NAN, f64::NAN, Status::NotAssemblable),
-        Assembly::Indeterminate => (f64::NAN, f64::NAN, Status::Singular),
-    }
-}
-
-/// [`closed_form_into`] from precomputed (sin, cos) of the crank angles (shared across a
-/// batch); the status is written only when a slice is given.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn closed_form_trig(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    mode: Mode,
-    singular: f64,
-    theta3: &mut [f64],
-    theta4: &mut [f64],
-    mut status: Option<&mut [i8]>,
-) {
-    if crate::simd::enabled() {
-        let spec = crate::simd::closed_form::RowSpec { mode, singular, nan_singular: false };
-        return crate::simd::closed_form::closed_form_row(fb, theta2, trig, spec, theta3, theta4, status);
-    }
-    for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
-        let (t3, t4, st) = closed_point(fb, t2, s2, c2, mode, singular);
-        theta3[i] = t3;
-        theta4[i] = t4;
-        if let Some(s) = status.as_deref_mut() {
-            s[i] = st.code();
-        }
-    }
 }
 
 /// Angular velocities at given positions. NaN and `Singular` at dead points.
@@ -112,7 +61,7 @@ pub fn velocity_into(
 ) -> Result<(), Error> {
     let n = theta2.len();
     for (name, len) in [("theta3", theta3.len()), ("theta4", theta4.len()), ("omega2", omega2.len())] {
-        same_len(name, len, n)?;
+        check_len(name, len, n)?;
     }
     let poll = Poll::new(interrupt);
     for i in 0..n {
@@ -145,7 +94,7 @@ pub fn acceleration_into(
     for (name, len) in
         [("theta3", theta3.len()), ("theta4", theta4.len()), ("omega2", omega2.len()), ("alpha2", alpha2.len())]
     {
-        same_len(name, len, n)?;
+        check_len(name, len, n)?;
     }
     let poll = Poll::new(interrupt);
     for i in 0..n {
@@ -177,7 +126,7 @@ pub fn coupler_into(
     y: &mut [f64],
     interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
-    same_len("theta3", theta3.len(), theta2.len())?;
+    check_len("theta3", theta3.len(), theta2.len())?;
     let poll = Poll::new(interrupt);
     for i in 0..theta2.len() {
         poll.tick()?;
@@ -194,7 +143,7 @@ pub fn transmission_into(
     sin34: &mut [f64],
     interrupt: &dyn Interrupt,
 ) -> Result<(), Error> {
-    same_len("theta4", theta4.len(), theta3.len())?;
+    check_len("theta4", theta4.len(), theta3.len())?;
     let poll = Poll::new(interrupt);
     for i in 0..theta3.len() {
         poll.tick()?;

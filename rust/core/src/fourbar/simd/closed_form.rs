@@ -3,8 +3,12 @@
 //! polynomial atan2. The same formulas and operation order as `FourBar::geometry` and
 //! `Triangle::angles`, so only the atan2 differs from the scalar path (by <= 2 ulp).
 
-use super::math::atan2;
-use crate::fourbar::{FourBar, Mode};
+use crate::error::Error;
+use crate::fourbar::model::{FourBar, Mode, Point, FLAT_ULPS};
+use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut};
+use crate::fourbar::point::fill_motion;
+use crate::interrupt::Poll;
+use crate::simd::math::atan2;
 use crate::Status;
 
 const CONVERGED: i8 = Status::Converged as i8;
@@ -38,7 +42,7 @@ fn row_body<const STATUS: bool>(
     let cond_scale = r3.min(r4) / fb.longest();
     let (k, r3r4, sign) = ((r3 - r4) * (r3 + r4), r3 * r4, spec.mode.sign());
     let indeterminate = if r3 == r4 { SINGULAR } else { NOT_ASSEMBLABLE };
-    let slack = crate::fourbar::FLAT_ULPS * f64::EPSILON * fb.longest();
+    let slack = FLAT_ULPS * f64::EPSILON * fb.longest();
     for i in 0..n {
         let (s2, c2) = trig[i];
         let ux = r1 - r2 * c2;
@@ -108,7 +112,7 @@ pub(crate) fn closed_form_row(
     status: Option<&mut [i8]>,
 ) {
     #[cfg(target_arch = "x86_64")]
-    if super::available() {
+    if crate::simd::available() {
         // SAFETY: the CPU has AVX2 and FMA (checked at run time just above).
         unsafe {
             match status {
@@ -130,11 +134,11 @@ pub(crate) fn sweep(
     fb: &FourBar,
     theta2: &[f64],
     trig: &[(f64, f64)],
-    opts: &crate::sweep::SweepOptions,
-    out: crate::sweep::SweepOut<'_>,
-    mut motion: Option<crate::sweep::MotionOut<'_>>,
-    poll: &crate::interrupt::Poll<'_>,
-) -> Result<(), crate::Error> {
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    mut motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
     for _ in theta2 {
         poll.tick()?; // the whole row is checked first: closed-form points cost nanoseconds
     }
@@ -147,14 +151,8 @@ pub(crate) fn sweep(
             // fill_motion reads the angles and the flag only
             let ok = out.status[i] == CONVERGED;
             let status = if ok { Status::Converged } else { Status::Singular };
-            let p = crate::fourbar::Point {
-                theta3: out.theta3[i],
-                theta4: out.theta4[i],
-                status,
-                nit: 0,
-                residual: f64::NAN,
-            };
-            crate::sweep::fill_motion(fb, t2, &p, ok, i, m, opts.newton.singular);
+            let p = Point { theta3: out.theta3[i], theta4: out.theta4[i], status, nit: 0, residual: f64::NAN };
+            fill_motion(fb, t2, &p, ok, i, m, opts.newton.singular);
         }
     }
     Ok(())

@@ -1,19 +1,18 @@
 //! The Newton continuation sweep of one linkage with the polynomial sin/cos of the SIMD
 //! path: each Newton evaluation takes sin and cos of both unknowns in one AVX2 call
 //! instead of two libm calls. The same continuation, predictor, convergence test and
-//! statuses as `sweep::sweep_unchecked`; a point that leaves the common path (no previous
+//! statuses as the scalar `newton_sweep`; a point that leaves the common path (no previous
 //! point, a crank pin on O4, a failed or slow solve, the other mode) is solved by the
 //! scalar `sweep_point` from the same start.
 
-use nalgebra::Vector2;
+use nalgebra::{Matrix2, Vector2};
 
-use nalgebra::Matrix2;
-
-use super::math::{sin_cos, SIN_COS_MAX};
 use crate::error::Error;
-use crate::fourbar::{FourBar, Point};
+use crate::fourbar::model::{FourBar, Point, FLAT_ULPS};
+use crate::fourbar::options::{MotionOut, Predictor, SweepOptions, SweepOut};
+use crate::fourbar::point::{fill_motion, predictor_rates, sweep_point};
 use crate::interrupt::Poll;
-use crate::sweep::{fill_motion, predictor_rates, sweep_point, MotionOut, Predictor, SweepOptions, SweepOut};
+use crate::simd::math::{sin_cos, SIN_COS_MAX};
 use crate::{wrap_angle, Status};
 
 /// Newton steps tried on the fast path before the scalar path takes the point over.
@@ -31,7 +30,7 @@ pub(crate) fn newton_row(
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
     #[cfg(target_arch = "x86_64")]
-    if super::available() {
+    if crate::simd::available() {
         // SAFETY: AVX2 and FMA checked at run time.
         return unsafe { row_avx2(fb, theta2, trig, guess, opts, out, motion, poll) };
     }
@@ -99,7 +98,7 @@ fn row_body<const AVX: bool>(
             let d = (ux * ux + uy * uy).sqrt();
             let (q1, q2, q3) = (d + r3 - r4, d - r3 + r4, r3 + r4 - d);
             // within FLAT_ULPS ulp of closing (flat: the scalar path decides) is not "cannot close"
-            let slack = crate::fourbar::FLAT_ULPS * f64::EPSILON * scale;
+            let slack = FLAT_ULPS * f64::EPSILON * scale;
             let closes = (q1 >= 0.0) & (q2 >= 0.0) & (q3 >= 0.0);
             if d != 0.0 && !((q1 >= -slack) & (q2 >= -slack) & (q3 >= -slack)) {
                 result = Some((Point::failed(Status::NotAssemblable, 0, f64::NAN), [f64::NAN; 4]));

@@ -8,8 +8,9 @@
 
 use std::f64::consts::{PI, TAU};
 
-use crate::fourbar::{Assembly, FourBar, Mode};
-use crate::grashof::sums_equal;
+use super::closed_form::ClosedForm;
+use super::grashof::sums_equal;
+use super::model::{FourBar, Mode};
 use crate::wrap_angle;
 
 /// The angle t in [0, pi] at which a point at radius `r` from the origin, at polar angle
@@ -172,7 +173,7 @@ impl FourBar {
                 let t4 = match exact {
                     Some(v) => v,
                     None => match self.closed_form(t2, mode) {
-                        Assembly::Closed { theta4, .. } => theta4,
+                        ClosedForm::Solved { theta4, .. } => theta4,
                         _ => continue,
                     },
                 };
@@ -216,7 +217,7 @@ mod tests {
         assert!((mx.theta4 / DEG - 150.07).abs() < 5e-3, "{}", mx.theta4 / DEG);
         // rocker extremes are where crank and coupler are collinear: omega4 = 0
         for e in [mn, mx] {
-            let Assembly::Closed { theta3, theta4, .. } =
+            let ClosedForm::Solved { theta3, theta4, .. } =
                 FourBar::new(6.0, 2.0, 5.0, 5.0).unwrap().closed_form(e.theta2, Mode::Open)
             else {
                 panic!()
@@ -240,10 +241,10 @@ mod tests {
             assert!(inside);
         }
         for &[a, b] in &l.intervals {
-            assert!(matches!(fb.closed_form(a + 1e-9, Mode::Open), Assembly::Closed { .. }));
-            assert!(matches!(fb.closed_form(b - 1e-9, Mode::Open), Assembly::Closed { .. }));
-            assert_eq!(fb.closed_form(a - 1e-6, Mode::Open), Assembly::NotAssemblable);
-            assert_eq!(fb.closed_form(b + 1e-6, Mode::Open), Assembly::NotAssemblable);
+            assert!(matches!(fb.closed_form(a + 1e-9, Mode::Open), ClosedForm::Solved { .. }));
+            assert!(matches!(fb.closed_form(b - 1e-9, Mode::Open), ClosedForm::Solved { .. }));
+            assert_eq!(fb.closed_form(a - 1e-6, Mode::Open), ClosedForm::NotAssemblable);
+            assert_eq!(fb.closed_form(b + 1e-6, Mode::Open), ClosedForm::NotAssemblable);
         }
     }
 

@@ -5,41 +5,25 @@
 //! position) is solved by the scalar `sweep_point` from the same start, so every status
 //! is the scalar path's; angles differ from it only by the rounding of the polynomials.
 
-use std::f64::consts::PI;
-
 use nalgebra::Vector2;
 use rayon::prelude::*;
 
-use super::math::{sin_cos, SIN_COS_MAX};
-use crate::batch::BatchOut;
+use super::lane::{eval_lanes, lanes, rates, wrap, Eval, M, V, W};
 use crate::error::Error;
-use crate::fourbar::{FourBar, Point};
+use crate::fourbar::model::{FourBar, Point, FLAT_ULPS};
+use crate::fourbar::options::{BatchOut, Predictor, SweepOptions, SweepOut};
+use crate::fourbar::point::{predictor_rates, sweep_point};
+use crate::fourbar::row::{sin_cos_table, sweep_row};
 use crate::interrupt::{Flag, Interrupt, Poll};
-use crate::sweep::{predictor_rates, sweep_point, sweep_unchecked, Predictor, SweepOptions, SweepOut};
+use crate::parallel::run;
+use crate::simd::math::SIN_COS_MAX;
 use crate::{wrap_angle, Status};
 
-/// Lanes per group: 4 f64 in an AVX2 register.
-pub const W: usize = 4;
 /// Newton steps tried in lock-step before a lane goes to the scalar path (one or two are
 /// the rule on a sweep with a predictor).
 const LOCKSTEP_STEPS: u32 = 8;
 
-type V = [f64; W];
-type M = [bool; W];
-
-/// `[expr for each lane l]`, as a plain loop: a closure (`array::from_fn`) would not be
-/// inlined into the `target_feature` function and would lose AVX2 and FMA.
-macro_rules! lanes {
-    (|$l:ident| $e:expr) => {{
-        let mut o = [Default::default(); W];
-        for $l in 0..W {
-            o[$l] = $e;
-        }
-        o
-    }};
-}
-
-/// [`crate::batch::sweep_batch`] for `Method::Newton` with the lane kernel: groups of
+/// [`crate::fourbar::sweep_batch`] for `Method::Newton` with the lane kernel: groups of
 /// [`W`] linkages, rayon-parallel over groups; a last group of fewer rows runs scalar.
 /// The caller has checked the output lengths and that there is at least one angle.
 pub(crate) fn sweep_batch(
@@ -52,12 +36,12 @@ pub(crate) fn sweep_batch(
 ) -> Result<(), Error> {
     let n = theta2.len();
     let mn = links.len() * n;
-    let trig = crate::sweep::sin_cos(theta2)?;
+    let trig = sin_cos_table(theta2)?;
     let g = W * n;
     let size = mn as u128 * (u128::from(opts.newton.max_iter) + 1);
     // the interrupt is asked between groups of W rows (and every few thousand points of a
     // last, scalar group)
-    crate::batch::run(threads, size, interrupt, |stop| {
+    run(threads, size, interrupt, |stop| {
         let flag = Flag(stop);
         out.theta3
             .par_chunks_mut(g)
@@ -77,7 +61,7 @@ pub(crate) fn sweep_batch(
                 let rows = rows.zip(nit.chunks_mut(n)).zip(res.chunks_mut(n)).zip(fbs);
                 for (((((theta3, theta4), status), nit), residual), fb) in rows {
                     let row = SweepOut { theta3, theta4, status, nit, residual };
-                    sweep_unchecked(fb, theta2, &trig, None, opts, row, None, &Poll::new(&flag))?;
+                    sweep_row(fb, theta2, &trig, None, opts, row, None, &Poll::new(&flag))?;
                 }
                 Ok(())
             })
@@ -98,7 +82,7 @@ fn group(
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
     #[cfg(target_arch = "x86_64")]
-    if super::available() {
+    if crate::simd::available() {
         // SAFETY: AVX2 and FMA checked at run time.
         return unsafe { group_avx2(fbs, theta2, trig, opts, t3, t4, st, nit, res, poll) };
     }
@@ -129,81 +113,6 @@ struct Prev {
     x: [V; 2],
     v: [V; 2],
     a: [V; 2],
-}
-
-/// `sweep::predictor_rates` lane by lane (same operations), from the Jacobians of
-/// converged lanes (whose determinants are non-zero: the step was taken with them).
-#[inline(always)]
-pub(crate) fn rates(r2: &V, s2: f64, c2: f64, j: &[V; 4], p: Predictor) -> ([V; 2], [V; 2]) {
-    let zero = [[0.0; W]; 2];
-    if p == Predictor::Previous {
-        return (zero, zero);
-    }
-    let [j00, j01, j10, j11] = j;
-    let d: V = lanes!(|l| j00[l] * j11[l] - j01[l] * j10[l]);
-    let (b0, b1): (V, V) = (lanes!(|l| r2[l] * s2), lanes!(|l| -(r2[l] * c2)));
-    let v0: V = lanes!(|l| (b0[l] * j11[l] - b1[l] * j01[l]) / d[l]);
-    let v1: V = lanes!(|l| (j00[l] * b1[l] - j10[l] * b0[l]) / d[l]);
-    if p == Predictor::Tangent {
-        return ([v0, v1], zero);
-    }
-    let (w3s, w4s): (V, V) = (lanes!(|l| v0[l] * v0[l]), lanes!(|l| v1[l] * v1[l]));
-    let c0: V = lanes!(|l| r2[l] * c2 + j10[l] * w3s[l] + j11[l] * w4s[l]);
-    let c1: V = lanes!(|l| r2[l] * s2 - j00[l] * w3s[l] - j01[l] * w4s[l]);
-    let a0: V = lanes!(|l| (c0[l] * j11[l] - c1[l] * j01[l]) / d[l]);
-    let a1: V = lanes!(|l| (j00[l] * c1[l] - j10[l] * c0[l]) / d[l]);
-    ([v0, v1], [a0, a1])
-}
-
-/// Lane-wise wrap to (-pi, pi]: the identity in range (as `wrap_angle`), libm's remainder
-/// only for the lanes out of range.
-#[inline(always)]
-pub(crate) fn wrap(x: V) -> V {
-    let mut x = x;
-    if !x.iter().all(|&a| a > -PI && a <= PI) {
-        for a in x.iter_mut() {
-            *a = wrap_angle(*a);
-        }
-    }
-    x
-}
-
-/// One Newton evaluation of [`W`] linkages at crank (sin, cos) = (s2, c2) and iterates
-/// (x3, x4): residuals, the residual over the scale, the Jacobian, its determinant,
-/// sin(theta4 - theta3), the Newton correction and its largest component.
-pub(crate) struct Eval {
-    pub f1: V,
-    pub f2: V,
-    pub j: [V; 4],
-    pub residual: V,
-    pub det: V,
-    pub sin34: V,
-    pub dx: [V; 2],
-    pub step: V,
-}
-
-/// The scalar `Loop::eval`, `newton::solve` and `cramer` lane by lane, in their
-/// operation order (with the polynomial sin/cos).
-#[inline(always)]
-pub(crate) fn eval_lanes(r: &[V; 4], scale: &V, r3r4: &V, s2: f64, c2: f64, x: &[V; 2]) -> Eval {
-    let [r1, r2, r3, r4] = r;
-    let sc3: [(f64, f64); W] = lanes!(|l| sin_cos(x[0][l]));
-    let sc4: [(f64, f64); W] = lanes!(|l| sin_cos(x[1][l]));
-    let (s3, c3): (V, V) = (lanes!(|l| sc3[l].0), lanes!(|l| sc3[l].1));
-    let (s4, c4): (V, V) = (lanes!(|l| sc4[l].0), lanes!(|l| sc4[l].1));
-    let f1: V = lanes!(|l| r2[l] * c2 + r3[l] * c3[l] - r4[l] * c4[l] - r1[l]);
-    let f2: V = lanes!(|l| r2[l] * s2 + r3[l] * s3[l] - r4[l] * s4[l]);
-    let j00: V = lanes!(|l| -r3[l] * s3[l]);
-    let j01: V = lanes!(|l| r4[l] * s4[l]);
-    let j10: V = lanes!(|l| r3[l] * c3[l]);
-    let j11: V = lanes!(|l| -r4[l] * c4[l]);
-    let residual: V = lanes!(|l| 0.0f64.max(f1[l].abs()).max(f2[l].abs()) / scale[l]);
-    let det: V = lanes!(|l| j00[l] * j11[l] - j01[l] * j10[l]);
-    let sin34: V = lanes!(|l| -det[l] / r3r4[l]);
-    let dx0: V = lanes!(|l| (-f1[l] * j11[l] - -f2[l] * j01[l]) / det[l]);
-    let dx1: V = lanes!(|l| (j00[l] * -f2[l] - j10[l] * -f1[l]) / det[l]);
-    let step: V = lanes!(|l| dx0[l].abs().max(dx1[l].abs()));
-    Eval { f1, f2, j: [j00, j01, j10, j11], residual, det, sin34, dx: [dx0, dx1], step }
 }
 
 #[inline(always)]
@@ -279,7 +188,7 @@ fn group_body<const AVX: bool>(
             let q2 = d - r3[l] + r4[l];
             let q3 = r3[l] + r4[l] - d;
             // within FLAT_ULPS ulp of closing, a triangle is flat: the scalar path decides
-            let slack = crate::fourbar::FLAT_ULPS * f64::EPSILON * fbs[l].longest();
+            let slack = FLAT_ULPS * f64::EPSILON * fbs[l].longest();
             let flat = |q: f64| (q < 0.0) & (q >= -slack);
             odd[l] = d == 0.0 || flat(q1) || flat(q2) || flat(q3);
             not_asm[l] = !odd[l] & !((q1 >= 0.0) & (q2 >= 0.0) & (q3 >= 0.0));
@@ -422,10 +331,8 @@ fn group_body<const AVX: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::batch::validate_links;
-    use crate::fourbar::Mode;
-    use crate::newton::NewtonOptions;
-    use crate::sweep::{default_angles, Method};
+    use crate::fourbar::{default_angles, validate_links, Method, Mode};
+    use crate::solve::newton::NewtonOptions;
 
     /// The scalar Newton sweep of each row with libm's crank trigonometry (bit-identical to
     /// the NumPy reference), whatever the process-wide switch says.
@@ -444,7 +351,8 @@ mod tests {
                 nit: &mut k[rg.clone()],
                 residual: &mut r[rg],
             };
-            crate::sweep::newton_sweep(fb, t2, &trig, None, opts, row, None, &Poll::new(&crate::Never)).unwrap();
+            crate::fourbar::scalar::newton_sweep(fb, t2, &trig, None, opts, row, None, &Poll::new(&crate::Never))
+                .unwrap();
         }
         (a, b, s, k)
     }
@@ -535,7 +443,7 @@ mod tests {
                     for fb in &links {
                         let mut a: Row = (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
                         let mut b = a.clone();
-                        crate::sweep::newton_sweep(
+                        crate::fourbar::scalar::newton_sweep(
                             fb,
                             &t2,
                             &trig,
@@ -546,7 +454,7 @@ mod tests {
                             &Poll::new(&crate::Never),
                         )
                         .unwrap();
-                        crate::simd::sweep::newton_row(
+                        super::super::row::newton_row(
                             fb,
                             &t2,
                             &trig,

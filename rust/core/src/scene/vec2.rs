@@ -1,0 +1,34 @@
+//! Plane vectors as `[x, y]` and the few operations the scene solvers use on them.
+
+/// A 2-D point or vector.
+pub type Xy = [f64; 2];
+
+/// (a - b)
+#[inline]
+pub(crate) fn sub(a: Xy, b: Xy) -> Xy {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+/// z-component of a x b.
+#[inline]
+pub(crate) fn cross(a: Xy, b: Xy) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// a . b
+#[inline]
+pub(crate) fn dot(a: Xy, b: Xy) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+/// `v` turned by the rotation whose (cos, sin) is `cs`.
+#[inline]
+pub(crate) fn turn(cs: Xy, v: Xy) -> Xy {
+    [cs[0] * v[0] - cs[1] * v[1], cs[1] * v[0] + cs[0] * v[1]]
+}
+
+/// `v` turned by +90 degrees.
+#[inline]
+pub(crate) fn perp(v: Xy) -> Xy {
+    [-v[1], v[0]]
+}

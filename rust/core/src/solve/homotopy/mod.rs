@@ -1,0 +1,773 @@
+//! Every assembly of a rigid group of links, by homotopy continuation: all finite complex
+//! solutions of the closure equations `A z = b` (linear in `z = (cos phi, sin phi)`) with
+//! the unit circles `c_j^2 + s_j^2 = 1`, and the real assemblies among them.
+//!
+//! Method. The linear part is eliminated first: rows of `[A | b]` are scaled to unit
+//! max-norm, an SVD checks that `A` (N x 2N) has full row rank and gives the
+//! minimum-norm solution `z0` and an orthonormal basis `K` (2N x N) of its null space, so
+//! `z = z0 + K t`. What is left is N quadrics in N unknowns,
+//! `q_j(t) = c_j(t)^2 + s_j(t)^2 - 1`. They are solved by a total-degree homotopy
+//! `H(t, tau) = (1 - tau) gamma G(t) + tau F(t)`, `G_j = t_j^2 - 1` (2^N start points
+//! `t_j = +-1`), `gamma` a random unit complex number (the "gamma trick": no path meets a
+//! singularity for tau < 1, with probability one). Each path is tracked in projective
+//! coordinates `X = (x0, x)`, `t = x / x0`, on a moving orthogonal patch
+//! (`conj(X_k) . X = 1`, renormalised after every accepted step), so paths whose `t`
+//! diverges stay bounded and head for `x0 = 0`: once `|x0| < 1e-6 |X|` (or if they stop
+//! or end with `|x0| < 1e-4 |X|` and no finite root) they are classified *infinite*, not
+//! failed. Predictor: classical RK4 on the Davidenko equation `H_X dX/dtau = -H_tau`;
+//! corrector: at most three Newton steps that must contract; adaptive step (halved on
+//! rejection, doubled after three acceptances), bounded by `max_steps` per path and a
+//! minimum step, so nothing hangs. Every endpoint that reached tau = 1 (or stopped within
+//! 1e-6 of it, as paths to a singular root do) is finished by Newton on the affine target
+//! `F(t)` and kept only if Newton converges near it with a small residual (a finite,
+//! verified root). Roots are
+//! deduplicated; two paths of one run ending on the same root (path jumping: the roots
+//! are simple for generic geometry) are both tracked again with steps eight times
+//! smaller; the whole tracking runs `runs` times (default 2) with independent
+//! `gamma`s and the root sets are merged, so a root lost by one run to a path failure or
+//! path jumping is still found if the other run finds it. Real assemblies: roots whose
+//! imaginary parts are below a scale-aware tolerance, polished by real Newton in the
+//! angles on `A z(phi) = b` (the circles then hold exactly) to about 1e-15 rad.
+
+use nalgebra::{Complex, DMatrix, DVector};
+
+use crate::interrupt::{Never, Poll};
+use crate::{wrap_angle, Error};
+
+type C = Complex<f64>;
+
+/// Largest number of unknown rotations accepted (2^16 paths per run).
+pub const MAX_LINKS: usize = 16;
+
+/// A path whose homogenizing coordinate |x0| (with |X| = 1) falls below this is declared
+/// infinite: its t exceeds 1e6 times the scale of the row-normalised problem. Paths to
+/// singular points at infinity approach them with |x0| ~ 1 - tau and would otherwise
+/// spend ~30 more steps shrinking towards the precision floor (measured on the double
+/// butterfly). A finite root that large (|cos phi| ~ 1e6, |Im phi| ~ 14) is lost.
+const INFINITE_X0: f64 = 1e-6;
+
+/// Tracking options, all with defaults ([`HomotopyOptions::default`]); [`HomotopyOptions::new`]
+/// validates what a caller chooses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HomotopyOptions {
+    /// Seed of the random `gamma` of each run (splitmix64): the result is deterministic
+    /// for a given seed.
+    pub seed: u64,
+    /// Independent trackings (each with its own `gamma`) whose roots are merged;
+    /// 1..=[`MAX_RUNS`].
+    pub runs: u32,
+    /// At most this many predictor-corrector steps (accepted or rejected) per path; >= 1.
+    pub max_steps: u32,
+    /// Largest step in tau, in (0, 1].
+    pub max_step: f64,
+}
+
+impl Default for HomotopyOptions {
+    fn default() -> Self {
+        Self { seed: 0x5EED_2026, runs: 2, max_steps: 3000, max_step: 0.05 }
+    }
+}
+
+/// Most independent trackings a caller may ask for: each run tracks 2^N paths again.
+pub const MAX_RUNS: u32 = 16;
+
+impl HomotopyOptions {
+    /// The default tracking with the caller's `seed` and `runs` (1..=[`MAX_RUNS`]); the
+    /// error names the parameter.
+    pub fn new(seed: u64, runs: i64) -> Result<Self, Error> {
+        let runs = u32::try_from(runs)
+            .ok()
+            .filter(|r| (1..=MAX_RUNS).contains(r))
+            .ok_or_else(|| Error::invalid("runs", "must be an integer in 1..=16", runs))?;
+        Ok(Self { seed, runs, ..Self::default() })
+    }
+
+    fn check(&self) -> Result<(), Error> {
+        if !(1..=MAX_RUNS).contains(&self.runs) {
+            return Err(Error::invalid("runs", "must be an integer in 1..=16", self.runs));
+        }
+        if self.max_steps == 0 {
+            return Err(Error::invalid("max_steps", "must be >= 1", 0));
+        }
+        if !(self.max_step > 0.0 && self.max_step <= 1.0) {
+            return Err(Error::invalid("max_step", "must be in (0, 1]", self.max_step));
+        }
+        Ok(())
+    }
+}
+
+/// All assemblies found.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Solutions {
+    /// Finite complex solutions `z = (c_1..c_N, s_1..s_N)` (length 2N), deduplicated over
+    /// all runs: the non-real ones first, then the real ones, given exactly as
+    /// `(cos phi, sin phi)` of their polished angles (zero imaginary parts) in the order
+    /// of [`Solutions::real`].
+    pub complex: Vec<Vec<Complex<f64>>>,
+    /// Real solutions as angles `phi` (length N) in (-pi, pi], polished by real Newton
+    /// (to ~1e-15 rad at simple roots; a double root, at a dead point, is resolved only
+    /// to ~1e-8 and may be listed twice, about that far apart).
+    pub real: Vec<Vec<f64>>,
+    /// Paths tracked, over all runs (`runs * 2^N`).
+    pub paths: usize,
+    /// Paths that ended neither at a verified finite root nor at infinity, over all runs.
+    pub failed: usize,
+    /// Paths classified as diverging to infinity, over all runs.
+    pub infinite: usize,
+    /// Distinct finite roots found by each run.
+    pub per_run_found: Vec<usize>,
+    /// Failed paths in each run.
+    pub per_run_failed: Vec<usize>,
+    /// Paths in each run that ended on a root another path of the run had already
+    /// reached (path jumping, for isolated simple roots); those paths were tracked again
+    /// with steps eight times smaller, and `per_run_found` counts what that recovered.
+    pub per_run_jumps: Vec<usize>,
+    /// Predictor-corrector steps (accepted and rejected, retracking included) over all
+    /// paths and runs: the machine-independent cost of the solve (each step is an RK4
+    /// predictor, four (N+1)-square complex LU solves, plus 1-3 Newton solves).
+    pub steps: usize,
+}
+
+/// All finite complex solutions of `A z = b`, `c_j^2 + s_j^2 = 1` (`a` is N x 2N, `b` has
+/// length N, `z = (c_1..c_N, s_1..s_N)`), and the real ones as angles. See the module docs
+/// for the method.
+///
+/// Errors (misuse only): N = 0 or N > [`MAX_LINKS`], shapes that disagree, non-finite
+/// entries, invalid options, or `A` without full row rank (dependent closure equations:
+/// the solution set is not finite). Path failures are data ([`Solutions::failed`]).
+pub fn unit_circle_solutions(a: &DMatrix<f64>, b: &DVector<f64>, opts: &HomotopyOptions) -> Result<Solutions, Error> {
+    unit_circle_solutions_polled(a, b, opts, &Poll::new(&Never))
+}
+
+/// [`unit_circle_solutions`] that counts every predictor-corrector step on `poll` and
+/// returns [`Error::Interrupted`] when the poll's interrupt asks to stop.
+pub fn unit_circle_solutions_polled(
+    a: &DMatrix<f64>,
+    b: &DVector<f64>,
+    opts: &HomotopyOptions,
+    poll: &Poll<'_>,
+) -> Result<Solutions, Error> {
+    let n = a.nrows();
+    if n == 0 {
+        return Err(Error::invalid("a", "must have at least one row", "0 rows"));
+    }
+    if n > MAX_LINKS {
+        return Err(Error::invalid("a", "must have at most 16 rows (2^N paths)", format!("{n} rows")));
+    }
+    if a.ncols() != 2 * n {
+        return Err(Error::Shape { name: "a columns".into(), got: a.ncols(), expected: 2 * n });
+    }
+    if b.len() != n {
+        return Err(Error::Shape { name: "b".into(), got: b.len(), expected: n });
+    }
+    if let Some(v) = a.iter().chain(b.iter()).find(|v| !v.is_finite()) {
+        return Err(Error::invalid("a, b", "must be finite", v));
+    }
+    opts.check()?;
+    let red = Reduced::new(a, b)?;
+
+    let mut rng = SplitMix64(opts.seed);
+    let mut out = Solutions::default();
+    let mut roots: Vec<Vec<C>> = Vec::new(); // t of the merged roots
+    for _ in 0..opts.runs {
+        let theta = std::f64::consts::TAU * rng.uniform();
+        let gamma = C::new(theta.cos(), theta.sin());
+        let run = red.run(gamma, opts, poll)?;
+        out.paths += run.paths;
+        out.failed += run.failed;
+        out.infinite += run.infinite;
+        out.per_run_found.push(run.roots.len());
+        out.per_run_failed.push(run.failed);
+        out.per_run_jumps.push(run.jumps);
+        out.steps += run.steps;
+        for t in run.roots {
+            insert_unique(&mut roots, t);
+        }
+    }
+
+    let mut real: Vec<Vec<f64>> = Vec::new();
+    for t in &roots {
+        let z = red.z_of(t);
+        let zmax = z.iter().map(|v| v.norm()).fold(1.0, f64::max);
+        let imag = z.iter().map(|v| v.im.abs()).fold(0.0, f64::max);
+        if imag <= 1e-6 * zmax {
+            if let Some(phi) = red.real_polish(&z) {
+                if !real.iter().any(|p| angles_close(p, &phi, 1e-9)) {
+                    real.push(phi);
+                }
+                continue;
+            }
+        }
+        out.complex.push(z);
+    }
+    // Real roots are stored exactly; a complex root that polished to the same real
+    // assembly as another (a near-conjugate pair) is not listed twice.
+    for phi in &real {
+        out.complex
+            .push(phi.iter().map(|p| C::new(p.cos(), 0.0)).chain(phi.iter().map(|p| C::new(p.sin(), 0.0))).collect());
+    }
+    out.real = real;
+    Ok(out)
+}
+
+/// The system after eliminating the linear part: `z = P (x0, x)` with `P = [z0 | K]`.
+struct Reduced {
+    n: usize,
+    /// 2N x (N + 1), row major: column 0 is z0, columns 1..=N are K.
+    p: Vec<f64>,
+    /// Row-scaled `A` and `b` (same solutions), for the real polish.
+    a: DMatrix<f64>,
+    b: DVector<f64>,
+}
+
+/// How one path ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum End {
+    /// Reached tau = 1.
+    Reached,
+    /// Stopped within 1e-6 of tau = 1 (the step fell below its minimum or the budget
+    /// ran out): typical of a singular endpoint, e.g. a double root at a dead point.
+    Near,
+    /// x0 became negligible: t diverges.
+    Infinite,
+    /// Step below the minimum, step budget spent, or a singular / non-finite linear solve.
+    Failed,
+}
+
+struct RunResult {
+    roots: Vec<Vec<C>>,
+    paths: usize,
+    failed: usize,
+    infinite: usize,
+    /// Paths that ended on a root another path of the run had reached.
+    jumps: usize,
+    steps: usize,
+}
+
+/// A path's classified end.
+enum PathEnd {
+    /// A finite root t, verified by Newton on the target.
+    Root(Vec<C>),
+    Infinite,
+    Failed,
+}
+
+/// Scratch buffers of one path (no allocation inside the step loop).
+struct Work {
+    /// Predictor-corrector steps taken (accepted and rejected), all paths of the run.
+    steps: usize,
+    m: usize,
+    jac: Vec<C>,
+    rhs: Vec<C>,
+    w: Vec<C>,
+}
+
+impl Reduced {
+    fn new(a: &DMatrix<f64>, b: &DVector<f64>) -> Result<Self, Error> {
+        let n = a.nrows();
+        let mut a_s = a.clone();
+        let mut b_s = b.clone();
+        for i in 0..n {
+            let s = a.row(i).amax();
+            if s == 0.0 {
+                return Err(Error::invalid("a", "must have full row rank", format!("row {i} is zero")));
+            }
+            a_s.row_mut(i).scale_mut(1.0 / s);
+            b_s[i] /= s;
+        }
+        // never hand the SVD a non-finite entry
+        if let Some(v) = b_s.iter().find(|v| !v.is_finite()) {
+            return Err(Error::invalid("b", "must be finite after dividing each row by its largest |a|", v));
+        }
+        // Pad to square so the SVD returns a full V^T: its N rows of zero singular value
+        // span the null space of A.
+        let mut m = DMatrix::<f64>::zeros(2 * n, 2 * n);
+        m.rows_mut(0, n).copy_from(&a_s);
+        // bounded iterations (plain `svd` iterates until convergence)
+        let svd = m
+            .try_svd(true, true, 5.0 * f64::EPSILON, 10_000)
+            .ok_or_else(|| Error::invalid("a", "must have a computable SVD", "no convergence in 10000 sweeps"))?;
+        let (Some(u), Some(vt)) = (svd.u.as_ref(), svd.v_t.as_ref()) else {
+            return Err(Error::invalid("a", "must have a computable SVD", "SVD failed"));
+        };
+        let sv = &svd.singular_values;
+        let mut order: Vec<usize> = (0..2 * n).collect();
+        order.sort_by(|&i, &j| sv[j].total_cmp(&sv[i]));
+        let smax = sv[order[0]];
+        let smin = sv[order[n - 1]];
+        if smin.is_nan() || smin <= 1e-10 * smax {
+            return Err(Error::invalid(
+                "a",
+                "must have full row rank (independent closure equations)",
+                format!("sigma_min / sigma_max = {:e}", smin / smax),
+            ));
+        }
+        let mut z0 = vec![0.0; 2 * n];
+        for &k in &order[..n] {
+            let mut ub = 0.0;
+            for i in 0..n {
+                ub += u[(i, k)] * b_s[i];
+            }
+            let coef = ub / sv[k];
+            for (r, zr) in z0.iter_mut().enumerate() {
+                *zr += coef * vt[(k, r)];
+            }
+        }
+        let cols = n + 1;
+        let mut p = vec![0.0; 2 * n * cols];
+        for r in 0..2 * n {
+            p[r * cols] = z0[r];
+            for (c, &k) in order[n..].iter().enumerate() {
+                p[r * cols + 1 + c] = vt[(k, r)];
+            }
+        }
+        Ok(Self { n, p, a: a_s, b: b_s })
+    }
+
+    /// z = z0 + K t.
+    fn z_of(&self, t: &[C]) -> Vec<C> {
+        let cols = self.n + 1;
+        (0..2 * self.n)
+            .map(|r| {
+                let row = &self.p[r * cols..(r + 1) * cols];
+                let mut s = C::new(row[0], 0.0);
+                for k in 0..self.n {
+                    s += t[k] * row[k + 1];
+                }
+                s
+            })
+            .collect()
+    }
+
+    /// One full tracking of the 2^N paths with one gamma; returns the distinct roots.
+    fn run(&self, gamma: C, opts: &HomotopyOptions, poll: &Poll<'_>) -> Result<RunResult, Error> {
+        let n = self.n;
+        let m = n + 1;
+        let mut work = Work {
+            steps: 0,
+            m,
+            jac: vec![C::default(); m * m],
+            rhs: vec![C::default(); m],
+            w: vec![C::default(); 2 * n],
+        };
+        let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0, jumps: 0, steps: 0 };
+        // root index reached by each path (None: infinite or failed)
+        let mut reached: Vec<Option<usize>> = Vec::with_capacity(1 << n);
+        for start in 0..(1usize << n) {
+            res.paths += 1;
+            let end = match self.path(start, gamma, opts, &mut work, poll)? {
+                PathEnd::Root(t) => Some(insert_unique(&mut res.roots, t)),
+                PathEnd::Infinite => {
+                    res.infinite += 1;
+                    None
+                }
+                PathEnd::Failed => {
+                    res.failed += 1;
+                    None
+                }
+            };
+            reached.push(end);
+        }
+        // Roots here are isolated and simple for generic geometry, so two paths ending at
+        // one root means a path jumped (and another root was probably lost): retrack
+        // every path of such a root with steps eight times smaller.
+        let mut hits = vec![0usize; res.roots.len()];
+        for r in reached.iter().flatten() {
+            hits[*r] += 1;
+        }
+        res.jumps = hits.iter().map(|&h| h.saturating_sub(1)).sum();
+        if res.jumps > 0 {
+            let fine =
+                HomotopyOptions { max_step: opts.max_step / 8.0, max_steps: opts.max_steps.saturating_mul(4), ..*opts };
+            for (start, r) in reached.iter().enumerate() {
+                if matches!(r, Some(r) if hits[*r] > 1) {
+                    if let PathEnd::Root(t) = self.path(start, gamma, &fine, &mut work, poll)? {
+                        insert_unique(&mut res.roots, t);
+                    }
+                }
+            }
+        }
+        res.steps = work.steps;
+        Ok(res)
+    }
+
+    /// Tracks the path from start point number `start` (bit k set: t_k = -1) and
+    /// classifies its end.
+    fn path(
+        &self,
+        start: usize,
+        gamma: C,
+        opts: &HomotopyOptions,
+        work: &mut Work,
+        poll: &Poll<'_>,
+    ) -> Result<PathEnd, Error> {
+        let m = self.n + 1;
+        let norm0 = 1.0 / (m as f64).sqrt();
+        let mut x: Vec<C> = (0..m)
+            .map(|k| {
+                let sign = if k > 0 && (start >> (k - 1)) & 1 == 1 { -1.0 } else { 1.0 };
+                C::new(sign * norm0, 0.0)
+            })
+            .collect();
+        let end = self.track(&mut x, gamma, opts, work, poll)?;
+        // A path that stopped just short of tau = 1 usually sits by a singular root, where
+        // Newton still converges (linearly): keep it if Newton verifies it.
+        let root = if matches!(end, End::Reached | End::Near) && x[0].norm() > 1e-12 {
+            let t0: Vec<C> = x[1..].iter().map(|v| v / x[0]).collect();
+            self.affine_newton(&t0)
+        } else {
+            None
+        };
+        Ok(match (end, root) {
+            (End::Infinite, _) => PathEnd::Infinite,
+            (_, Some(t)) => PathEnd::Root(t),
+            // stopped (or arrived) near x0 = 0 without a finite root
+            _ if x[0].norm() < 1e-4 => PathEnd::Infinite,
+            _ => PathEnd::Failed,
+        })
+    }
+
+    /// Homotopy residual (rows 0..N, plus the patch row N) into `work.rhs` and its
+    /// Jacobian in X into `work.jac`; with `dtau`, `rhs` gets H_tau instead (patch row 0).
+    fn eval(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, dtau: bool) {
+        let n = self.n;
+        let m = work.m;
+        for r in 0..2 * n {
+            let row = &self.p[r * m..(r + 1) * m];
+            let mut s = C::default();
+            for k in 0..m {
+                s += x[k] * row[k];
+            }
+            work.w[r] = s;
+        }
+        let x0 = x[0];
+        let g_w = gamma * (1.0 - tau);
+        for j in 0..n {
+            let (c, s) = (work.w[j], work.w[n + j]);
+            let f = c * c + s * s - x0 * x0;
+            let g = x[j + 1] * x[j + 1] - x0 * x0;
+            work.rhs[j] = if dtau { f - gamma * g } else { g_w * g + f * tau };
+            let rc = &self.p[j * m..(j + 1) * m];
+            let rs = &self.p[(n + j) * m..(n + j + 1) * m];
+            let row = &mut work.jac[j * m..(j + 1) * m];
+            let (c2, s2) = (c * (2.0 * tau), s * (2.0 * tau));
+            for k in 0..m {
+                row[k] = c2 * rc[k] + s2 * rs[k];
+            }
+            row[0] -= x0 * (2.0 * tau) + g_w * x0 * 2.0;
+            row[j + 1] += g_w * x[j + 1] * 2.0;
+        }
+        work.jac[n * m..(n + 1) * m].copy_from_slice(patch);
+        work.rhs[n] = if dtau {
+            C::default()
+        } else {
+            let mut s = C::new(-1.0, 0.0);
+            for k in 0..m {
+                s += patch[k] * x[k];
+            }
+            s
+        };
+    }
+
+    /// dX/dtau at (x, tau) on the patch, into `out`. False on a singular solve.
+    fn tangent(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, out: &mut [C]) -> bool {
+        self.eval(x, tau, gamma, patch, work, true);
+        for v in work.rhs.iter_mut() {
+            *v = -*v;
+        }
+        if !lu_solve(&mut work.jac, work.m, &mut work.rhs) {
+            return false;
+        }
+        out.copy_from_slice(&work.rhs);
+        true
+    }
+
+    /// Tracks one path from tau = 0 to 1; `x` is updated in place (unit norm).
+    fn track(
+        &self,
+        x: &mut [C],
+        gamma: C,
+        opts: &HomotopyOptions,
+        work: &mut Work,
+        poll: &Poll<'_>,
+    ) -> Result<End, Error> {
+        let m = work.m;
+        let mut tau = 0.0_f64;
+        let mut h = opts.max_step.min(0.02);
+        let h_min = 1e-13;
+        let mut good = 0;
+        let mut patch = vec![C::default(); m];
+        let mut k1 = vec![C::default(); m];
+        let mut k2 = vec![C::default(); m];
+        let mut k3 = vec![C::default(); m];
+        let mut k4 = vec![C::default(); m];
+        let mut y = vec![C::default(); m];
+        for _ in 0..opts.max_steps {
+            poll.tick()?;
+            work.steps += 1;
+            if x[0].norm() < INFINITE_X0 {
+                return Ok(End::Infinite);
+            }
+            for k in 0..m {
+                patch[k] = x[k].conj();
+            }
+            let step = h.min(1.0 - tau);
+            let ok = 'step: {
+                if !self.tangent(x, tau, gamma, &patch, work, &mut k1) {
+                    break 'step false;
+                }
+                axpy(&mut y, x, 0.5 * step, &k1);
+                if !self.tangent(&y, tau + 0.5 * step, gamma, &patch, work, &mut k2) {
+                    break 'step false;
+                }
+                axpy(&mut y, x, 0.5 * step, &k2);
+                if !self.tangent(&y, tau + 0.5 * step, gamma, &patch, work, &mut k3) {
+                    break 'step false;
+                }
+                axpy(&mut y, x, step, &k3);
+                let t1 = if tau + step >= 1.0 { 1.0 } else { tau + step };
+                if !self.tangent(&y, t1, gamma, &patch, work, &mut k4) {
+                    break 'step false;
+                }
+                for k in 0..m {
+                    y[k] = x[k] + (k1[k] + (k2[k] + k3[k]) * 2.0 + k4[k]) * (step / 6.0);
+                }
+                // Corrector: at most three Newton steps, each contracting.
+                let mut last = f64::INFINITY;
+                for it in 0..3 {
+                    self.eval(&y, t1, gamma, &patch, work, false);
+                    for v in work.rhs.iter_mut() {
+                        *v = -*v;
+                    }
+                    if !lu_solve(&mut work.jac, m, &mut work.rhs) {
+                        break 'step false;
+                    }
+                    let d = work.rhs.iter().map(|v| v.norm()).fold(0.0, f64::max);
+                    if !d.is_finite() || d > 0.1 || (it > 0 && d > 0.25 * last) {
+                        break 'step false;
+                    }
+                    for (yk, dk) in y.iter_mut().zip(&work.rhs) {
+                        *yk += dk;
+                    }
+                    last = d;
+                    if d < 1e-10 {
+                        break 'step true;
+                    }
+                }
+                last < 1e-8
+            };
+            if ok {
+                let norm = y.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+                for k in 0..m {
+                    x[k] = y[k] / norm;
+                }
+                tau = if tau + step >= 1.0 { 1.0 } else { tau + step };
+                if tau >= 1.0 {
+                    return Ok(End::Reached);
+                }
+                good += 1;
+                if good >= 3 {
+                    h = (2.0 * h).min(opts.max_step);
+                    good = 0;
+                }
+            } else {
+                good = 0;
+                h *= 0.5;
+                if h < h_min {
+                    return Ok(if 1.0 - tau < 1e-6 { End::Near } else { End::Failed });
+                }
+            }
+        }
+        Ok(if 1.0 - tau < 1e-6 { End::Near } else { End::Failed })
+    }
+
+    /// Newton on the affine target q(t) = 0 from `t0`: the root if it converges near `t0`
+    /// with a small residual.
+    fn affine_newton(&self, t0: &[C]) -> Option<Vec<C>> {
+        let n = self.n;
+        let cols = n + 1;
+        let mut t = t0.to_vec();
+        let mut jac = vec![C::default(); n * n];
+        let mut rhs = vec![C::default(); n];
+        let mut last = f64::INFINITY;
+        for _ in 0..60 {
+            let z = self.z_of(&t);
+            let mut res = 0.0_f64;
+            for j in 0..n {
+                let (c, s) = (z[j], z[n + j]);
+                rhs[j] = -(c * c + s * s - 1.0);
+                res = res.max(rhs[j].norm());
+                let rc = &self.p[j * cols + 1..(j + 1) * cols];
+                let rs = &self.p[(n + j) * cols + 1..(n + j + 1) * cols];
+                for k in 0..n {
+                    jac[j * n + k] = c * (2.0 * rc[k]) + s * (2.0 * rs[k]);
+                }
+            }
+            if !res.is_finite() || !lu_solve(&mut jac, n, &mut rhs) {
+                return None;
+            }
+            let d = rhs.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            for k in 0..n {
+                t[k] += rhs[k];
+            }
+            let tn = t.iter().map(|v| v.norm()).fold(1.0, f64::max);
+            // Converged, or stagnating at the rounding floor: ~eps / conditioning for a simple
+            // root, ~sqrt(eps) for a double one (the residual check below still applies).
+            if d <= 1e-14 * tn || (d <= 1e-6 * tn && d >= 0.5 * last) {
+                let dist = t.iter().zip(t0).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
+                let zmax = self.z_of(&t).iter().map(|v| v.norm()).fold(1.0, f64::max);
+                let ok = dist <= 1e-3 * tn && res <= 1e-8 * zmax * zmax;
+                return ok.then_some(t);
+            }
+            last = d;
+        }
+        None
+    }
+
+    /// Real Newton in the angles on the row-scaled `A z(phi) = b`, from the real part of a
+    /// nearly real root `z`: the polished angles in (-pi, pi], or `None` when it does not
+    /// converge to a real root near `z`.
+    fn real_polish(&self, z: &[C]) -> Option<Vec<f64>> {
+        let n = self.n;
+        let phi0: Vec<f64> = (0..n).map(|j| z[n + j].re.atan2(z[j].re)).collect();
+        let mut phi = phi0.clone();
+        let mut last = f64::INFINITY;
+        for _ in 0..30 {
+            let (s, c): (Vec<f64>, Vec<f64>) = phi.iter().map(|p| p.sin_cos()).unzip();
+            let mut jac = DMatrix::<f64>::zeros(n, n);
+            let mut r = DVector::<f64>::zeros(n);
+            for i in 0..n {
+                let mut v = -self.b[i];
+                for j in 0..n {
+                    let (ac, as_) = (self.a[(i, j)], self.a[(i, n + j)]);
+                    v += ac * c[j] + as_ * s[j];
+                    jac[(i, j)] = -ac * s[j] + as_ * c[j];
+                }
+                r[i] = -v;
+            }
+            let d = jac.lu().solve(&r)?;
+            let step = d.amax();
+            if !step.is_finite() {
+                return None;
+            }
+            for j in 0..n {
+                phi[j] += d[j];
+            }
+            // As in `affine_newton`: a double root (dead point) stagnates near sqrt(eps).
+            if step <= 1e-15 || (step <= 1e-6 && step >= 0.5 * last) {
+                let res = self.real_residual(&phi);
+                let moved = phi.iter().zip(&phi0).map(|(a, b)| wrap_angle(a - b).abs()).fold(0.0, f64::max);
+                return (res <= 1e-12 && moved <= 1e-4).then(|| phi.iter().map(|&p| wrap_angle(p)).collect());
+            }
+            last = step;
+        }
+        None
+    }
+
+    /// max |A z(phi) - b| on the row-scaled system.
+    fn real_residual(&self, phi: &[f64]) -> f64 {
+        let n = self.n;
+        let mut res = 0.0_f64;
+        for i in 0..n {
+            let mut v = -self.b[i];
+            for (j, p) in phi.iter().enumerate() {
+                let (s, c) = p.sin_cos();
+                v += self.a[(i, j)] * c + self.a[(i, n + j)] * s;
+            }
+            res = res.max(v.abs());
+        }
+        res
+    }
+}
+
+/// y = x + a k.
+fn axpy(y: &mut [C], x: &[C], a: f64, k: &[C]) {
+    for i in 0..y.len() {
+        y[i] = x[i] + k[i] * a;
+    }
+}
+
+/// Adds `t` to `roots` unless a root within 1e-8 (relative) is there already; returns
+/// its index.
+fn insert_unique(roots: &mut Vec<Vec<C>>, t: Vec<C>) -> usize {
+    let scale = t.iter().map(|v| v.norm()).fold(1.0, f64::max);
+    match roots.iter().position(|r| r.iter().zip(&t).all(|(a, b)| (a - b).norm() <= 1e-8 * scale)) {
+        Some(i) => i,
+        None => {
+            roots.push(t);
+            roots.len() - 1
+        }
+    }
+}
+
+fn angles_close(a: &[f64], b: &[f64], tol: f64) -> bool {
+    a.iter().zip(b).all(|(x, y)| wrap_angle(x - y).abs() <= tol)
+}
+
+/// Solves the m x m system in place by Gaussian elimination with partial pivoting (row
+/// major `a`); the solution replaces `b`. False on a zero or non-finite pivot.
+fn lu_solve(a: &mut [C], m: usize, b: &mut [C]) -> bool {
+    for k in 0..m {
+        let mut p = k;
+        let mut best = a[k * m + k].norm_sqr();
+        for i in k + 1..m {
+            let v = a[i * m + k].norm_sqr();
+            if v > best {
+                best = v;
+                p = i;
+            }
+        }
+        if !(best > 0.0 && best.is_finite()) {
+            return false;
+        }
+        if p != k {
+            for c in 0..m {
+                a.swap(k * m + c, p * m + c);
+            }
+            b.swap(k, p);
+        }
+        let inv = C::new(1.0, 0.0) / a[k * m + k];
+        for i in k + 1..m {
+            let f = a[i * m + k] * inv;
+            if f == C::default() {
+                continue;
+            }
+            for c in k + 1..m {
+                let v = a[k * m + c];
+                a[i * m + c] -= f * v;
+            }
+            let bk = b[k];
+            b[i] -= f * bk;
+        }
+    }
+    for k in (0..m).rev() {
+        let mut s = b[k];
+        for c in k + 1..m {
+            s -= a[k * m + c] * b[c];
+        }
+        b[k] = s / a[k * m + k];
+    }
+    b.iter().all(|v| v.re.is_finite() && v.im.is_finite())
+}
+
+/// splitmix64: a tiny, good-enough PRNG for the random gammas (no dependency).
+#[derive(Clone, Debug)]
+pub(crate) struct SplitMix64(pub(crate) u64);
+
+impl SplitMix64 {
+    pub(crate) fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1).
+    pub(crate) fn uniform(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[cfg(test)]
+mod tests;
