@@ -1,7 +1,6 @@
 //! Bindings of the scene solver: `Scene` (validation, assemblies, trace, circuits) and
 //! its compiled `Plan` (sweeps). Convert, release the GIL, map errors; nothing numeric.
 
-use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use planarkin_core::scene::{
     Assemblies, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace, TraceOptions,
@@ -67,7 +66,7 @@ impl PyScene {
     fn assemblies<'py>(&self, py: Python<'py>, theta: f64, seed: u64, runs: i64) -> PyResult<AssembliesOut<'py>> {
         let opts = HomotopyOptions::new(seed, runs).map_err(err)?;
         let a = Signals::detach(py, |signals| self.inner.assemblies(theta, &opts, signals))?;
-        Ok(assemblies_out(py, a))
+        assemblies_out(py, a)
     }
 
     /// Trace from `start` ((P,2) scene coordinates; None: the drawn pose):
@@ -83,7 +82,7 @@ impl PyScene {
         let opts = TraceOptions::new(step, max_points).map_err(err)?;
         let start = start.map(|a| points_of("start", &a)).transpose()?;
         let t = Signals::detach(py, |signals| self.inner.trace(start.as_deref(), &opts, signals))?;
-        Ok(trace_out(py, t, self.inner.point_names().len()))
+        trace_out(py, t, self.inner.point_names().len())
     }
 
     /// Circuits at `theta`: (assemblies as in `assemblies`, counts, failed,
@@ -104,9 +103,9 @@ impl PyScene {
         let np = self.inner.point_names().len();
         let circuits = cs
             .into_iter()
-            .map(|c| (c.assemblies, c.turning_points, c.net_turn, c.range, trace_out(py, c.trace, np)))
-            .collect();
-        Ok((assemblies_out(py, a), circuits))
+            .map(|c| Ok((c.assemblies, c.turning_points, c.net_turn, c.range, trace_out(py, c.trace, np)?)))
+            .collect::<PyResult<_>>()?;
+        Ok((assemblies_out(py, a)?, circuits))
     }
 
     /// Compiles the plan for `outputs` (None: every point and link).
@@ -216,20 +215,28 @@ type AssembliesOut<'py> = (Vec<AssemblyOut<'py>>, Vec<Vec<usize>>, usize, usize)
 type TraceOut<'py> = (Arr1<'py, f64>, Arr3<'py, f64>, Arr1<'py, f64>, Vec<f64>, bool);
 type CircuitOut<'py> = (Vec<usize>, Vec<f64>, f64, (f64, f64), TraceOut<'py>);
 
-fn xy_array(py: Python<'_>, pts: Vec<[f64; 2]>) -> Arr2<'_, f64> {
-    let n = pts.len();
-    Array2::from_shape_vec((n, 2), pts.into_iter().flatten().collect()).expect("n * 2 values").into_pyarray(py)
+/// The (x, y) pairs as one flat vector, allocated fallibly (a trace can be long).
+fn flat(what: &str, pts: &[[f64; 2]]) -> PyResult<Vec<f64>> {
+    let mut v = zeros(what, 2 * pts.len())?;
+    for (d, p) in v.chunks_exact_mut(2).zip(pts) {
+        d.copy_from_slice(p);
+    }
+    Ok(v)
 }
 
-fn assemblies_out(py: Python<'_>, a: Assemblies) -> AssembliesOut<'_> {
-    let list = a.list.into_iter().map(|x| (xy_array(py, x.points), x.label, x.det, x.step_det)).collect();
-    (list, a.complex_counts, a.failed_paths, a.continua)
+fn assemblies_out(py: Python<'_>, a: Assemblies) -> PyResult<AssembliesOut<'_>> {
+    let list = a
+        .list
+        .into_iter()
+        .map(|x| Ok((grid(py, x.points.len(), 2, flat("assembly points", &x.points)?), x.label, x.det, x.step_det)))
+        .collect::<PyResult<_>>()?;
+    Ok((list, a.complex_counts, a.failed_paths, a.continua))
 }
 
-fn trace_out(py: Python<'_>, t: Trace, np: usize) -> TraceOut<'_> {
+fn trace_out(py: Python<'_>, t: Trace, np: usize) -> PyResult<TraceOut<'_>> {
     let m = t.theta.len();
-    let pts = cube(py, (m, np, 2), t.points.into_iter().flatten().collect());
-    (t.theta.into_pyarray(py), pts, t.det.into_pyarray(py), t.turning_points, t.closed)
+    let pts = cube(py, (m, np, 2), flat("trace points", &t.points)?);
+    Ok((t.theta.into_pyarray(py), pts, t.det.into_pyarray(py), t.turning_points, t.closed))
 }
 
 fn points_of(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<[f64; 2]>> {

@@ -1,8 +1,13 @@
 //! Any one-degree-of-freedom planar linkage of revolute joints, described as data: named
 //! points drawn in one assembled pose and links as the lists of points they carry.
 //! [`Scene::new`] validates it (names, geometry, mobility); [`Scene::plan`] compiles the
-//! steps that the requested outputs need ([`plan`]); [`Plan::sweep`] solves them over
-//! input angles ([`sweep`]).
+//! steps that the requested outputs need (dyads, rigid carries, Newton groups);
+//! [`Plan::sweep`] solves them over input angles, [`Plan::assemblies`] finds every
+//! assembly at one angle, and [`Tracer`] follows circuits through their dead points.
+//!
+//! Inside: `validate` and `plan` build; `sweep` (continuation) and `columns` (dyad-only
+//! plans, blocks of angles) solve, on `dyad` and `group`; `assemble` and `trace` branch
+//! and follow; `options` and `vec2` are the leaves they share.
 
 mod assemble;
 mod columns;

@@ -5,7 +5,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::error::{positive_finite, Error};
+use crate::error::{positive_finite, try_grow, Error};
 use crate::interrupt::Poll;
 use crate::Status;
 
@@ -156,7 +156,8 @@ pub fn solve<S: System<N>, const N: usize>(
 }
 
 /// [`solve`] that counts every Newton step on `poll` and returns [`Error::Interrupted`]
-/// when the poll's interrupt asks to stop.
+/// when the poll's interrupt asks to stop (or [`Error::Allocation`] when `history` cannot
+/// grow).
 pub fn solve_polled<S: System<N>, const N: usize>(
     sys: &S,
     x0: SVector<f64, N>,
@@ -170,7 +171,8 @@ pub fn solve_polled<S: System<N>, const N: usize>(
     }
 }
 
-/// The Newton loop; the error is set only when `poll` interrupted it.
+/// The Newton loop; the error is set only when `poll` interrupted it or `history` could
+/// not grow.
 #[inline]
 fn iterate<S: System<N>, const N: usize>(
     sys: &S,
@@ -192,6 +194,11 @@ fn iterate<S: System<N>, const N: usize>(
         residual /= scale;
         let finite = f.iter().chain(x.iter()).all(|v| v.is_finite());
         if let Some(h) = history.as_deref_mut() {
+            // max_iter is the caller's: the history grows fallibly
+            let len = h.len() + 1;
+            if let Err(e) = try_grow(h, 1, || format!("history of {len} Newton iterations")) {
+                return (Outcome { x, status: Status::MaxIterations, nit, residual, jacobian: j }, Some(e));
+            }
             h.push(if finite { residual } else { f64::NAN });
         }
         if !finite {
