@@ -25,7 +25,7 @@ impl FourBar {
 /// The four-bar loop at a fixed crank angle: f1, f2 in the unknowns (theta3, theta4).
 ///
 /// It remembers the sines and cosines of its last libm evaluation: an iterate within
-/// [`INCREMENT_MAX`] of it in both angles gets them by angle addition from there instead
+/// 2^-7 rad of it in both angles gets them by angle addition from there instead
 /// of calling libm. Shifts start only from libm values and never chain, so every
 /// evaluation is within about an ulp of libm however long the Newton path. This halves
 /// the trigonometry of a sweep.
@@ -38,7 +38,7 @@ pub struct Loop<'a> {
 }
 
 /// Largest angle change (rad) updated by angle addition rather than libm: 2^-7.
-pub const INCREMENT_MAX: f64 = 0.0078125;
+const INCREMENT_MAX: f64 = 0.0078125;
 
 /// Taylor coefficients of sin dx - dx (odd powers 3..7) and cos dx - 1 (even powers 2..8).
 const SIN_C: [f64; 3] = [-1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0];
@@ -48,7 +48,7 @@ const COS_C: [f64; 4] = [-0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0];
 /// sin dx and cos dx - 1 to degrees 7 and 8 (truncation below 1e-22), added as
 /// corrections so nothing rounds against 1.
 #[inline]
-pub fn sin_cos_shifted(s: f64, c: f64, dx: f64) -> (f64, f64) {
+fn sin_cos_shifted(s: f64, c: f64, dx: f64) -> (f64, f64) {
     let x2 = dx * dx;
     let sd = dx + dx * x2 * (SIN_C[0] + x2 * (SIN_C[1] + x2 * SIN_C[2]));
     let cm = x2 * (COS_C[0] + x2 * (COS_C[1] + x2 * (COS_C[2] + x2 * COS_C[3])));

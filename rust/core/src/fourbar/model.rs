@@ -82,7 +82,7 @@ pub struct FourBar {
 
 /// A triangle A-B-O4 whose sides close within this many ulp of the longest link is
 /// taken as flat (the rounding of |A O4| and of the sums of lengths).
-pub const FLAT_ULPS: f64 = 8.0;
+pub(crate) const FLAT_ULPS: f64 = 8.0;
 
 /// Why a length is refused when the unit problem cannot hold it.
 const TOO_SHORT: &str = "is too short relative to the longest link to be represented (ratio below ~1e-308)";
