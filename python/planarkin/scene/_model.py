@@ -500,8 +500,8 @@ class Scene:
             if len(pinned) != 1:
                 refuse(f"{len(pinned)} links are pinned to ground at {o4!r}, not one rocker")
             rocker = pinned[0]
-        if rocker == crank:
-            refuse(f"its input and output are the same link {crank!r}")
+        if rocker in (ground, crank):
+            refuse(f"its output {rocker!r} is its {'ground' if rocker == ground else 'input'}")
         (coupler,) = (k for k in links if k not in (ground, crank, rocker))
         ends = {}
         for link, pivot in ((crank, o2), (rocker, o4)):

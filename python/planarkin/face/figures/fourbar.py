@@ -292,7 +292,7 @@ def coupler_curve(sweep: Sweep, p: float, delta: float, *, limits: object = None
     return fit_titles(fig)
 
 
-def pose_indices(status: np.ndarray, theta: np.ndarray, n: int) -> np.ndarray:
+def _pose_indices(status: np.ndarray, theta: np.ndarray, n: int) -> np.ndarray:
     """Indices of at most ``n`` solved points, evenly spaced among them; a sweep that
     closes the circle does not show its first pose twice."""
     ok = np.flatnonzero(np.asarray(status) == Status.CONVERGED)
@@ -315,7 +315,7 @@ def linkage(sweep: Sweep, p: float, delta: float, *, poses: int = 6) -> Figure:
     fig = Figure(figsize=(7.5, 6.0), layout="constrained")
     ax = fig.subplots()
     ax.plot(pt[:, 0], pt[:, 1], color=_CP, lw=1.6, zorder=1, label="coupler curve")
-    idx = pose_indices(sweep.status, sweep.theta2, poses)
+    idx = _pose_indices(sweep.status, sweep.theta2, poses)
     cmap = colormaps["viridis"]
     st = draw.fourbar()
     for n, i in enumerate(idx):
