@@ -516,13 +516,13 @@ class Scene:
         if a == b or shared:
             refuse(f"the coupler {coupler!r} must join {a!r} and {b!r} and carry only tracers "
                    "besides")  # fmt: skip
-        xy = {p: pts[p] for p in pts}
+        xy = pts
         (x2, y2), (x4, y4), (xa, ya), (xb, yb) = xy[o2], xy[o4], xy[a], xy[b]
         fb = FourBar(
             math.dist(xy[o2], xy[o4]), math.dist(xy[o2], xy[a]),
             math.dist(xy[a], xy[b]), math.dist(xy[o4], xy[b]),
         )  # fmt: skip
-        # sin(theta4 - theta3): the cross product of A -> B and O4 -> B (both unit)
+        # the mode is the sign of sin(theta4 - theta3): of the cross product A->B x O4->B
         cross = (xb - xa) * (yb - y4) - (yb - ya) * (xb - x4)
         if cross == 0:
             refuse("it is drawn at a dead point (coupler and rocker in line)")
