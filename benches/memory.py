@@ -18,8 +18,8 @@ import time
 
 import numpy as np
 import planarkin as pk
+from planarkin.fourbar.tradeoff import random_crank_rockers
 from planarkin.reference import closed_form_vectorized
-from planarkin.tradeoff import random_crank_rockers
 
 
 def _status(field: str) -> int | None:

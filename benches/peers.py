@@ -239,7 +239,7 @@ class PylinkageFourBar:
 
 
 def random_links(m: int, seed: int = 1) -> np.ndarray:
-    """M random crank-rockers (see planarkin.tradeoff.random_crank_rockers)."""
-    from planarkin.tradeoff import random_crank_rockers
+    """M random crank-rockers (see planarkin.fourbar.tradeoff.random_crank_rockers)."""
+    from planarkin.fourbar.tradeoff import random_crank_rockers
 
     return random_crank_rockers(m, seed=seed)

@@ -28,8 +28,8 @@ def workload(kind: str, reps: int) -> int:
     """Runs the workload ``reps`` times after one warm-up; returns the points timed."""
     import numpy as np
     import planarkin as pk
+    from planarkin.fourbar.tradeoff import random_crank_rockers
     from planarkin.reference import closed_form_vectorized
-    from planarkin.tradeoff import random_crank_rockers
 
     links = np.vstack([[6.0, 2.0, 5.0, 5.0], random_crank_rockers(M - 1, seed=2024)])
     fb = pk.FourBar(6.0, 2.0, 5.0, 5.0)

@@ -6,7 +6,7 @@
 ``run`` takes about 4 minutes on 2 cores. It runs, in this order and in one session:
 ``cargo bench -p planarkin-core --bench sweep`` (the core alone, criterion),
 ``pytest benches/ --benchmark-enable --benchmark-json=...`` (everything from Python,
-including the peak-RSS subprocesses), and ``planarkin.tradeoff.tradeoff()`` with its
+including the peak-RSS subprocesses), and ``planarkin.fourbar.tradeoff.tradeoff()`` with its
 defaults. Raw results go to ``benches/results/``; the hand-written analysis in
 ``benches/analysis.md`` is appended to the generated tables.
 """
@@ -191,10 +191,11 @@ def run_all(quick: bool = False) -> None:
     subprocess.run(cmd, check=True, cwd=ROOT, env=env)
     compact_pytest_json()
     print("== tradeoff", flush=True)
-    from planarkin.tradeoff import tradeoff
+    from planarkin.face.figures.tradeoff import save
+    from planarkin.fourbar.tradeoff import tradeoff
 
     res = tradeoff(n_random=15, truth_links=4, repeat=1) if quick else tradeoff()
-    res.plot(os.path.join(RESULTS, "tradeoff.png"))
+    save(res, os.path.join(RESULTS, "tradeoff.png"))
     with open(os.path.join(RESULTS, "tradeoff.json"), "w") as f:
         json.dump(res.to_dict(), f, indent=1)
     info["load_after"] = _loadavg()
@@ -486,7 +487,8 @@ def render() -> None:
         "```",
         " ".join(shlex.quote(c) for c in CARGO_CMD),
         " ".join(shlex.quote(c) for c in ["python", *PYTEST_CMD[1:]]),
-        "python -c 'from planarkin.tradeoff import tradeoff; tradeoff()'  # = planarkin tradeoff",
+        "python -c 'from planarkin.fourbar.tradeoff import tradeoff; tradeoff()'"
+        "  # = planarkin tradeoff",
         "# environment: OPENBLAS_NUM_THREADS=1 for pytest (no benchmark uses BLAS)",
         "```",
         "",

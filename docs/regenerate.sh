@@ -14,13 +14,13 @@ python - "$docs" <<'PY'
 import sys
 
 import planarkin as pk
-from planarkin.scene import plot
+from planarkin.face.figures import circuits, scene
 
 docs = sys.argv[1]
 sc = pk.scenes.load("jansen")
-plot.linkage(sc, sc.sweep(outputs="all"), poses=4).savefig(f"{docs}/scene_jansen.png", dpi=80)
+scene.linkage(sc, sc.sweep(outputs="all"), poses=4).savefig(f"{docs}/scene_jansen.png", dpi=80)
 sc = pk.scenes.load("double-butterfly-2")
-fig = plot.circuits(sc, sc.circuits(), sc.input_angle)
+fig = circuits.circuits(sc, sc.circuits(), sc.input_angle)
 fig.savefig(f"{docs}/circuits_double_butterfly.png", dpi=70)
 PY
 python - "$docs" <<'PY'

@@ -16,7 +16,9 @@ from pathlib import Path
 import numpy as np
 import planarkin as pk
 import pytest
-from planarkin import cli, tradeoff
+from planarkin.face import cli
+from planarkin.face.cli import _common
+from planarkin.face.cli import tradeoff as tradeoff_cli
 
 PIL_Image = pytest.importorskip("PIL.Image")
 
@@ -246,10 +248,10 @@ def test_crossed_mode(tmp_path):
 
 
 def test_crank_angles():
-    np.testing.assert_array_equal(cli.crank_angles(1), pk.DEFAULT_THETA2)
-    assert len(cli.crank_angles(0.5)) == 721
-    np.testing.assert_allclose(np.degrees(cli.crank_angles(360)), [0, 360])
-    np.testing.assert_allclose(np.degrees(cli.crank_angles(7))[[0, -1]], [0, 357])
+    np.testing.assert_array_equal(_common.crank_angles(1), pk.DEFAULT_THETA2)
+    assert len(_common.crank_angles(0.5)) == 721
+    np.testing.assert_allclose(np.degrees(_common.crank_angles(360)), [0, 360])
+    np.testing.assert_allclose(np.degrees(_common.crank_angles(7))[[0, -1]], [0, 357])
 
 
 # --- linkages that cannot turn fully, and dead points ------------------------------------
@@ -340,7 +342,7 @@ def test_subcommands_and_tradeoff_registration():
     (sub,) = [a for a in parser._actions if a.dest == "command"]
     commands = {"analyze", "animate", "circuits", "scenes", "synthesize", "tradeoff"}
     assert set(sub.choices) == commands
-    assert sub.choices["tradeoff"].get_default("func") is tradeoff.run
+    assert sub.choices["tradeoff"].get_default("func") is tradeoff_cli.run
     help_text = sub.choices["analyze"].format_help()
     for opt in ("--links", "--mode", "--step", "--tol", "--rpm", "--coupler", "--out",
                 "--no-figures", "--json", "--predictor"):  # fmt: skip
@@ -394,12 +396,12 @@ def test_sweep_time_is_a_warm_median(monkeypatch):
     known: the first call costs 1000, the others 3, 1, 2, 5, 4, ... units."""
     costs = iter([1000.0, 3.0, 1.0, 2.0, 5.0, 4.0])
     clock = [0.0]
-    monkeypatch.setattr(cli.time, "perf_counter", lambda: clock[0])
+    monkeypatch.setattr(_common.time, "perf_counter", lambda: clock[0])
 
     def call():
         clock[0] += next(costs)
 
-    med, n = cli.warm_median(call, runs=5, budget_s=1e9)
+    med, n = _common.warm_median(call, runs=5, budget_s=1e9)
     assert (med, n) == (3.0, 5)  # median of 3, 1, 2, 5, 4; the 1000 is not timed
 
 

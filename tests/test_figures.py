@@ -14,7 +14,10 @@ from conftest import angdiff, mp_solve, mp_toggles
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.text import Text
-from planarkin import cli, plot
+from planarkin.face import animate, cli
+from planarkin.face.cli import analyze
+from planarkin.face.figures import fourbar as plot
+from planarkin.fourbar import analysis
 
 SEED = (6.0, 2.0, 5.0, 5.0)
 THETA2 = np.radians(np.arange(0.0, 360.1, 2.0))
@@ -157,10 +160,10 @@ def cli_figures(links, mode="open", newton_at=45.0):
     args = cli.build_parser().parse_args(
         ["analyze", "--links", *map(str, links), "--mode", mode, "--newton-at", str(newton_at)]
     )
-    fb, theta2 = cli._setup(args)
+    fb, theta2 = analyze._setup(args)
     sweep = fb.sweep(theta2, mode=mode, omega2=args.rpm * math.tau / 60, alpha2=0.0)
-    res = cli.analyze(fb, sweep, args)
-    return res, cli._figures(res, args)
+    res = analyze.analyze(fb, sweep, args)
+    return res, analyze._figures(res, args)
 
 
 CASES = [
@@ -210,7 +213,7 @@ def test_a_crank_that_cannot_turn_fully_rocks_between_its_toggles():
     r = (4.0, 3.0, 1.5, 2.0)
     fb = pk.FourBar(*r)
     sweep = fb.sweep()
-    path = plot.rocking(fb, fb.limits(), sweep)
+    path = analysis.rocking(fb, fb.limits(), sweep)
     assert [s.mode for s in path] == ["open", "crossed"]
     (tog,) = (float(t) for t in mp_toggles(r))
     t2 = np.concatenate([s.theta2 for s in path])
@@ -226,8 +229,8 @@ def test_a_crank_that_cannot_turn_fully_rocks_between_its_toggles():
     steps = np.hypot(np.diff(np.append(bx, bx[0])), np.diff(np.append(by, by[0])))
     assert steps.max() < 0.1 * r[3]
     # every frame drawn shows the whole linkage
-    anim = plot.animation(path, 1.0, 0.3, frames=72)
-    frames = plot.animation_frames(path, 72)
+    anim = animate.fourbar(path, 1.0, 0.3, frames=72)
+    frames = animate.fourbar_frames(path, 72)
     assert len(frames) == 72
     ax = anim._fig.axes[0]
     for i in frames:
@@ -240,4 +243,4 @@ def test_a_crank_that_cannot_turn_fully_rocks_between_its_toggles():
 def test_a_crank_that_turns_fully_plays_its_sweep():
     fb = pk.FourBar(*SEED)
     sweep = fb.sweep()
-    assert plot.rocking(fb, fb.limits(), sweep) == [sweep]
+    assert analysis.rocking(fb, fb.limits(), sweep) == [sweep]

@@ -14,7 +14,7 @@ from html.parser import HTMLParser
 import numpy as np
 import planarkin as pk
 import pytest
-from planarkin import plot
+from planarkin.face import animate
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
@@ -22,7 +22,7 @@ CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 @pytest.fixture(scope="module")
 def page():
     sw = pk.FourBar(6, 2, 5, 5).sweep(np.radians(np.arange(0.0, 360.0, 30.0)))
-    return plot.animation_html(plot.animation(sw, 3.0, 0.5, frames=12, dpi=30), fps=10)
+    return animate.html_page(animate.fourbar(sw, 3.0, 0.5, frames=12, dpi=30), fps=10)
 
 
 class Buttons(HTMLParser):

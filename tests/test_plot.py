@@ -1,5 +1,6 @@
-"""planarkin.plot: figures from result objects, headless, without pyplot; the helpers
-(unwrapping, unreachable spans, order of convergence) against independent truths."""
+"""The four-bar figures (planarkin.face.figures.fourbar): from result objects, headless,
+without pyplot; the helpers (unwrapping, unreachable spans, order of convergence) against
+independent truths."""
 
 from __future__ import annotations
 
@@ -13,7 +14,10 @@ import planarkin as pk
 import pytest
 from matplotlib.animation import FuncAnimation
 from matplotlib.figure import Figure
-from planarkin import plot
+from planarkin.face import animate
+from planarkin.face.degrees import unwrap_deg
+from planarkin.face.figures import fourbar as plot
+from planarkin.fourbar.analysis import convergence_order, unreachable_spans
 
 SEED = (6.0, 2.0, 5.0, 5.0)
 TRIPLE_ROCKER = (5.0, 3.0, 4.0, 2.5)  # non-Grashof: the crank stops at +-105.96 deg
@@ -31,7 +35,7 @@ def _legend(fig: Figure) -> set[str]:
 def test_drawing_and_saving_never_import_pyplot():
     # pyplot would pick (and on a desktop, start) a GUI backend and keep every figure alive
     code = (
-        "import io, sys, planarkin as pk, planarkin.plot as p; "
+        "import io, sys, planarkin as pk, planarkin.face.figures.fourbar as p; "
         "p.position(pk.FourBar(6, 2, 5, 5).sweep()).savefig(io.BytesIO(), format='png'); "
         "print('matplotlib.pyplot' in sys.modules)"
     )
@@ -102,16 +106,16 @@ def test_unreachable_spans_against_the_toggle_angle():
     stop = math.acos((r1**2 + r2**2 - (r3 + r4) ** 2) / (2 * r1 * r2))  # |O4 A| = r3 + r4
     sw = _sweep(TRIPLE_ROCKER)
     # exact edges with the limits, within half a step without
-    (span,) = plot.unreachable_spans(sw, pk.FourBar(*TRIPLE_ROCKER).limits())
+    (span,) = unreachable_spans(sw, pk.FourBar(*TRIPLE_ROCKER).limits())
     assert span == pytest.approx((stop, math.tau - stop), abs=1e-12)
-    (span,) = plot.unreachable_spans(sw)
+    (span,) = unreachable_spans(sw)
     assert span == pytest.approx((stop, math.tau - stop), abs=math.radians(2.5))
-    assert plot.unreachable_spans(_sweep(SEED)) == []
+    assert unreachable_spans(_sweep(SEED)) == []
 
 
 def test_unreachable_spans_at_the_ends_of_the_sweep():
     sw = _sweep((4.0, 3.0, 2.0, 3.5))  # reachable only in two bands away from theta2 = 0
-    spans = plot.unreachable_spans(sw)
+    spans = unreachable_spans(sw)
     assert len(spans) == 3
     assert spans[0][0] == 0.0 and spans[-1][1] == pytest.approx(math.tau)
 
@@ -119,9 +123,9 @@ def test_unreachable_spans_at_the_ends_of_the_sweep():
 def test_unwrap_deg_keeps_nan_and_removes_jumps():
     t = np.linspace(0, 4 * math.pi, 50)
     wrapped = np.angle(np.exp(1j * t))
-    np.testing.assert_allclose(plot.unwrap_deg(wrapped), np.degrees(t), atol=1e-9)
+    np.testing.assert_allclose(unwrap_deg(wrapped), np.degrees(t), atol=1e-9)
     wrapped[[3, 20]] = np.nan
-    u = plot.unwrap_deg(wrapped)
+    u = unwrap_deg(wrapped)
     assert np.isnan(u[[3, 20]]).all()
     np.testing.assert_allclose(np.delete(u, [3, 20]), np.delete(np.degrees(t), [3, 20]), atol=1e-9)
 
@@ -136,13 +140,13 @@ def test_unwrap_deg_keeps_nan_and_removes_jumps():
     ],
 )
 def test_convergence_order(history, order):
-    assert plot.convergence_order(history) == pytest.approx(order)
+    assert convergence_order(history) == pytest.approx(order)
 
 
 def test_convergence_order_without_a_usable_triple():
-    assert math.isnan(plot.convergence_order([]))
-    assert math.isnan(plot.convergence_order([1.0, 0.1]))
-    assert math.isnan(plot.convergence_order([1.0, 2.0, 3.0]))
+    assert math.isnan(convergence_order([]))
+    assert math.isnan(convergence_order([1.0, 0.1]))
+    assert math.isnan(convergence_order([1.0, 2.0, 3.0]))
 
 
 def test_convergence_figure_shows_the_order():
@@ -153,7 +157,7 @@ def test_convergence_figure_shows_the_order():
     np.testing.assert_array_equal(line.get_ydata(), sol.history)
     assert fig.axes[0].get_yscale() == "log"
     (label,) = _legend(fig)
-    assert f"p ≈ {plot.convergence_order(sol.history):.2f}" in label
+    assert f"p ≈ {convergence_order(sol.history):.2f}" in label
 
 
 def test_missing_data_is_a_value_error():
@@ -165,22 +169,22 @@ def test_missing_data_is_a_value_error():
     with pytest.raises(ValueError, match="history"):
         plot.convergence(fb.solve(0.3))
     with pytest.raises(ValueError, match="frames"):
-        plot.animation(fb.sweep(THETA2), 1.0, 0.0, frames=0)
+        animate.fourbar(fb.sweep(THETA2), 1.0, 0.0, frames=0)
 
 
 def test_animation_frames_do_not_repeat_the_closing_pose():
     sw = pk.FourBar(*SEED).sweep()  # 0..360 deg: the last pose is the first
-    idx = plot.animation_frames(sw, 72)
+    idx = animate.fourbar_frames(sw, 72)
     assert len(idx) == 72 and idx[0] == 0 and 360 not in idx
     np.testing.assert_array_equal(np.diff(idx), 5)
-    assert len(plot.animation_frames(sw, 1000)) == 360
+    assert len(animate.fourbar_frames(sw, 1000)) == 360
 
 
 def test_animation_html_is_self_contained():
     sw = _sweep(TRIPLE_ROCKER)
-    anim = plot.animation(sw, 3.0, 0.5, frames=3, dpi=30)
+    anim = animate.fourbar(sw, 3.0, 0.5, frames=3, dpi=30)
     assert isinstance(anim, FuncAnimation)
-    page = plot.animation_html(anim, fps=5, title="a <b> title")
+    page = animate.html_page(anim, fps=5, title="a <b> title")
     assert "http" not in page and "<link" not in page
     assert page.count("data:image/png;base64,") == 3
     assert "<title>a &lt;b&gt; title</title>" in page

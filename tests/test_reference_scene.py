@@ -1,7 +1,7 @@
 """The NumPy scene reference and the built-in scenes against independent truths.
 
 Truths here are written out in the tests (circle intersections, the Peaucellier line,
-Gruebler's count, rigidity of every link); nothing but ``planarkin.reference_scene`` and
+Gruebler's count, rigidity of every link); nothing but ``planarkin.reference`` and
 ``planarkin.scenes`` (its data files) is imported from planarkin.
 """
 
@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 from planarkin import scenes
-from planarkin.reference_scene import scene_assemble_check, scene_sweep
+from planarkin.reference import scene_assemble_check, scene_sweep
 
 DEG = math.pi / 180
 

@@ -13,7 +13,7 @@ import planarkin as pk
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from planarkin.reference_scene import scene_sweep
+from planarkin.reference import scene_sweep
 
 DEG = math.pi / 180
 TAU = 2 * math.pi

@@ -10,8 +10,8 @@ import math
 import numpy as np
 import planarkin as pk
 import pytest
-from planarkin import cli
-from planarkin.reference_scene import scene_sweep
+from planarkin.face import cli
+from planarkin.reference import scene_sweep
 
 
 def run(*argv, capsys=None):

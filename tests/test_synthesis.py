@@ -350,7 +350,7 @@ def test_multistart_on_a_dask_local_cluster():
 
 
 def test_cli_synthesize_ackermann_quick(tmp_path):
-    from planarkin.cli import main
+    from planarkin.face.cli import main
 
     out = tmp_path / "ack"
     argv = ["synthesize", "ackermann", "--out", str(out), "--starts", "2", "--samples", "300",
@@ -369,7 +369,7 @@ def test_cli_synthesize_ackermann_quick(tmp_path):
 
 
 def test_cli_synthesize_bad_input(capsys):
-    from planarkin.cli import main
+    from planarkin.face.cli import main
 
     assert main(["synthesize", "ackermann", "--starts", "0"]) == 2
     assert "--starts" in capsys.readouterr().err

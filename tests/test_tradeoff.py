@@ -13,7 +13,9 @@ import mpmath
 import numpy as np
 import planarkin as pk
 import pytest
-from planarkin import tradeoff as tr
+from planarkin.face.cli import tradeoff as tr_cli
+from planarkin.face.figures import tradeoff as tr_fig
+from planarkin.fourbar import tradeoff as tr
 
 TOLS = (1e-3, 1e-6, 1e-9, 1e-12)
 
@@ -136,7 +138,7 @@ def test_bad_arguments_raise_value_error():
 
 def _parse(*argv: str) -> argparse.Namespace:
     p = argparse.ArgumentParser()
-    tr.add_arguments(p)
+    tr_cli.add_arguments(p)
     return p.parse_args(argv)
 
 
@@ -160,7 +162,7 @@ def test_cli_prints_the_table_and_saves_plot_and_json(tmp_path, capsys):
         "--json",
         str(js),
     )
-    assert tr.run(args) == 0
+    assert tr_cli.run(args) == 0
     out = capsys.readouterr().out
     assert "Newton + tangent" in out and "closed form" in out and "ns/pt" in out
     assert png.stat().st_size > 1000 and png.read_bytes()[:4] == b"\x89PNG"
@@ -187,7 +189,7 @@ def test_cli_markdown_no_plot_and_bad_options(tmp_path, capsys, monkeypatch):
         "--no-plot",
         "--markdown",
     )
-    assert tr.run(args) == 0
+    assert tr_cli.run(args) == 0
     assert "| Newton + quadratic | 1e-06 |" in capsys.readouterr().out
     assert not list(tmp_path.iterdir())
     for bad in (("--tols", "0"), ("--tols", "x"), ("--methods", "nope"), ("--repeat", "0")):
@@ -199,7 +201,7 @@ def test_cli_markdown_no_plot_and_bad_options(tmp_path, capsys, monkeypatch):
 
 
 def _rows(times, errs, tols, method="quadratic"):
-    from planarkin.tradeoff import Row
+    from planarkin.fourbar.tradeoff import Row
 
     label = tr.METHODS[method][0]
     return [
@@ -241,7 +243,7 @@ def test_plot_labels_do_not_overprint_and_ticks_are_plain_numbers():
         errs = [max(10.0**-k, 4.4e-13) * (1 + 0.01 * k) for k in range(3, 16)]  # a floor
         rows += _rows(times, errs, tols, m)
     rows += _rows([20.0], [2.2e-16], [None], "closed-form")
-    fig = _result(rows).figure()
+    fig = tr_fig.figure(_result(rows))
     FigureCanvasAgg(fig).draw()
     ax = fig.axes[0]
     shown = [t for t in ax.texts if isinstance(t, Annotation) and t.get_visible()]

@@ -1,27 +1,34 @@
-"""planarkin: planar linkage kinematics with a Rust core.
+"""planarkin: planar linkage kinematics with a Rust core. Four-bars (Newton-Raphson
+sweeps, closed forms, limits, Grashof/Barker classes), any planar linkage as data
+(scenes: plans of dyads and groups, every assembly, circuits through dead points), the
+synthesis of double butterflies, a NumPy reference of it all, figures and a command.
 
 >>> import planarkin as pk
 >>> fb = pk.FourBar(6, 2, 5, 5)
 >>> fb.sweep().summary().converged
 361
+>>> pk.scenes.load("jansen").sweep(outputs=["foot"]).points["foot"].shape
+(361, 2)
 """
 
-from . import reference, scenes
-from ._core import BUILD_PROFILE
-from ._core import __version__ as __version__
-from ._types import (
-    DEFAULT_THETA2,
-    SINGULAR_THRESHOLD,
+from . import reference
+from ._angles import DEFAULT_THETA2
+from ._kernel import BUILD_PROFILE
+from ._kernel import __version__ as __version__
+from ._results import SweepSummary
+from ._status import SINGULAR_THRESHOLD, Status
+from .fourbar import (
     BatchSweep,
+    FourBar,
     Grashof,
     Limits,
     Solution,
-    Status,
     Sweep,
-    SweepSummary,
+    closed_form_batch,
+    sweep_batch,
 )
-from .fourbar import FourBar, closed_form_batch, sweep_batch
 from .scene import Plan, Scene, SceneSweep, Step
+from .scene import builtin as scenes
 from .simd import set_simd, simd_available, simd_enabled, use_simd
 
 __all__ = [

@@ -17,23 +17,23 @@ from __future__ import annotations
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from . import _core
+from . import _kernel
 
 
 def set_simd(enabled: bool) -> bool:
     """Uses the SIMD kernels (where the CPU has them) or the bit-exact scalar path, for the
     whole process; returns the previous setting."""
-    return _core.set_simd(bool(enabled))
+    return _kernel.set_simd(bool(enabled))
 
 
 def simd_enabled() -> bool:
     """Whether the SIMD kernels are in use."""
-    return _core.simd_enabled()
+    return _kernel.simd_enabled()
 
 
 def simd_available() -> bool:
     """Whether this CPU has what the SIMD kernels need (AVX2 and FMA)."""
-    return _core.simd_available()
+    return _kernel.simd_available()
 
 
 @contextmanager

@@ -1,8 +1,21 @@
 """Scenes: any one-degree-of-freedom planar linkage of revolute joints described as data
 (named points in one drawn pose, links as lists of points), solved by a plan of dyads and
-rigid groups compiled for the outputs asked for."""
+rigid groups compiled for the outputs asked for; ``builtin`` holds the classic ones
+(``pk.scenes``)."""
 
-from ._model import Scene
+from . import builtin
+from ._model import FourBarView, Scene
 from ._results import Assemblies, Assembly, Circuit, Plan, SceneSweep, Step, Trace
 
-__all__ = ["Assemblies", "Assembly", "Circuit", "Plan", "Scene", "SceneSweep", "Step", "Trace"]
+__all__ = [
+    "Assemblies",
+    "Assembly",
+    "Circuit",
+    "FourBarView",
+    "Plan",
+    "Scene",
+    "SceneSweep",
+    "Step",
+    "Trace",
+    "builtin",
+]

@@ -1,4 +1,5 @@
-"""The Scene: parsing, validation (in the Rust core), file round trips, plans and sweeps."""
+"""The Scene: parsing, validation (in the Rust core), file round trips, plans, sweeps,
+assemblies, circuits and traces; ``as_fourbar`` recognises a four-bar scene."""
 
 from __future__ import annotations
 
@@ -7,13 +8,15 @@ import math
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple, NoReturn
 
 import numpy as np
 
-from .. import _core
-from .._types import as_angles, as_float, check_options
-from .._types import as_int as as_int_arg
+from .. import _kernel
+from .._angles import TAU, wrap
+from .._args import as_angles, as_float, check_options
+from .._args import as_int as as_int_arg
+from ..fourbar import LINKS, POINTS, FourBar
 from ._results import Assemblies, Assembly, Circuit, Plan, SceneSweep, Step, Trace
 from ._toml import dumps as toml_dumps
 
@@ -22,7 +25,6 @@ KEYS = ("name", "description", "units", "points", "links", "ground", "input", "o
 REQUIRED = ("points", "links", "ground", "input")
 #: Default largest continuation step of a group (3 degrees).
 MAX_STEP = math.radians(3.0)
-TAU = 2.0 * math.pi
 #: Default seed of the homotopy's random gammas (results are reproducible).
 SEED = 0x5EED_2026
 #: Default largest arclength step of a trace (radians of rotation, all links together).
@@ -51,6 +53,33 @@ def _xy(name: str, v: object) -> tuple[float, float]:
     _entry(ok, f"points.{name}", f"must be a pair [x, y], got {v!r}")
     seq: Any = v
     return as_float(f"points.{name}[0]", seq[0]), as_float(f"points.{name}[1]", seq[1])
+
+
+class FourBarView(NamedTuple):
+    """A four-bar scene seen as a :class:`planarkin.FourBar` (``Scene.as_fourbar()``).
+
+    A four-bar measures its angles from the ground line O2 -> O4 with O2 at the origin; a
+    scene's are absolute. So for the same motion, scene input angle = ``theta2`` +
+    ``ground_angle``; a scene link angle = the four-bar's + ``ground_angle``; a scene
+    point = ``origin`` + the four-bar's point rotated by ``ground_angle``.
+    """
+
+    #: The equivalent linkage: r1 = |O2 O4|, r2 = |O2 A|, r3 = |A B|, r4 = |O4 B|.
+    fourbar: FourBar
+    #: The assembly mode it is drawn in: "open" (sin(theta4 - theta3) > 0) or "crossed".
+    mode: str
+    #: Direction of the ground line O2 -> O4 (radians, absolute).
+    ground_angle: float
+    #: Where the crank's ground pivot O2 is drawn.
+    origin: tuple[float, float]
+    #: The drawn crank angle, measured from the ground line (radians, in (-pi, pi]).
+    theta2: float
+    #: Four-bar name -> the scene's: points O2, O4, A, B; links ground, crank, coupler,
+    #: rocker (the names ``Sweep.points``, ``Sweep.angles`` and ``FourBar.to_scene`` use).
+    names: dict[str, str]
+    #: Tracer points on the coupler -> (p, delta): distance from A and angle (radians)
+    #: from the line A -> B, as ``FourBar.coupler_point`` takes them.
+    coupler: dict[str, tuple[float, float]]
 
 
 class Scene:
@@ -97,7 +126,7 @@ class Scene:
         for k in ("name", "description", "units"):
             v = data.get(k)
             _entry(v is None or isinstance(v, str), k, f"must be a string, got {v!r}")
-        self._core = _core.Scene(
+        self._core = _kernel.Scene(
             list(points.items()), [(n, list(v)) for n, v in lk.items()], data["ground"], inp, out
         )
         self._data: dict[str, Any] = {
@@ -348,7 +377,7 @@ class Scene:
         finite complex solutions of each group (a self-check: 6 for a Stephenson triad,
         16 or 18 for the double butterfly's group)."""
         t = self.input_angle if theta is None else as_float("theta", theta)
-        raw = self._core.assemblies(t, _seed(seed), _runs(runs))
+        raw = self._core.assemblies(t, _seed(seed), _homotopy_runs(runs))
         return self._assemblies(t, raw)
 
     def _trace(self, raw: tuple) -> Trace:
@@ -395,7 +424,7 @@ class Scene:
         raw_a, raw_c = self._core.circuits(
             t,
             _seed(seed),
-            _runs(runs),
+            _homotopy_runs(runs),
             as_float("step", step),
             as_int_arg("max_points", max_points),
         )
@@ -441,6 +470,80 @@ class Scene:
         d["points"] = {n: [float(x), float(y)] for n, (x, y) in zip(d["points"], arr, strict=True)}
         return Scene(d)
 
+    def as_fourbar(self) -> FourBarView:
+        """This scene as a four-bar, when it is one: four links, the input and the output
+        pinned to ground at its two points, the coupler joining them (it may carry tracer
+        points). Returns the equivalent :class:`planarkin.FourBar` with its drawn mode and
+        what relates the two frames (see :class:`FourBarView`). ValueError naming why for
+        a scene that is not a four-bar, or one drawn at a dead point.
+        :meth:`planarkin.FourBar.to_scene` goes the other way."""
+        links, pts = self._data["links"], self._data["points"]
+
+        def refuse(why: str) -> NoReturn:
+            raise ValueError(f"scene {self.name or '(unnamed)'!r} is not a four-bar: {why}")
+
+        if len(links) != 4:
+            refuse(f"it has {len(links)} links (a four-bar has 4: ground, crank, coupler, rocker)")
+        ground = self.ground
+        crank, o2 = self.input
+        on_ground = list(dict.fromkeys(links[ground]))
+        if len(on_ground) != 2:
+            refuse(f"its ground {ground!r} carries {len(on_ground)} points, not its 2 pivots")
+        o4 = on_ground[1] if on_ground[0] == o2 else on_ground[0]
+        carriers = {p: [k for k, v in links.items() if p in v] for p in pts}
+        if self.output is not None:
+            rocker, pivot = self.output
+            if pivot != o4:
+                refuse(f"its output {rocker!r} is not pinned at the other ground pivot {o4!r}")
+        else:
+            pinned = [k for k in carriers[o4] if k != ground]
+            if len(pinned) != 1:
+                refuse(f"{len(pinned)} links are pinned to ground at {o4!r}, not one rocker")
+            rocker = pinned[0]
+        if rocker in (ground, crank):
+            refuse(f"its output {rocker!r} is its {'ground' if rocker == ground else 'input'}")
+        (coupler,) = (k for k in links if k not in (ground, crank, rocker))
+        ends = {}
+        for link, pivot in ((crank, o2), (rocker, o4)):
+            others = [p for p in dict.fromkeys(links[link]) if p != pivot]
+            if len(others) != 1 or others[0] not in links[coupler]:
+                refuse(f"{link!r} must carry its ground pivot {pivot!r} and one joint with "
+                       f"the coupler {coupler!r}, got {list(links[link])}")  # fmt: skip
+            ends[link] = others[0]
+        a, b = ends[crank], ends[rocker]
+        tracers = [p for p in dict.fromkeys(links[coupler]) if p not in (a, b)]
+        shared = [p for p in tracers if carriers[p] != [coupler]]
+        if a == b or shared:
+            refuse(f"the coupler {coupler!r} must join {a!r} and {b!r} and carry only tracers "
+                   "besides")  # fmt: skip
+        xy = pts
+        (x2, y2), (x4, y4), (xa, ya), (xb, yb) = xy[o2], xy[o4], xy[a], xy[b]
+        fb = FourBar(
+            math.dist(xy[o2], xy[o4]), math.dist(xy[o2], xy[a]),
+            math.dist(xy[a], xy[b]), math.dist(xy[o4], xy[b]),
+        )  # fmt: skip
+        # the mode is the sign of sin(theta4 - theta3): of the cross product A->B x O4->B
+        cross = (xb - xa) * (yb - y4) - (yb - ya) * (xb - x4)
+        if cross == 0:
+            refuse("it is drawn at a dead point (coupler and rocker in line)")
+        ground_angle = math.atan2(y4 - y2, x4 - x2)
+        t3 = math.atan2(yb - ya, xb - xa)
+        coupler_points = {
+            p: (math.dist(xy[a], xy[p]), wrap(math.atan2(xy[p][1] - ya, xy[p][0] - xa) - t3))
+            for p in tracers
+        }
+        names = dict(zip(POINTS, (o2, o4, a, b), strict=True))
+        names.update(zip(LINKS, (ground, crank, coupler, rocker), strict=True))
+        return FourBarView(
+            fourbar=fb,
+            mode="open" if cross > 0 else "crossed",
+            ground_angle=ground_angle,
+            origin=(x2, y2),
+            theta2=wrap(math.atan2(ya - y2, xa - x2) - ground_angle),
+            names=names,
+            coupler=coupler_points,
+        )
+
 
 def _seed(seed: object) -> int:
     s = as_int_arg("seed", seed)
@@ -449,7 +552,7 @@ def _seed(seed: object) -> int:
     return s
 
 
-def _runs(runs: object) -> int:
+def _homotopy_runs(runs: object) -> int:
     r = as_int_arg("runs", runs)
     if not 1 <= r <= 16:
         raise ValueError(f"runs must be in 1..16, got {r}")

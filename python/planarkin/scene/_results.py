@@ -1,14 +1,16 @@
-"""Plain result types of scenes: plan steps and sweeps (NumPy arrays made in Rust)."""
+"""The scene's plain result types: plan steps, sweeps, assemblies, circuits and traces.
+Nothing here reaches the kernel: the NumPy reference builds SceneSweep objects too."""
 
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 
-from .._types import Status
+from .._results import SweepResult
+from .._status import Status
 
 
 @dataclass(frozen=True)
@@ -54,13 +56,21 @@ class Plan:
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class SceneSweep:
-    """A scene solved at N input angles. Arrays come from the Rust kernel; the dicts
-    (``points``, ``angles``, ``point_status``, ``velocities``, ``angular_velocities``) hold
-    views into them (no copies), made on first access. NaN wherever a point or link is not
-    solved."""
+class SceneSweep(SweepResult):
+    """A scene solved at N input angles, by the kernel (``Scene.sweep``) or by the NumPy
+    reference (``planarkin.reference.scene_sweep``). The dicts (``points``, ``angles``,
+    ``point_status``, ``velocities``, ``angular_velocities``) hold views into the arrays
+    (no copies), made on first access. NaN wherever a point or link is not solved.
 
-    plan: Plan
+    Besides the shared names (see :class:`planarkin._results.SweepResult`), its own: the
+    plan, the per-step and per-point arrays and ``limit``. The reference solves every
+    joint equation at once, with no plan: there ``plan``, ``limit``, ``step_status``,
+    ``step_det`` and ``point_status_array`` are None, and ``det`` is the Hadamard ratio
+    of its own Jacobian (same zeros and branch meaning, another number).
+    """
+
+    #: The steps solved (None: the reference, which has no plan).
+    plan: Plan | None
     #: (N,) input angles (radians).
     theta: np.ndarray
     #: (N, P, 2) every reported position, scene units (``points`` are views of it).
@@ -75,17 +85,21 @@ class SceneSweep:
     det: np.ndarray
     #: (N,) for LIMIT angles, the input angle (radians) of the dead point that stops the
     #: motion on the circuit followed (where continuation last converged); NaN elsewhere.
-    limit: np.ndarray
-    #: (N, steps) int8 status of each step.
-    step_status: np.ndarray
+    #: None: not computed (the reference).
+    limit: np.ndarray | None
+    #: (N, steps) int8 status of each step (None: no plan).
+    step_status: np.ndarray | None
     #: (N, steps) each step's signed conditioning (a dyad's sine of its angle at the
-    #: solved point; a group's Hadamard ratio det J / prod |columns|).
-    step_det: np.ndarray
-    #: (N, P) int8 status of each reported point.
-    point_status_array: np.ndarray
+    #: solved point; a group's Hadamard ratio det J / prod |columns|); None: no plan.
+    step_det: np.ndarray | None
+    #: (N, P) int8 status of each reported point (None: not computed, the reference).
+    point_status_array: np.ndarray | None
     #: (N, P, 2) velocities and (N, L) angular velocities when ``omega`` was given.
     velocity_array: np.ndarray | None = None
     angular_velocity_array: np.ndarray | None = None
+    #: The names of the P reported points and of the L reported links, in array order.
+    point_names: tuple[str, ...] = field(default=(), kw_only=True)
+    link_names: tuple[str, ...] = field(default=(), kw_only=True)
 
     @classmethod
     def build(
@@ -105,55 +119,47 @@ class SceneSweep:
             point_status_array=pstat,
             velocity_array=None if vel is None else vel[0],
             angular_velocity_array=None if vel is None else vel[1],
+            point_names=plan.points,
+            link_names=plan.links,
         )
 
     @cached_property
     def points(self) -> dict[str, np.ndarray]:
         """name -> (N, 2) positions, scene units."""
-        return {n: self.coords[:, j] for j, n in enumerate(self.plan.points)}
+        return {n: self.coords[:, j] for j, n in enumerate(self.point_names)}
 
     @cached_property
     def angles(self) -> dict[str, np.ndarray]:
         """link -> (N,) angles in (-pi, pi]."""
-        return {n: self.angle_array[:, j] for j, n in enumerate(self.plan.links)}
+        return {n: self.angle_array[:, j] for j, n in enumerate(self.link_names)}
 
     @cached_property
-    def point_status(self) -> dict[str, np.ndarray]:
-        """name -> (N,) int8 status of each reported point."""
-        return {n: self.point_status_array[:, j] for j, n in enumerate(self.plan.points)}
+    def point_status(self) -> dict[str, np.ndarray] | None:
+        """name -> (N,) int8 status of each reported point (None: not computed)."""
+        s = self.point_status_array
+        return None if s is None else {n: s[:, j] for j, n in enumerate(self.point_names)}
 
     @cached_property
     def velocities(self) -> dict[str, np.ndarray] | None:
         """name -> (N, 2) velocities (scene units per time) when ``omega`` was given."""
         v = self.velocity_array
-        return None if v is None else {n: v[:, j] for j, n in enumerate(self.plan.points)}
+        return None if v is None else {n: v[:, j] for j, n in enumerate(self.point_names)}
 
     @cached_property
     def angular_velocities(self) -> dict[str, np.ndarray] | None:
         """link -> (N,) angular velocities when ``omega`` was given."""
         w = self.angular_velocity_array
-        return None if w is None else {n: w[:, j] for j, n in enumerate(self.plan.links)}
+        return None if w is None else {n: w[:, j] for j, n in enumerate(self.link_names)}
 
     @property
     def success(self) -> np.ndarray:
         """(N,) bool: every step converged."""
         return self.status == Status.CONVERGED
 
-    def __len__(self) -> int:
-        return len(self.theta)
-
-    def statuses(self) -> dict[str, int]:
-        """Count of angles per status name (only statuses that occur)."""
-        codes, counts = np.unique(self.status, return_counts=True)
-        return {Status(int(c)).name: int(k) for c, k in zip(codes, counts, strict=True)}
-
-    def __repr__(self) -> str:
-        n = len(self.theta)
-        ok = int(np.count_nonzero(self.success))
-        return (
-            f"SceneSweep({n} angles, {ok} converged, {len(self.plan)} steps, "
-            f"points {list(self.points)[:6]}{'...' if len(self.points) > 6 else ''})"
-        )
+    def _describe(self) -> str:
+        steps = "no plan (reference)" if self.plan is None else f"{len(self.plan)} steps"
+        names = list(self.point_names)
+        return f"{steps}, points {names[:6]}{'...' if len(names) > 6 else ''}"
 
 
 class Assembly(dict):

@@ -8,7 +8,14 @@ loop choice and generated output in closed form, SLSQP multistarts on the true l
 """
 
 from . import ackermann
-from .driver import StartResult, SynthesisResult, run_start, synthesize
+from .driver import (
+    StartResult,
+    SynthesisResult,
+    process_pool,
+    run_start,
+    stop_pool,
+    synthesize,
+)
 from .generated import SIGN_COMBINATIONS, Generated, SeedPlan, half_angle
 from .problem import OBJECTIVES, DesignSpace, FunctionTarget, PathTarget, Problem
 from .topology import (
@@ -47,7 +54,9 @@ __all__ = [
     "half_angle",
     "linear_sensitivity",
     "loops",
+    "process_pool",
     "run_start",
+    "stop_pool",
     "synthesize",
     "tolerance_sensitivity",
     "true_error",

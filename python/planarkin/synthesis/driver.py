@@ -8,10 +8,11 @@ from __future__ import annotations
 
 import math
 import os
+import signal
 import time
 import warnings
 from collections.abc import Callable, Sequence
-from concurrent.futures import Executor, ProcessPoolExecutor
+from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -267,8 +268,42 @@ def _signs(s: Sequence[int]) -> tuple[int, int, int]:
     return (int(s[0]), int(s[1]), int(s[2]))
 
 
-def _default_executor(workers: int | None) -> Executor:
-    return ProcessPoolExecutor(max_workers=workers or min(2, os.cpu_count() or 1))
+def _ignore_sigint() -> None:
+    # in the workers: Ctrl-C goes to the whole process group, and only the parent should
+    # act on it (it stops the workers); a worker would print a traceback and go on
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def process_pool(workers: int | None = None) -> ProcessPoolExecutor:
+    """A process pool for :func:`synthesize`: ``workers`` processes (default up to 2)
+    that ignore Ctrl-C, so that it reaches only the parent, which stops them
+    (:func:`stop_pool`)."""
+    return ProcessPoolExecutor(
+        max_workers=workers or min(2, os.cpu_count() or 1), initializer=_ignore_sigint
+    )
+
+
+def stop_pool(ex: Executor) -> None:
+    """Stops a pool at once: queued starts are cancelled and, for a process pool, the
+    worker processes terminated (``shutdown(cancel_futures=True)`` alone waits for the
+    running starts, minutes of SLSQP)."""
+    terminate = getattr(ex, "terminate_workers", None)  # Python >= 3.14
+    if terminate is not None:
+        terminate()
+        return
+    # before 3.14 a process pool's workers have no public handle
+    processes = list((getattr(ex, "_processes", None) or {}).values())
+    ex.shutdown(wait=False, cancel_futures=True)
+    for p in processes:
+        if p.is_alive():
+            p.terminate()
+    for p in processes:
+        p.join(timeout=5)
+
+
+def _cancel(futures: Sequence[Future]) -> None:
+    for f in futures:
+        f.cancel()
 
 
 def synthesize(
@@ -285,8 +320,10 @@ def synthesize(
     sign_combinations: Sequence[tuple[int, int, int]] = (),
 ) -> SynthesisResult:
     """Multistart SLSQP. ``starts`` runs: the given ``x0`` first, then the best of
-    ``samples`` random candidates (``seed``); on ``executor`` (default a process pool of
-    up to 2 workers; a dask.distributed Client's ``get_executor()`` works the same).
+    ``samples`` random candidates (``seed``); on ``executor`` (default
+    :func:`process_pool`: up to 2 workers; a dask.distributed Client's ``get_executor()``
+    works the same). On Ctrl-C the starts not yet run are cancelled and the default pool
+    is stopped at once (a caller's executor is the caller's to stop: :func:`stop_pool`).
     ``sign_combinations`` (objectives on the seed's closed form): start i uses combination
     i modulo their number, so the starts cover the branch combinations."""
     if starts < 1:
@@ -306,7 +343,8 @@ def synthesize(
             "(raise samples or give x0)"
         )
     own = executor is None
-    ex: Executor = _default_executor(None) if executor is None else executor
+    ex: Executor = process_pool() if executor is None else executor
+    futs: list[Future] = []
     try:
         probs = [
             replace(problem, signs=_signs(sign_combinations[i % len(sign_combinations)]))
@@ -314,14 +352,18 @@ def synthesize(
             else problem
             for i in range(len(xs))
         ]
-        futs = [
-            ex.submit(run_start, p, x, maxiter=maxiter, minimax=minimax)
-            for p, x in zip(probs, xs, strict=True)
-        ]
+        for p, x in zip(probs, xs, strict=True):
+            futs.append(ex.submit(run_start, p, x, maxiter=maxiter, minimax=minimax))
         runs = [f.result() for f in futs]
-    finally:
+    except BaseException:
+        # Ctrl-C or a failed start: what has not run is not run; an own pool is stopped at
+        # once, a caller's executor is left to the caller
+        _cancel(futs)
         if own:
-            ex.shutdown()
+            stop_pool(ex)
+        raise
+    if own:
+        ex.shutdown()
     ranked = sorted(runs, key=lambda r: (not r.feasible, r.max_error))
     return SynthesisResult(
         best=ranked[0],

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..scene import Scene
 from .generated import SeedPlan
-from .topology import TEMPLATES, Template
+from .topology import Template
 
 OBJECTIVES = ("true", "generated", "corrected")
 #: Newton tolerance of the sweeps (tight: finite differences read their angles)
@@ -306,9 +306,3 @@ class Problem:
         lengths = link_lengths(pts, self.space.template)
         lc = (lengths - ml) / ml if ml > 0 else np.ones_like(lengths)
         return r, dense, branch, lc
-
-
-def template_named(name: str) -> Template:
-    if name not in TEMPLATES:
-        raise ValueError(f"template must be one of {sorted(TEMPLATES)}, got {name!r}")
-    return TEMPLATES[name]

@@ -1,28 +1,28 @@
-"""The public four-bar API: validates and broadcasts at the boundary, calls the Rust
-kernel (``planarkin._core``) and wraps its arrays in plain result objects."""
+"""The FourBar: validates and broadcasts at the boundary, calls the Rust kernel and wraps
+its arrays in the plain result objects of ``_results``; ``to_scene`` draws it as a Scene."""
 
 from __future__ import annotations
 
+import math
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from . import _core
-from ._types import (
-    BatchSweep,
-    Grashof,
-    Limits,
-    Solution,
-    Status,
-    Sweep,
+from .. import _kernel
+from .._args import (
     as_angles,
     as_float,
-    as_int,
-    as_theta2_1d,
     check_guess,
     check_mode,
     check_options,
     motion_args,
     sweep_args,
 )
+from .._status import Status
+from ._results import COUPLER_POINT, LINKS, Grashof, Limits, Solution, Sweep
+
+if TYPE_CHECKING:
+    from ..scene import Scene
 
 
 def _broadcast(**arrays: object) -> tuple[tuple[int, ...], list[np.ndarray]]:
@@ -42,6 +42,27 @@ def _finite_rates(**rates: np.ndarray) -> None:
     for name, a in rates.items():
         if not np.isfinite(a).all():
             raise ValueError(f"{name} must be finite, got {a[~np.isfinite(a)][0]}")
+
+
+class _KernelGeometry:
+    """The lazy ``det`` and ``points`` of FourBar.sweep results, by the kernel (no NumPy
+    trigonometry in the API: the same kernels that draw the coupler curve)."""
+
+    def branch(self, theta3: np.ndarray, theta4: np.ndarray) -> np.ndarray:
+        return _kernel.transmission(theta3, theta4)[1]
+
+    def pins(
+        self, lengths: tuple[float, float, float, float], theta2: np.ndarray, theta3: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        core = _kernel.FourBar(*lengths)
+        # A is the coupler point at p = 0; with theta3 = 0 it stays finite where the loop
+        # does not close (p * cos(NaN) would be NaN): the crank is always placed
+        ax, ay = core.coupler_point(theta2, np.zeros_like(theta2), 0.0, 0.0)
+        bx, by = core.coupler_point(theta2, theta3, lengths[2], 0.0)
+        return np.column_stack((ax, ay)), np.column_stack((bx, by))
+
+
+_KERNEL_GEOMETRY = _KernelGeometry()
 
 
 def _shaped(shape: tuple[int, ...], *arrays: np.ndarray) -> tuple:
@@ -64,7 +85,7 @@ class FourBar:
         r = [
             as_float(n, v) for n, v in zip(("r1", "r2", "r3", "r4"), (r1, r2, r3, r4), strict=True)
         ]
-        self._core = _core.FourBar(*r)
+        self._core = _kernel.FourBar(*r)
 
     @property
     def lengths(self) -> tuple[float, float, float, float]:
@@ -168,7 +189,7 @@ class FourBar:
             self.lengths, a.mode, a.theta2, t3, t4, st, nit, res,
             omega2=w2, omega3=w[0] if w else None, omega4=w[1] if w else None,
             alpha2=a2, alpha3=acc[0] if acc else None, alpha4=acc[1] if acc else None,
-            method=a.method,
+            method=a.method, geometry=_KERNEL_GEOMETRY,
         )  # fmt: skip
 
     def closed_form(self, theta2: object, mode: str = "open") -> tuple:
@@ -233,56 +254,78 @@ class FourBar:
     def transmission_angle(theta3: object, theta4: object) -> object:
         """Transmission angle: the acute angle between coupler and rocker, in [0, pi/2]."""
         shape, (t3, t4) = _broadcast(theta3=theta3, theta4=theta4)
-        return _shaped(shape, _core.transmission(t3, t4)[0])[0]
+        return _shaped(shape, _kernel.transmission(t3, t4)[0])[0]
 
     @staticmethod
     def branch_indicator(theta3: object, theta4: object) -> object:
         """sin(theta4 - theta3) = -det J / (r3 r4): > 0 open, < 0 crossed, 0 at a dead point."""
         shape, (t3, t4) = _broadcast(theta3=theta3, theta4=theta4)
-        return _shaped(shape, _core.transmission(t3, t4)[1])[0]
+        return _shaped(shape, _kernel.transmission(t3, t4)[1])[0]
 
+    def to_scene(
+        self,
+        theta2: float | None = None,
+        *,
+        mode: str = "open",
+        coupler: tuple[float, float] | None = None,
+    ) -> Scene:
+        """This linkage as a :class:`planarkin.Scene`, with the built-in ``fourbar``
+        scene's names: points O2 = (0, 0), O4 = (r1, 0), the crank pin A and the rocker pin
+        B; links ground, crank, coupler, rocker; input the crank at O2, output the rocker
+        at O4. ``coupler`` = (p, delta) adds the coupler point P at distance p from A, at
+        angle delta (radians) from the line A -> B (the CLI's ``--coupler``, in radians).
 
-def _threads(threads: object) -> int | None:
-    th = None if threads is None else as_int("threads", threads)
-    if th is not None and th < 1:
-        raise ValueError(f"threads must be >= 1 or None, got {th}")
-    return th
+        It is drawn at crank angle ``theta2`` on ``mode``, and the drawing chooses the
+        circuit its sweeps follow: by default at 0, or in the middle of the first
+        assemblable interval when 0 cannot assemble. ValueError when the linkage cannot
+        assemble there (or anywhere) or sits at a dead point there.
+        :meth:`planarkin.Scene.as_fourbar` goes the other way.
+        """
+        # imported here, through the package face: the scene subject imports this one
+        # (Scene.as_fourbar), and a file-level import back would close a cycle
+        from ..scene import Scene
 
+        mode = check_mode(mode)
+        if theta2 is None:
+            t2 = 0.0
+            if self.closed_form_status(t2, mode) == Status.NOT_ASSEMBLABLE:
+                intervals = self.limits(mode).intervals
+                if not intervals:
+                    raise ValueError(f"{self!r} cannot be assembled at any crank angle")
+                lo, hi = intervals[0]
+                t2 = 0.5 * (lo + hi)
+        else:
+            t2 = as_float("theta2", theta2)
+        status = Status(int(self.closed_form_status(t2, mode)))
+        if status != Status.CONVERGED:
+            raise ValueError(
+                f"cannot draw {self!r} at theta2 = {t2!r} on the {mode} mode: {status.message}"
+            )
+        t3, _ = self.closed_form(t2, mode)
+        r1, _, r3, _ = self.lengths
 
-def _links(links: object) -> np.ndarray:
-    arr = as_angles("links", links)
-    if arr.ndim != 2 or arr.shape[1] != 4:
-        raise ValueError(f"links must have shape (M, 4), got {arr.shape}")
-    return arr
+        def on_coupler(p: float, delta: float) -> list[float]:
+            # the kernel's coupler-point formula places A (p = 0), B (p = r3) and P alike
+            return [float(v) for v in self.coupler_point(t2, t3, p, delta)]
 
-
-def sweep_batch(
-    links: object,
-    theta2: object = None,
-    *,
-    mode: str = "open",
-    tol: float = 1e-9,
-    max_iter: int = 100,
-    predictor: str = "quadratic",
-    method: str = "newton",
-    threads: int | None = None,
-) -> BatchSweep:
-    """Sweeps M linkages (an (M, 4) array of r1, r2, r3, r4) over N crank angles, in
-    parallel over linkages with the GIL released. Returns (M, N) arrays. ``threads=None``
-    uses all cores; ``method="closed-form"`` as in :meth:`FourBar.sweep`."""
-    arr = _links(links)
-    a = sweep_args(theta2, mode, tol, max_iter, predictor, method)
-    th = _threads(threads)
-    out = _core.sweep_batch(arr, a.theta2, a.mode, a.tol, a.max_iter, a.predictor, a.method, th)
-    return BatchSweep(arr, a.mode, a.theta2, *out, a.method)
-
-
-def closed_form_batch(
-    links: object, theta2: object = None, mode: str = "open", *, threads: int | None = None
-) -> tuple[np.ndarray, np.ndarray]:
-    """Closed-form (theta3, theta4) for M linkages at N crank angles: (M, N) arrays, NaN
-    where a linkage cannot assemble."""
-    arr = _links(links)
-    t2 = as_theta2_1d(theta2)
-    mode = check_mode(mode)
-    return _core.closed_form_batch(arr, t2, mode, _threads(threads))
+        points = {"O2": [0.0, 0.0], "O4": [r1, 0.0], "A": on_coupler(0.0, 0.0),
+                  "B": on_coupler(r3, 0.0)}  # fmt: skip
+        links = {k: list(v) for k, v in LINKS.items()}
+        if coupler is not None:
+            try:
+                p, delta = coupler
+            except (TypeError, ValueError):
+                raise ValueError(f"coupler must be a pair (p, delta), got {coupler!r}") from None
+            p, delta = as_float("coupler p", p), as_float("coupler delta", delta)
+            if not (math.isfinite(p) and math.isfinite(delta)):
+                raise ValueError(f"coupler must be finite, got {coupler!r}")
+            points[COUPLER_POINT] = on_coupler(p, delta)
+            links["coupler"].append(COUPLER_POINT)
+        return Scene.from_dict({
+            "name": "four-bar ({:g}, {:g}, {:g}, {:g})".format(*self.lengths),
+            "points": points,
+            "links": links,
+            "ground": "ground",
+            "input": {"link": "crank", "pivot": "O2"},
+            "output": {"link": "rocker", "pivot": "O4"},
+        })  # fmt: skip

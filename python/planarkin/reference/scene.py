@@ -1,55 +1,31 @@
-"""The NumPy scene reference: any scene solved by a route independent of the Rust planner.
-
-Every link other than ground and input is a rigid body with an unknown pose, and all the
-joint constraints are solved at once by Newton-Raphson from the drawn pose (no plan, no
-dyad peeling), so parity tests compare two different formulations. Imports no extension.
+"""The NumPy reference of scenes: any scene solved by a route independent of the Rust
+planner. Every link other than ground and input is a rigid body with an unknown pose, and
+all the joint constraints are solved at once by Newton-Raphson from the drawn pose (no
+plan, no dyad peeling), so parity tests compare two different formulations.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._types import Status, wrap
+from .._angles import TAU, wrap
+from .._status import Status
+from ..scene._results import SceneSweep
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-__all__ = ["SceneReference", "scene_assemble_check", "scene_mobility", "scene_sweep"]
-
-TAU = 2.0 * math.pi
+__all__ = ["scene_assemble_check", "scene_mobility", "scene_sweep"]
 
 #: A Jacobian whose reciprocal condition number (smallest over largest singular value,
 #: unknowns and residuals both scale-free) is below this is SINGULAR.
 RCOND_THRESHOLD = 1e-10
 
 _REQUIRED = ("points", "links", "ground", "input")
-
-
-@dataclass(frozen=True)
-class SceneReference:
-    """A scene swept by the reference: every point and link angle at each input angle.
-
-    ``points[name]`` is (N, 2) for every point of the scene (ground points constant),
-    ``angles[link]`` (N,) in (-pi, pi], ``status`` (N,) int8 codes of
-    :class:`planarkin.Status`, ``nit`` (N,) the Newton iterations spent reaching each
-    input angle (summed over its continuation substeps). Failed angles hold NaN.
-    """
-
-    theta: np.ndarray
-    points: dict[str, np.ndarray]
-    angles: dict[str, np.ndarray]
-    status: np.ndarray
-    nit: np.ndarray
-
-    @property
-    def success(self) -> np.ndarray:
-        """(N,) bool: where the status is CONVERGED."""
-        return self.status == Status.CONVERGED
 
 
 class _System:
@@ -216,6 +192,15 @@ class _System:
         _, j = self.residual_jacobian(x, (math.cos(dt), math.sin(dt)))
         return float(np.linalg.slogdet(j)[0]) if self.n else 1.0
 
+    def conditioning(self, x: np.ndarray, theta: float) -> float:
+        """The Hadamard ratio det J / prod |columns of J| at x: signed (the sign names the
+        branch, as in ``sign``), scale-free, 0 at a dead point; 1 with no free link."""
+        if not self.n:
+            return 1.0
+        dt = theta - self.theta0
+        _, j = self.residual_jacobian(x, (math.cos(dt), math.sin(dt)))
+        return float(np.linalg.det(j) / np.prod(np.linalg.norm(j, axis=0)))
+
     def pose(self, x: np.ndarray, theta: float) -> dict[str, np.ndarray]:
         """Every point's position, each through its home link."""
         dt = theta - self.theta0
@@ -284,8 +269,11 @@ def scene_sweep(
     tol: float = 1e-12,
     max_iter: int = 50,
     max_step: float = math.radians(1.0),
-) -> SceneReference:
-    """Sweeps a scene over input angles ``theta`` (radians), following the drawn assembly.
+) -> SceneSweep:
+    """Sweeps a scene over input angles ``theta`` (radians), following the drawn assembly;
+    returns a :class:`planarkin.SceneSweep` (no plan: ``plan``, ``limit``, the per-step
+    and per-point status arrays are None; ``det`` is the Hadamard ratio of this
+    reference's own Jacobian, NaN where unsolved).
 
     ``scene`` is a scene dict (``points``, ``links``, ``ground``, ``input`` {link, pivot},
     optional ``output``). The input link turns about its pivot by theta minus the drawn
@@ -321,9 +309,11 @@ def scene_sweep(
     n = th.size
     status = np.zeros(n, dtype=np.int8)
     nit = np.zeros(n, dtype=np.int64)
-    pts = {p: np.full((n, 2), np.nan) for p in sys_.points}
-    angles = {k: np.full(n, np.nan) for k in sys_.links}
-    ang_pts = {k: sys_.angle_points(k) for k in sys_.links}
+    det = np.full(n, np.nan)
+    names, links = list(sys_.points), list(sys_.links)
+    coords = np.full((n, len(names), 2), np.nan)
+    angles = np.full((n, len(links)), np.nan)
+    ang_pts = [sys_.angle_points(k) for k in links]
 
     x, st, _ = sys_.newton(np.zeros(sys_.n), sys_.theta0, tol, max_iter)
     hist: list = []
@@ -344,19 +334,24 @@ def scene_sweep(
         if s != Status.CONVERGED:
             continue
         hist = h
+        det[i] = sys_.conditioning(x, t)
         pose = sys_.pose(x, t)
-        for p, v in pose.items():
-            pts[p][i] = v
-        for link, (a, b) in ang_pts.items():
+        for j, p in enumerate(names):
+            coords[i, j] = pose[p]
+        for j, (a, b) in enumerate(ang_pts):
             d = pose[b] - pose[a]
-            angles[link][i] = wrap(math.atan2(d[1], d[0]))
-    for p in sys_.carriers:
+            angles[i, j] = wrap(math.atan2(d[1], d[0]))
+    for j, p in enumerate(names):
         if sys_.home[p] == sys_.ground:
-            pts[p][:] = sys_.points[p]
-    a, b = ang_pts[sys_.ground]
+            coords[:, j] = sys_.points[p]
+    a, b = ang_pts[links.index(sys_.ground)]
     d = sys_.points[b] - sys_.points[a]
-    angles[sys_.ground][:] = wrap(math.atan2(d[1], d[0]))
-    return SceneReference(theta=th, points=pts, angles=angles, status=status, nit=nit)
+    angles[:, links.index(sys_.ground)] = wrap(math.atan2(d[1], d[0]))
+    return SceneSweep(
+        plan=None, theta=th, coords=coords, angle_array=angles, status=status, nit=nit,
+        det=det, limit=None, step_status=None, step_det=None, point_status_array=None,
+        point_names=tuple(names), link_names=tuple(links),
+    )  # fmt: skip
 
 
 def scene_assemble_check(scene: Mapping) -> float:

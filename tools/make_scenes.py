@@ -1,4 +1,5 @@
-"""Writes the built-in scenes' JSON files: ``python python/planarkin/scenes/_make.py``.
+"""Writes the built-in scenes' JSON files (python/planarkin/scene/builtin/*.json), a
+maintainer's script kept out of the wheel: ``python tools/make_scenes.py``.
 
 Published linkages are assembled from their link lengths by circle intersections; the
 six- and eight-bars whose geometry is ours come from seeded random searches near a
@@ -13,12 +14,11 @@ import math
 from pathlib import Path
 
 import numpy as np
+from planarkin import Status
+from planarkin.reference import scene as ref
 
-HERE = Path(__file__).resolve().parent
-PKG = HERE.parent
-
-from planarkin import reference_scene as ref  # noqa: E402
-from planarkin._types import Status  # noqa: E402
+#: Where the built-in scenes live (package data of planarkin.scene.builtin).
+HERE = Path(__file__).resolve().parents[1] / "python" / "planarkin" / "scene" / "builtin"
 
 DEG = math.pi / 180
 

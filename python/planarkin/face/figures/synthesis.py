@@ -1,29 +1,25 @@
-"""The seed's figures of a synthesized function generator (true and generated output error
-against the input, the conditioning along the range, the linkage at several input angles)
-and the report written beside the design."""
+"""The seed's figures of a synthesized function generator (``planarkin synthesize``): the
+true and generated output error against the input, the conditioning along the range and
+the linkage at several input angles."""
 
 from __future__ import annotations
 
-import json
 import math
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..scene import Scene
-from ..scene.plot import draw_pose
-from .generated import SeedPlan
-from .problem import FunctionTarget, Problem
-from .verify import output_rotation
+from ...synthesis import SeedPlan
+from ...synthesis.problem import FunctionTarget, Problem
+from ...synthesis.verify import output_rotation
+from .. import draw
+from .scene import ground_size
 
-ERROR_PNG = "error.png"
-CONDITIONING_PNG = "conditioning.png"
-LINKAGE_PNG = "linkage.png"
+__all__ = ["conditioning", "error", "linkage"]
 
 
-def error_figure(problem: Problem, x: np.ndarray, dense: int = 1001) -> Figure:
+def error(problem: Problem, x: np.ndarray, dense: int = 1001) -> Figure:
     """True (scene solver) and generated (seed's closed form) output error against the
     input, degrees."""
     t = problem.target
@@ -74,7 +70,7 @@ def error_figure(problem: Problem, x: np.ndarray, dense: int = 1001) -> Figure:
     return fig
 
 
-def conditioning_figure(problem: Problem, x: np.ndarray, dense: int = 1001) -> Figure:
+def conditioning(problem: Problem, x: np.ndarray, dense: int = 1001) -> Figure:
     """The signed, scale-free conditioning (the Jacobian determinant's Hadamard ratio) of
     the true linkage along the range."""
     t = problem.target
@@ -100,7 +96,7 @@ def conditioning_figure(problem: Problem, x: np.ndarray, dense: int = 1001) -> F
     return fig
 
 
-def linkage_figure(problem: Problem, x: np.ndarray, angles_deg: Any = None) -> Figure:
+def linkage(problem: Problem, x: np.ndarray, angles_deg: Any = None) -> Figure:
     """The linkage drawn at several input rotations (default: both ends of the range, their
     midpoints and the drawn pose), with the compact box of the drawn pose dashed."""
     t = problem.target
@@ -122,10 +118,12 @@ def linkage_figure(problem: Problem, x: np.ndarray, angles_deg: Any = None) -> F
     sp = problem.space
     box = (float(np.min(sp.lower)), float(np.max(sp.upper)))
     fig = Figure(figsize=(3.2 * angles.size, 3.6), layout="constrained")
+    st = draw.Structure.of(sc)
     for i, a in enumerate(angles):
         ax = fig.add_subplot(1, angles.size, i + 1)
         xy = {n: sw.points[n][i] for n in sw.points}
-        draw_pose(ax, sc, xy)
+        draw.pose(ax, st, xy)
+        draw.ground(ax, st, xy, ground_size(sc))
         if abs(a) < 1e-12:
             ax.plot(
                 [box[0], box[1], box[1], box[0], box[0]],
@@ -141,37 +139,3 @@ def linkage_figure(problem: Problem, x: np.ndarray, angles_deg: Any = None) -> F
         ax.set_ylim(y0, y1)
         ax.grid(alpha=0.2)
     return fig
-
-
-def write(
-    out: Path,
-    problem: Problem,
-    x: np.ndarray,
-    report: dict[str, Any],
-    scene: Scene,
-    figures: bool = True,
-) -> list[Path]:
-    """design.json, report.json and (``figures``) the three PNGs into ``out``."""
-    out.mkdir(parents=True, exist_ok=True)
-    paths = [scene.save(out / "design.json")]
-    p = out / "report.json"
-    p.write_text(json.dumps(report, indent=2, default=_json_default) + "\n", encoding="utf-8")
-    paths.append(p)
-    if figures:
-        for name, make in (
-            (ERROR_PNG, error_figure),
-            (CONDITIONING_PNG, conditioning_figure),
-            (LINKAGE_PNG, linkage_figure),
-        ):
-            fig = make(problem, x)
-            fig.savefig(out / name, dpi=120)
-            paths.append(out / name)
-    return paths
-
-
-def _json_default(o: object) -> object:
-    if isinstance(o, np.ndarray):
-        return o.tolist()
-    if isinstance(o, (np.floating, np.integer)):
-        return o.item()
-    raise TypeError(f"not JSON serialisable: {type(o).__name__}")

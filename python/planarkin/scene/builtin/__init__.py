@@ -1,17 +1,16 @@
-"""The built-in scenes: classic linkages as scene data files (``<name>.json``).
-
-``names()`` lists them, ``data(name)`` parses one, ``load(name)`` builds a ``Scene``.
-The files are written by ``_make.py`` (which also says where each geometry comes from).
+"""The built-in scenes (``pk.scenes``): classic linkages as scene data files
+(``<name>.json``) shipped inside the scene package. ``names()`` lists them, ``path(name)``
+finds one, ``data(name)`` parses it and ``load(name)`` builds its ``Scene``. The files are
+written by ``tools/make_scenes.py`` (which also says where each geometry comes from).
 """
 
 from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-if TYPE_CHECKING:
-    from ..scene import Scene
+from .._model import Scene
 
 __all__ = ["data", "load", "names", "path"]
 
@@ -39,6 +38,4 @@ def data(name: str) -> dict[str, Any]:
 
 def load(name: str) -> Scene:
     """The built-in scene ``name`` as a :class:`planarkin.Scene`."""
-    from ..scene import Scene
-
     return Scene.from_dict(data(name))

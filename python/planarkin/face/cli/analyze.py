@@ -1,40 +1,48 @@
-"""The ``planarkin`` command. ``analyze`` solves a crank sweep and writes a summary table,
-the figures, a CSV of every crank angle and a JSON summary; ``animate`` writes the linkage
-in motion as a GIF and a self-contained HTML page; ``tradeoff`` measures speed/accuracy.
-
-Degrees on the command line and in the outputs; the API underneath works in radians.
-"""
+"""``planarkin analyze``: a four-bar (``--links``) or any SCENE swept, summarised in a
+table, written as results.csv and summary.json, and drawn (the figures listed in
+``--help``). Degrees on the command line and in the outputs; radians underneath."""
 
 from __future__ import annotations
 
 import argparse
-import csv
-import json
 import math
 import os
-import sys
 import time
+from collections.abc import Iterator
 from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
 
-from . import plot, tradeoff
-from ._types import MODES, PREDICTORS, Limits, Solution, Status, Sweep
-from .fourbar import FourBar
+from ..._results import true_runs
+from ..._status import Status
+from ...fourbar import FourBar, Limits, Solution, Sweep
+from ...fourbar.analysis import convergence_order, unreachable_spans
+from ...scene import Scene, SceneSweep
+from ..degrees import unwrap_deg
+from ..figures import fourbar as fig
+from ..figures import scene as scene_fig
+from ._common import (
+    finite,
+    fourbar_setup,
+    json_text,
+    linkage_options,
+    load_scene,
+    out_argument,
+    refuse_fourbar_options,
+    scene_angles,
+    scene_argument,
+    table,
+    warm_median,
+    write_csv,
+)
 
-#: The seeds' linkage: ground r1, crank r2, coupler r3, rocker r4.
-DEFAULT_LINKS = (6.0, 2.0, 5.0, 5.0)
-#: Coupler point: distance from the crank pin A, angle from the line A-B (degrees).
-DEFAULT_COUPLER = (3.0, 30.0)
 #: The seeds' convergence study: theta2 = 45 deg from the cold guess (80, 100) deg.
 NEWTON_THETA2_DEG = 45.0
 NEWTON_GUESS_DEG = {"open": (80.0, 100.0), "crossed": (-80.0, -100.0)}
 
 RESULTS_CSV = "results.csv"
 SUMMARY_JSON = "summary.json"
-ANIMATION_GIF = "linkage.gif"
-ANIMATION_HTML = "linkage.html"
 #: Figure file -> what it shows (listed in ``planarkin analyze --help``; drawn by ``_figures``).
 FIGURES = {
     "figure_a_position_analysis.png": "theta3 and theta4 against theta2 (separate panels)",
@@ -45,6 +53,12 @@ FIGURES = {
     "figure_e_transmission_angle.png": "transmission angle and branch indicator",
     "figure_f_coupler_curve.png": "coupler-point curve",
     "figure_g_linkage.png": "the linkage drawn at several crank angles",
+}
+#: The figures of ``planarkin analyze SCENE``.
+SCENE_FIGURES = {
+    "scene_linkage.png": "the linkage drawn at several input angles over its tracer paths",
+    "scene_conditioning.png": "signed conditioning of each step and of the whole solve",
+    "scene_tracers.png": "tracer point coordinates and speeds against the input angle",
 }
 #: CSV header, units in brackets; one row per crank angle. Angles in degrees as computed
 #: (wrapped to (-180, 180]), NaN where the status is not CONVERGED.
@@ -67,261 +81,63 @@ CSV_COLUMNS = (
     "coupler_y [length]",
 )
 
-
 _FILES = {
-    RESULTS_CSV: "one row per crank angle, every computed column (units in the header)",
+    RESULTS_CSV: "one row per input angle, every computed column (units in the header)",
     SUMMARY_JSON: "the summary table as data (also on stdout with --json)",
     **FIGURES,
 }
 
 
-class _Parser(argparse.ArgumentParser):
-    """argparse with a one-line error (exit code 2) instead of usage + error."""
-
-    def error(self, message: str) -> None:  # type: ignore[override]
-        self.exit(2, f"planarkin: error: {message} (see '{self.prog} --help')\n")
-
-
-def _linkage_options() -> _Parser:
-    # a _Parser like the subcommands it is a parent of (argparse only copies its arguments)
-    p = _Parser(add_help=False)
-    g = p.add_argument_group("linkage and sweep")
-    g.add_argument(
-        "--links",
-        nargs=4,
-        type=float,
-        metavar=("R1", "R2", "R3", "R4"),
-        default=DEFAULT_LINKS,
-        help="link lengths: ground, crank (input), coupler, rocker "
-        "(default: %(default)s, the seeds' linkage)",
-    )
-    g.add_argument(
-        "--mode", choices=MODES, default="open", help="assembly mode (default: %(default)s)"
-    )
-    g.add_argument(
-        "--step",
-        type=float,
-        default=1.0,
-        metavar="DEG",
-        help="crank-angle step; the sweep runs 0..360 deg (default: %(default)s)",
-    )
-    g.add_argument(
-        "--tol",
-        type=float,
-        default=1e-9,
-        help="Newton tolerance on max(|f1|, |f2|) / longest link and on the next Newton "
-        "correction in rad (default: %(default)s)",
-    )
-    g.add_argument(
-        "--max-iter",
-        type=int,
-        default=100,
-        metavar="N",
-        help="Newton iterations per crank angle (default: %(default)s)",
-    )
-    g.add_argument(
-        "--predictor",
-        choices=PREDICTORS,
-        default="quadratic",
-        help="continuation predictor along the sweep (default: %(default)s)",
-    )
-    g.add_argument(
-        "--rpm",
-        type=float,
-        default=100.0,
-        help="constant crank speed, rev/min; omega2 = rpm * 2 pi / 60 rad/s, "
-        "alpha2 = 0 (default: %(default)s)",
-    )
-    g.add_argument(
-        "--coupler",
-        nargs=2,
-        type=float,
-        metavar=("P", "DELTA"),
-        default=DEFAULT_COUPLER,
-        help="coupler point at distance P from the crank pin A, at DELTA deg from "
-        "the coupler line A-B (default: %(default)s)",
-    )
-    return p
-
-
-def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
-        prog="planarkin",
-        description="Planar four-bar linkage kinematics (Rust core). Run 'planarkin analyze' "
-        "for the seeds' linkage, or give your own with --links.",
-    )
-    from . import __version__
-
-    parser.add_argument("--version", action="version", version=f"planarkin {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    common = _linkage_options()
-
+def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    """Registers ``analyze``."""
     a = sub.add_parser(
         "analyze",
-        parents=[common],
+        parents=[linkage_options(rpm=True)],
         help="sweep, summary table, figures, CSV and JSON",
-        description="Solve the crank sweep, print a summary table and write figures "
-        f"(PNG), {RESULTS_CSV} and {SUMMARY_JSON} into the output folder.",
-        epilog="files written:\n"
+        description="Solve the sweep of a four-bar (--links) or of a SCENE, print a summary\n"
+        f"table and write figures (PNG), {RESULTS_CSV} and {SUMMARY_JSON} into the output "
+        "folder.",
+        epilog="files written (four-bar):\n"
         + "".join(f"  {k:34}{v}\n" for k, v in _FILES.items())
+        + "files written (SCENE): the CSV and JSON as above, and\n"
+        + "".join(f"  {k:34}{v}\n" for k, v in SCENE_FIGURES.items())
         + "\nAngles are in degrees; omega in rad/s, alpha in rad/s^2; lengths in the unit of "
-        "--links.",
+        "--links (or of the scene).",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    a.add_argument(
-        "scene",
-        nargs="?",
-        metavar="SCENE",
-        help="a scene file (.json/.toml) or built-in scene name to analyze instead of the "
-        "four-bar given by --links (see 'planarkin scenes'); then --links, --mode, "
-        "--predictor, --coupler and --newton-at do not apply",
-    )
-    a.add_argument(
-        "--out",
-        type=Path,
-        default=Path("figures"),
-        metavar="DIR",
-        help="output folder (default: %(default)s)",
-    )
+    scene_argument(a, "analyze", "--newton-at")
+    out_argument(a)
     a.add_argument(
         "--dpi", type=float, default=300.0, help="figure resolution (default: %(default)s)"
     )
     a.add_argument(
         "--newton-at",
         type=float,
-        default=NEWTON_THETA2_DEG,
         metavar="DEG",
-        help="crank angle of the convergence study, solved from the seeds' cold "
-        "guess (80, 100) deg, mirrored for crossed (default: %(default)s)",
+        help="crank angle of the four-bar's convergence study, solved from the seeds' cold "
+        f"guess (80, 100) deg, mirrored for crossed (default: {NEWTON_THETA2_DEG:g})",
     )
     a.add_argument("--no-figures", action="store_true", help="write the CSV and JSON only")
     a.add_argument(
         "--json", action="store_true", help="print the JSON summary to stdout instead of the table"
     )
-    a.set_defaults(func=run_analyze)
-
-    m = sub.add_parser(
-        "animate",
-        parents=[common],
-        help="the linkage in motion: GIF and HTML",
-        description=f"Write {ANIMATION_GIF} and {ANIMATION_HTML} (self-contained, with play "
-        "controls) of the linkage moving through the sweep with its coupler curve traced.",
-    )
-    m.add_argument(
-        "scene",
-        nargs="?",
-        metavar="SCENE",
-        help="a scene file (.json/.toml) or built-in scene name to animate instead of the "
-        "four-bar given by --links",
-    )
-    m.add_argument(
-        "--out",
-        type=Path,
-        default=Path("figures"),
-        metavar="DIR",
-        help="output folder (default: %(default)s)",
-    )
-    m.add_argument("--frames", type=int, default=72, help="frames (default: %(default)s)")
-    m.add_argument(
-        "--fps", type=float, default=12.0, help="frames per second (default: %(default)s)"
-    )
-    m.add_argument(
-        "--dpi", type=float, default=80.0, help="frame resolution (default: %(default)s)"
-    )
-    m.set_defaults(func=run_animate)
-
-    sc = sub.add_parser("scenes", help="list the built-in scenes")
-    sc.set_defaults(func=run_scenes)
-
-    c = sub.add_parser(
-        "circuits",
-        help="every assembly of a scene at an input angle, grouped by circuit",
-        description="Find every real assembly of SCENE at --theta (default: as drawn), trace "
-        "each circuit through its dead points, and write circuits.json and circuits.png "
-        "(input angle against the output angle for every circuit, turning points marked, "
-        "and the linkage drawn in each assembly).",
-    )
-    c.add_argument("scene", metavar="SCENE", help="a scene file (.json/.toml) or built-in name")
-    c.add_argument("--theta", type=float, default=None, metavar="DEG", help="input angle")
-    c.add_argument("--out", type=Path, default=Path("figures"), metavar="DIR",
-                   help="output folder (default: %(default)s)")  # fmt: skip
-    c.add_argument("--dpi", type=float, default=150.0, help="figure resolution")
-    c.add_argument("--no-figures", action="store_true", help="write circuits.json only")
-    c.add_argument("--json", action="store_true", help="print the JSON instead of the table")
-    c.set_defaults(func=run_circuits)
-
-    y = sub.add_parser(
-        "synthesize",
-        help="defect-free synthesis of a double butterfly (seed 003): ackermann",
-        description="Synthesize a double butterfly by multistart SLSQP on the true linkage's "
-        "error, verify it, and write design.json, report.json and the seed's figures.",
-    )
-    from .synthesis import cli as synthesis_cli
-
-    synthesis_cli.add_arguments(y)
-    y.set_defaults(func=synthesis_cli.run_synthesize)
-
-    t = sub.add_parser("tradeoff", help="measure the speed/accuracy trade-off")
-    tradeoff.add_arguments(t)
-    t.set_defaults(func=tradeoff.run)
-    return parser
+    a.set_defaults(func=run)
+    return a
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``planarkin`` console script; returns the exit code."""
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    try:
-        return int(args.func(args) or 0)
-    except ValueError as e:
-        print(f"planarkin: error: {e}", file=sys.stderr)
-        return 2
-    except OSError as e:
-        print(f"planarkin: error: {e}", file=sys.stderr)
-        return 1
-    except MemoryError as e:
-        print(f"planarkin: error: out of memory: {e}", file=sys.stderr)
-        return 1
+def run(args: argparse.Namespace) -> int:
+    """``planarkin analyze [SCENE]``; returns the exit code."""
+    return _run_scene(args) if args.scene is not None else _run_fourbar(args)
 
 
-# --- shared ------------------------------------------------------------------------------
-
-
-def _finite(name: str, value: float, *, positive: bool = False) -> float:
-    if not math.isfinite(value) or (positive and value <= 0):
-        raise ValueError(f"{name} must be finite{' and > 0' if positive else ''}, got {value}")
-    return value
-
-
-#: Most crank angles a command sweeps: every one becomes a CSV row and plotted points.
-MAX_POINTS = 10_000_000
-
-
-def crank_angles(step_deg: float) -> np.ndarray:
-    """0..360 deg in ``step_deg`` steps (360 included when the step divides it), radians.
-    With the default 1 deg step this is exactly ``planarkin.DEFAULT_THETA2``. At most
-    :data:`MAX_POINTS` angles (ValueError naming ``--step`` beyond)."""
-    step = _finite("--step", step_deg, positive=True)
-    if step > 360:
-        raise ValueError(f"--step must be <= 360 deg, got {step}")
-    n = math.floor(360.0 / step + 1e-9) + 1
-    if n > MAX_POINTS:
-        raise ValueError(
-            f"--step {step:g} deg gives {n} crank angles; at most {MAX_POINTS} "
-            f"(--step >= {360 / (MAX_POINTS - 1):.3g})"
-        )
-    return np.arange(n) * (step * math.tau / 360)
+# --- the four-bar ------------------------------------------------------------------------
 
 
 def _setup(args: argparse.Namespace) -> tuple[FourBar, np.ndarray]:
-    """The linkage and the crank angles, after checking the shared options."""
-    fb = FourBar(*args.links)
-    theta2 = crank_angles(args.step)
-    _finite("--rpm", args.rpm)
-    _finite("--coupler P", args.coupler[0])
-    _finite("--coupler DELTA", args.coupler[1])
-    _finite("--dpi", args.dpi, positive=True)
-    return fb, theta2
+    """The linkage and the crank angles, the four-bar options' defaults filled in."""
+    if args.newton_at is None:
+        args.newton_at = NEWTON_THETA2_DEG
+    return fourbar_setup(args)
 
 
 def _max_abs(x: object) -> float | None:
@@ -333,19 +149,6 @@ def _max_abs(x: object) -> float | None:
 
 def _wrap(x: np.ndarray) -> np.ndarray:
     return np.remainder(x + math.pi, math.tau) - math.pi
-
-
-def _jsonable(x: object) -> object:
-    """NaN/inf -> None, NumPy scalars -> Python, recursively (strict JSON)."""
-    if isinstance(x, dict):
-        return {k: _jsonable(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_jsonable(v) for v in x]
-    if isinstance(x, np.generic):
-        x = x.item()
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    return x
 
 
 class Analysis(NamedTuple):
@@ -423,7 +226,7 @@ def analyze(fb: FourBar, sweep: Sweep, args: argparse.Namespace) -> Analysis:
     theta3: dict[str, object] = {}
     theta4: dict[str, object] = {}
     for d, t in ((theta3, t3), (theta4, t4)):
-        u = plot.unwrap_deg(t)
+        u = unwrap_deg(t)
         d.update(_extremes(sweep, u))
         # over a full crank turn a link that turns fully comes back one turn further on
         d["full_rotation"] = bool(closes and abs(u[-1] - u[0]) > 180)
@@ -480,7 +283,7 @@ def analyze(fb: FourBar, sweep: Sweep, args: argparse.Namespace) -> Analysis:
             ],
         },
         "unreachable_spans_deg": [
-            [math.degrees(a), math.degrees(b)] for a, b in plot.unreachable_spans(sweep, limits)
+            [math.degrees(a), math.degrees(b)] for a, b in unreachable_spans(sweep, limits)
         ],
         "unsolved_deg": unsolved,
         "newton": {
@@ -490,7 +293,7 @@ def analyze(fb: FourBar, sweep: Sweep, args: argparse.Namespace) -> Analysis:
             "nit": sol.nit,
             "residual": sol.residual,
             "history": sol.history.tolist(),
-            "order": plot.convergence_order(sol.history),
+            "order": convergence_order(sol.history),
         },
     }
     columns = {
@@ -515,21 +318,6 @@ def analyze(fb: FourBar, sweep: Sweep, args: argparse.Namespace) -> Analysis:
     return Analysis(summary, columns, sweep, limits, sol)
 
 
-def _write_csv(path: Path, columns: dict) -> None:
-    with path.open("w", newline="", encoding="utf-8") as f:
-        w = csv.writer(f)
-        w.writerow(columns)
-        for row in zip(*columns.values(), strict=True):
-            w.writerow([_cell(v) for v in row])
-
-
-def _cell(v: object) -> str:
-    """The shortest text that reads back to the same float (or the int, or the name)."""
-    if isinstance(v, str):
-        return v
-    return repr(v.item() if isinstance(v, np.generic) else v)
-
-
 def _figures(res: Analysis, args: argparse.Namespace) -> dict:
     """File name -> a function drawing that figure."""
     sweep, limits = res.sweep, res.limits
@@ -537,14 +325,14 @@ def _figures(res: Analysis, args: argparse.Namespace) -> dict:
     guess_deg = NEWTON_GUESS_DEG[sweep.mode]
     guess = (math.radians(guess_deg[0]), math.radians(guess_deg[1]))
     builders = {
-        "figure_a_position_analysis.png": lambda: plot.position(sweep, limits=limits),
-        "figure_combined_positions.png": lambda: plot.positions_combined(sweep, limits=limits),
-        "figure_b_convergence.png": lambda: plot.convergence(res.newton, guess=guess, tol=args.tol),
-        "figure_c_velocity.png": lambda: plot.velocity(sweep, limits=limits),
-        "figure_d_acceleration.png": lambda: plot.acceleration(sweep, limits=limits),
-        "figure_e_transmission_angle.png": lambda: plot.transmission(sweep, limits=limits),
-        "figure_f_coupler_curve.png": lambda: plot.coupler_curve(sweep, p, delta, limits=limits),
-        "figure_g_linkage.png": lambda: plot.linkage(sweep, p, delta),
+        "figure_a_position_analysis.png": lambda: fig.position(sweep, limits=limits),
+        "figure_combined_positions.png": lambda: fig.positions_combined(sweep, limits=limits),
+        "figure_b_convergence.png": lambda: fig.convergence(res.newton, guess=guess, tol=args.tol),
+        "figure_c_velocity.png": lambda: fig.velocity(sweep, limits=limits),
+        "figure_d_acceleration.png": lambda: fig.acceleration(sweep, limits=limits),
+        "figure_e_transmission_angle.png": lambda: fig.transmission(sweep, limits=limits),
+        "figure_f_coupler_curve.png": lambda: fig.coupler_curve(sweep, p, delta, limits=limits),
+        "figure_g_linkage.png": lambda: fig.linkage(sweep, p, delta),
     }
     assert builders.keys() == FIGURES.keys()
     return builders
@@ -674,47 +462,12 @@ def format_table(summary: dict) -> str:
         data = [f for f in summary["files"] if not f.endswith(".png")]
         what = ", ".join(data) + (f" and {len(figs)} figures (PNG)" if figs else "")
         add("written", f"{summary['out']}{os.sep}: {what}")
-    width = max(len(k) for k, _ in rows) + 2
     head = f"planarkin analyze: four-bar ({L['r1']:g}, {L['r2']:g}, {L['r3']:g}, {L['r4']:g})"
-    return head + "\n" + "\n".join(f"  {k:<{width}}{v}" for k, v in rows)
+    return head + "\n" + table(rows)
 
 
-def run_circuits(args: argparse.Namespace) -> int:
-    from .scene import cli as scene_cli
-
-    return scene_cli.run_circuits(args)
-
-
-def run_scenes(args: argparse.Namespace) -> int:
-    from . import scenes
-
-    for name in scenes.names():
-        sc = scenes.load(name)
-        print(f"{name:20s} {len(sc.links)} links, {len(sc.points)} points: {sc.name}")
-    return 0
-
-
-def warm_median(fn, *, runs: int = 51, budget_s: float = 0.25) -> tuple[float, int]:
-    """Median seconds of ``fn()`` over warm calls (after one call that is not timed: the
-    first pays for first-touch memory and caches), as the README's timings are taken: up
-    to ``runs`` calls, fewer when they would take more than ``budget_s`` in all.
-    Returns (median, number of timed calls)."""
-    fn()
-    times: list[float] = []
-    spent = 0.0
-    while len(times) < runs and (len(times) < 3 or spent < budget_s):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-        spent += times[-1]
-    return float(np.median(times)), len(times)
-
-
-def run_analyze(args: argparse.Namespace) -> int:
-    if args.scene is not None:
-        from .scene import cli as scene_cli
-
-        return scene_cli.run_analyze(args)
+def _run_fourbar(args: argparse.Namespace) -> int:
+    """``planarkin analyze`` of a four-bar."""
     t_start = time.perf_counter()
     fb, theta2 = _setup(args)
 
@@ -735,7 +488,7 @@ def run_analyze(args: argparse.Namespace) -> int:
 
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)
-    _write_csv(out / RESULTS_CSV, res.columns)
+    write_csv(out / RESULTS_CSV, res.columns, zip(*res.columns.values(), strict=True))
     files = [RESULTS_CSV, SUMMARY_JSON]
     if not args.no_figures:
         for name, draw in _figures(res, args).items():
@@ -749,43 +502,167 @@ def run_analyze(args: argparse.Namespace) -> int:
     }
     summary["out"] = str(out)
     summary["files"] = files
-    text = json.dumps(_jsonable(summary), indent=2, allow_nan=False)
+    text = json_text(summary)
     (out / SUMMARY_JSON).write_text(text + "\n", encoding="utf-8")
     print(text if args.json else format_table(summary))
     return 0
 
 
-# --- animate -----------------------------------------------------------------------------
+# --- a scene ------------------------------------------------------------------------------
 
 
-def run_animate(args: argparse.Namespace) -> int:
-    if args.scene is not None:
-        from .scene import cli as scene_cli
+def _none(x: float) -> float | None:
+    return x if math.isfinite(x) else None
 
-        return scene_cli.run_animate(args)
-    from matplotlib.animation import PillowWriter
 
-    fb, theta2 = _setup(args)
-    if args.frames < 1:
-        raise ValueError(f"--frames must be >= 1, got {args.frames}")
-    _finite("--fps", args.fps, positive=True)
-    sweep = fb.sweep(
-        theta2, mode=args.mode, tol=args.tol, max_iter=args.max_iter, predictor=args.predictor
-    )
-    p, delta = args.coupler[0], math.radians(args.coupler[1])
-    # a crank that cannot turn fully rocks between its toggles (and the mode switches)
-    path = plot.rocking(fb, fb.limits(args.mode), sweep, points=len(theta2) // 2 + 1)
-    anim = plot.animation(path, p, delta, frames=args.frames, fps=args.fps, dpi=args.dpi)
+def scene_summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
+    """The summary table as data."""
+    plan, limit = sw.plan, sw.limit
+    assert plan is not None and limit is not None  # a kernel sweep has both
+    ok = sw.success
+    deg = np.degrees(sw.theta)
+    absdet = np.abs(sw.det[ok])
+    # where the motion stops: the edges of the solved spans (to the sweep's resolution)
+    edges = []
+    for a, b in true_runs(ok):
+        if a > 0:
+            edges.append({"deg": float(deg[a]), "det": float(sw.det[a]), "side": "start"})
+        if b < len(ok):
+            edges.append({"deg": float(deg[b - 1]), "det": float(sw.det[b - 1]), "side": "end"})
+    return {
+        "scene": scene.name,
+        "description": scene.description,
+        "links": len(scene.links),
+        "joints": sum(len(v) - 1 for v in scene.joints.values()),
+        "points": len(scene.points),
+        "mobility": scene.mobility,
+        "input": {"link": scene.input[0], "pivot": scene.input[1]},
+        "drawn_input_deg": math.degrees(scene.input_angle),
+        "outputs": list(plan.outputs) if plan.outputs is not None else "all",
+        "plan": [
+            {"kind": s.kind, "points": list(s.points), "unknowns": list(s.unknowns)} for s in plan
+        ],
+        "points_solved": list(sw.points),
+        "angles": len(sw),
+        "converged": int(ok.sum()),
+        "statuses": sw.statuses(),
+        "nit_total": int(sw.nit.sum()),
+        "nit_mean_converged": _none(float(sw.nit[ok].mean())) if ok.any() else None,
+        "conditioning_min": float(absdet.min()) if ok.any() else None,
+        "conditioning_max": float(absdet.max()) if ok.any() else None,
+        "motion_stops_deg": edges,
+        "dead_points_deg": sorted({round(math.degrees(v), 9) for v in limit if math.isfinite(v)}),
+        "wall_time_s": wall,
+    }
+
+
+def scene_table(s: dict) -> str:
+    rows = [
+        ("scene", s["scene"] or "(unnamed)"),
+        ("links / joints / points", f"{s['links']} / {s['joints']} / {s['points']}"),
+        ("mobility (Gruebler)", s["mobility"]),
+        (
+            "input",
+            f"{s['input']['link']} at {s['input']['pivot']}, drawn at "
+            f"{s['drawn_input_deg']:.3f} deg",
+        ),  # fmt: skip
+        ("outputs", ", ".join(s["outputs"]) if isinstance(s["outputs"], list) else "all"),
+    ]
+    for i, st in enumerate(s["plan"]):
+        rows.append((f"plan step {i + 1}", f"{st['kind']}: {', '.join(st['points'])} "
+                     f"(angles of {', '.join(st['unknowns'])})"))  # fmt: skip
+    rows += [
+        ("converged", f"{s['converged']} of {s['angles']} input angles"),
+        ("statuses", ", ".join(f"{k}={v}" for k, v in s["statuses"].items())),
+        (
+            "Newton iterations",
+            f"{s['nit_total']} total"
+            + (
+                f", {s['nit_mean_converged']:.3f} per solved angle"
+                if s["nit_mean_converged"] is not None
+                else ""
+            ),
+        ),  # fmt: skip
+    ]
+    if s["conditioning_min"] is not None:
+        rows.append(
+            ("|conditioning|", f"{s['conditioning_min']:.3g} .. {s['conditioning_max']:.3g}")
+        )
+    if s["dead_points_deg"]:
+        dead = ", ".join(f"{v:.4f}" for v in s["dead_points_deg"])
+        rows.append(("dead points met (deg)", dead + " (the input must reverse there)"))
+    if s["motion_stops_deg"]:
+        stops = ", ".join(f"{e['deg']:.1f}" for e in s["motion_stops_deg"])
+        rows.append(("motion stops near (deg)", stops))
+    return table(rows)
+
+
+def _write_scene_csv(path: Path, sw: SceneSweep) -> None:
+    names = list(sw.points)
+    velocities = sw.velocities
+    cols = ["theta [deg]", "status [code]", "status_name", "nit [-]", "det [-]"]
+    for n in names:
+        cols += [f"{n}_x", f"{n}_y"]
+        if velocities is not None:
+            cols += [f"{n}_vx", f"{n}_vy"]
+    for n in sw.angles:
+        cols += [f"{n}_angle [deg]"]
+
+    def rows() -> Iterator[list[object]]:
+        for i in range(len(sw)):
+            code = int(sw.status[i])
+            row: list[object] = [
+                math.degrees(sw.theta[i]), code, Status(code).name, int(sw.nit[i]),
+                float(sw.det[i]),
+            ]  # fmt: skip
+            for n in names:
+                row += [float(v) for v in sw.points[n][i]]
+                if velocities is not None:
+                    row += [float(v) for v in velocities[n][i]]
+            row += [math.degrees(sw.angles[n][i]) for n in sw.angles]
+            yield row
+
+    write_csv(path, cols, rows())
+
+
+def _run_scene(args: argparse.Namespace) -> int:
+    """``planarkin analyze SCENE``."""
+    refuse_fourbar_options(args, [("newton_at", "--newton-at")])
+    t_start = time.perf_counter()
+    sc = load_scene(args.scene)
+    theta = scene_angles(sc, args.step)
+    finite("--rpm", args.rpm)
+    finite("--dpi", args.dpi, positive=True)
+    omega = args.rpm * math.tau / 60
+    sw = sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, omega=omega)
+    times = []
+    for _ in range(5):  # a warm median: the first call also compiles the plan
+        t0 = time.perf_counter()
+        sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, omega=omega)
+        times.append(time.perf_counter() - t0)
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)
-    anim.save(str(out / ANIMATION_GIF), writer=PillowWriter(fps=args.fps))
-    r = ", ".join(f"{x:g}" for x in fb.lengths)
-    page = plot.animation_html(
-        anim, fps=args.fps, title=f"planarkin four-bar ({r}), {args.mode} mode"
+    _write_scene_csv(out / RESULTS_CSV, sw)
+    files = [RESULTS_CSV, SUMMARY_JSON]
+    if not args.no_figures:
+        # the figures draw every link: sweep the whole scene for them
+        whole = sc.sweep(theta, outputs="all", tol=args.tol, max_iter=args.max_iter, omega=omega)
+        for name, draw, data in (
+            ("scene_linkage.png", scene_fig.linkage, whole),
+            ("scene_conditioning.png", scene_fig.conditioning, sw),
+            ("scene_tracers.png", scene_fig.tracers, sw),
+        ):
+            draw(sc, data).savefig(out / name, dpi=args.dpi)
+            files.append(name)
+    summary = scene_summary(
+        sc, sw, {"sweep_median": float(np.median(times)), "total": time.perf_counter() - t_start}
     )
-    (out / ANIMATION_HTML).write_text(page, encoding="utf-8")
-    n = len(plot.animation_frames(path, args.frames))
-    how = "" if len(path) == 1 else ", the crank rocking between its toggles"
-    print(f"planarkin animate: four-bar ({r}), {args.mode} mode{how}, {n} frames")
-    print(f"  wrote {out / ANIMATION_GIF} and {out / ANIMATION_HTML}")
+    (out / SUMMARY_JSON).write_text(json_text(summary) + "\n", encoding="utf-8")
+    if args.json:
+        print(json_text(summary))
+    else:
+        print(f"planarkin analyze: {sc.name or args.scene}")
+        print(scene_table(summary))
+        print(f"  sweep {1e3 * summary['wall_time_s']['sweep_median']:.3f} ms (warm median of 5)")
+        print(f"  wrote {', '.join(str(out / f) for f in files)}")
     return 0

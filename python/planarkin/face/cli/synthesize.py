@@ -1,5 +1,6 @@
 """``planarkin synthesize ackermann``: the seed's example 2 end to end (multistart SLSQP on
-the true error, verification, tolerance sensitivity, design.json, report.json, figures)."""
+the true error, verification, tolerance sensitivity, design.json, report.json, figures).
+Ctrl-C stops the worker processes at once."""
 
 from __future__ import annotations
 
@@ -15,8 +16,12 @@ from typing import Any
 
 import numpy as np
 
-from . import ackermann as ak
-from .problem import OBJECTIVES
+from ...scene import Scene
+from ...synthesis import ackermann as ak
+from ...synthesis import driver
+from ...synthesis.problem import OBJECTIVES, Problem
+from ...synthesis.verify import linear_sensitivity, tolerance_sensitivity, verify
+from ..figures import synthesis as synthesis_figures
 
 PROBLEMS = ("ackermann",)
 #: defaults of the full run (the shipped design in examples/ackermann/ is this run's)
@@ -25,7 +30,31 @@ STARTS, SAMPLES, SEED = 12, 3000, 2
 BUDGET_DEG = 0.002
 
 
+DESIGN_JSON = "design.json"
+REPORT_JSON = "report.json"
+#: Figure file -> the function of ``figures.synthesis`` that draws it.
+FIGURES = {
+    "error.png": synthesis_figures.error,
+    "conditioning.png": synthesis_figures.conditioning,
+    "linkage.png": synthesis_figures.linkage,
+}
+
+
+def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    """Registers ``synthesize``."""
+    y = sub.add_parser(
+        "synthesize",
+        help="defect-free synthesis of a double butterfly (seed 003): ackermann",
+        description="Synthesize a double butterfly by multistart SLSQP on the true linkage's "
+        f"error, verify it, and write {DESIGN_JSON}, {REPORT_JSON} and the seed's figures.",
+    )
+    add_arguments(y)
+    y.set_defaults(func=run)
+    return y
+
+
 def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The options of ``synthesize``."""
     p.add_argument("problem", choices=PROBLEMS, help="the synthesis problem (seed 003's example 2)")
     p.add_argument(
         "--out",
@@ -120,23 +149,17 @@ def _check(args: argparse.Namespace) -> None:
         raise ValueError(f"--workers must be >= 1, got {args.workers}")
 
 
-def run_synthesize(args: argparse.Namespace) -> int:
-    """Entry point of ``planarkin synthesize``."""
-    from .driver import StartResult, synthesize
-    from .report import write
-    from .verify import linear_sensitivity, tolerance_sensitivity, verify
-
+def run(args: argparse.Namespace) -> int:
+    """``planarkin synthesize``; returns the exit code."""
     _check(args)
     t0 = time.perf_counter()
     problem = ak.problem(objective=args.objective, det_margin=args.det_margin)
     problem = replace(problem, space=ak.space(min_link=args.min_link))
-    executor = None
-    if args.workers is not None:
-        from concurrent.futures import ProcessPoolExecutor
-
-        executor = ProcessPoolExecutor(max_workers=args.workers)
+    # the command's own pool, so that Ctrl-C (KeyboardInterrupt here) stops its workers
+    # at once instead of waiting for the starts they run and have queued
+    executor = driver.process_pool(args.workers)
     try:
-        res = synthesize(
+        res = driver.synthesize(
             problem,
             starts=args.starts,
             samples=args.samples,
@@ -145,13 +168,14 @@ def run_synthesize(args: argparse.Namespace) -> int:
             executor=executor,
             maxiter=args.maxiter,
         )
-    finally:
-        if executor is not None:
-            executor.shutdown()
+    except BaseException:
+        driver.stop_pool(executor)
+        raise
+    executor.shutdown()
     # verify every run on the true linkage, then choose
     truth = replace(problem, objective="true")
     grid = np.linspace(problem.target.dense_in[0], problem.target.dense_in[-1], 201)
-    rows: list[tuple[StartResult, dict[str, Any], float]] = []
+    rows: list[tuple[driver.StartResult, dict[str, Any], float]] = []
     for r in res.runs:
         v = verify(truth, r.x)
         s = linear_sensitivity(truth.space.scene(r.x), grid, ak.right_steer(grid))
@@ -184,8 +208,6 @@ def run_synthesize(args: argparse.Namespace) -> int:
         "wheelbases, drawn straight ahead (both knuckles at 0 deg, axles collinear)."
     )
     d["units"] = "wheelbase"
-    from ..scene import Scene
-
     sc = Scene.from_dict(d)
     report: dict[str, Any] = {
         "problem": "ackermann",
@@ -244,3 +266,32 @@ def run_synthesize(args: argparse.Namespace) -> int:
         )
         print("  written: " + ", ".join(str(p) for p in paths))
     return 0
+
+
+def write(
+    out: Path,
+    problem: Problem,
+    x: np.ndarray,
+    report: dict[str, Any],
+    scene: Scene,
+    figures: bool = True,
+) -> list[Path]:
+    """design.json, report.json and (``figures``) the three PNGs into ``out``."""
+    out.mkdir(parents=True, exist_ok=True)
+    paths = [scene.save(out / DESIGN_JSON)]
+    p = out / REPORT_JSON
+    p.write_text(json.dumps(report, indent=2, default=_json_default) + "\n", encoding="utf-8")
+    paths.append(p)
+    if figures:
+        for name, make in FIGURES.items():
+            make(problem, x).savefig(out / name, dpi=120)
+            paths.append(out / name)
+    return paths
+
+
+def _json_default(o: object) -> object:
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    if isinstance(o, (np.floating, np.integer)):
+        return o.item()
+    raise TypeError(f"not JSON serialisable: {type(o).__name__}")

@@ -1,6 +1,6 @@
-"""The NumPy reference: the same algorithms as the Rust kernel, written plainly (a
-scalar loop over ``math``), so tests can prove the kernel computes the same thing and
-benchmarks can show what Rust buys. It imports nothing from the extension.
+"""The NumPy reference of the four-bar: the same algorithms as the Rust kernel, written
+plainly (a scalar loop over ``math``), so tests can prove the kernel computes the same
+thing and benchmarks can show what Rust buys. It reaches no kernel (see the package).
 
 Operation order follows the kernel's scalar path, so on the same machine the two agree
 bit for bit with ``pk.use_simd(False)`` (or ``PLANARKIN_SIMD=0``). The SIMD kernels, the
@@ -8,8 +8,6 @@ default where the CPU has AVX2 and FMA, evaluate sin/cos/atan2 by polynomials: t
 statuses are the same, their angles agree with this reference to 1e-12 rad (the stated
 parity tolerance; measured below 1e-13 rad).
 Functions take any object with ``r1, r2, r3, r4`` attributes (e.g. ``planarkin.FourBar``).
-Scenes: ``scene_sweep`` (from ``planarkin.reference_scene``) solves any scene by a different
-route from the kernel's plan: all joint equations at once by Newton from the drawn pose.
 """
 
 from __future__ import annotations
@@ -18,21 +16,17 @@ import math
 
 import numpy as np
 
-from ._types import (
-    SINGULAR_THRESHOLD,
-    TAU,
-    Solution,
-    Status,
-    Sweep,
+from .._angles import TAU, wrap
+from .._args import (
     as_float,
     check_guess,
     check_mode,
     check_options,
     motion_args,
     sweep_args,
-    wrap,
 )
-from .reference_scene import SceneReference, scene_sweep  # noqa: E402, F401
+from .._status import SINGULAR_THRESHOLD, Status
+from ..fourbar._results import Solution, Sweep
 
 _NAN = float("nan")
 
@@ -360,7 +354,25 @@ def sweep(
         raw, mode, t2s, t3o, t4o, sto, nito, reso,
         omega2=omega2, omega3=w3o, omega4=w4o,
         alpha2=alpha2 if a3o is not None else None, alpha3=a3o, alpha4=a4o, method=method,
+        geometry=_NUMPY_GEOMETRY,
     )  # fmt: skip
+
+
+class _NumpyGeometry:
+    """The lazy ``det`` and ``points`` of the reference's sweeps, in NumPy (never the
+    kernel: parity tests compare them with the kernel's)."""
+
+    def branch(self, theta3: np.ndarray, theta4: np.ndarray) -> np.ndarray:
+        return np.sin(theta4 - theta3)
+
+    def pins(self, lengths, theta2, theta3):  # noqa: ANN001, ANN201
+        _, r2, r3, _ = lengths
+        t2, t3 = np.asarray(theta2), np.asarray(theta3)
+        a = np.column_stack((r2 * np.cos(t2), r2 * np.sin(t2)))
+        return a, a + np.column_stack((r3 * np.cos(t3), r3 * np.sin(t3)))
+
+
+_NUMPY_GEOMETRY = _NumpyGeometry()
 
 
 def _closed_point(r, t2, sign):

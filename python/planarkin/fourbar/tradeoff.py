@@ -2,7 +2,7 @@
 tolerance and method, mean Newton iterations per point, time per point and the largest
 angle error against an independent truth solved in mpmath at 40 significant digits.
 
->>> from planarkin.tradeoff import tradeoff
+>>> from planarkin.fourbar.tradeoff import tradeoff
 >>> result = tradeoff(tols=(1e-6, 1e-12), n_random=3, truth_links=2, repeat=1)
 >>> print(result.table())  # doctest: +SKIP
 
@@ -19,16 +19,15 @@ ones; times cover all of the linkages.
 
 from __future__ import annotations
 
-import argparse
-import json
 import math
-import sys
 import time
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from ._types import DEFAULT_THETA2, TAU, Status
+from .._angles import DEFAULT_THETA2, TAU
+from .._status import Status
+from ._batch import closed_form_batch, sweep_batch
 
 #: Tolerances swept by default: 1e-3 down to 1e-15.
 DEFAULT_TOLS = tuple(10.0**-k for k in range(3, 16))
@@ -223,100 +222,6 @@ class TradeoffResult:
         d["summary"] = self.summary()
         return d
 
-    def plot(self, path: str) -> None:
-        """Saves the Pareto plot (time per point vs max error, log-log)."""
-        self.figure().savefig(path, dpi=120)
-
-    def figure(self):  # -> matplotlib.figure.Figure (matplotlib is imported only here)
-        """The Pareto plot as a matplotlib Figure (object API, no pyplot). Tolerances whose
-        markers would print their labels on top of each other share one label
-        ("1e-12..1e-15"); tick labels are plain numbers."""
-        from matplotlib.figure import Figure
-        from matplotlib.ticker import LogFormatter
-
-        fig = Figure(figsize=(7.5, 5.0), layout="constrained")
-        ax = fig.subplots()
-        floor = 1e-17  # an error of exactly 0 has no place on a log axis
-        labels = []
-        for method, (label, _) in METHODS.items():
-            rows = [r for r in self.rows if r.method == method]
-            if not rows:
-                continue
-            x = [r.ns_per_point for r in rows]
-            y = [max(r.err_max, floor) for r in rows]
-            if method == "closed-form":
-                ax.plot(x, y, "*", ms=14, label=label, color="k")
-                continue
-            (line,) = ax.plot(x, y, "o-", ms=4, label=label, alpha=0.8)
-            for group in _close_runs(x, y):
-                tols = [rows[i].tol for i in group]
-                text = f"{tols[0]:.0e}" + (f"..{tols[-1]:.0e}" if len(tols) > 1 else "")
-                i = group[len(group) // 2]
-                labels.append(
-                    ax.annotate(
-                        text,
-                        (x[i], y[i]),
-                        fontsize=6,
-                        xytext=(3, 2),
-                        textcoords="offset points",
-                        color=line.get_color(),
-                    )
-                )
-        front = sorted((r for r in self.rows if r.pareto_newton), key=lambda r: r.ns_per_point)
-        if front:
-            ax.step(
-                [r.ns_per_point for r in front],
-                [max(r.err_max, floor) for r in front],
-                where="post",
-                color="0.6",
-                lw=4,
-                alpha=0.4,
-                zorder=0,
-                label="Pareto front of the Newton rows",
-            )
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        for axis in (ax.xaxis, ax.yaxis):  # "40", not "4x10^1"
-            axis.set_major_formatter(LogFormatter(labelOnlyBase=False))
-            axis.set_minor_formatter(LogFormatter(labelOnlyBase=False, minor_thresholds=(1, 0.4)))
-        ax.set_xlabel("time per point (ns, one thread)")
-        ax.set_ylabel("max angle error (rad)")
-        ax.set_title(
-            f"planarkin: speed vs accuracy ({self.n_links} linkages x {self.n_points} angles)"
-        )
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-        _drop_overlapping(fig, labels)
-        return fig
-
-
-def _close_runs(x: list[float], y: list[float], near: float = 0.06) -> list[list[int]]:
-    """Consecutive points (in tolerance order) whose markers are within ``near`` decades
-    of the previous one on both axes: one label for each run."""
-    runs: list[list[int]] = []
-    for i in range(len(x)):
-        if runs and all(
-            abs(math.log10(a[i]) - math.log10(a[runs[-1][-1]])) < near * (3 if a is y else 1)
-            for a in (x, y)
-        ):
-            runs[-1].append(i)
-        else:
-            runs.append([i])
-    return runs
-
-
-def _drop_overlapping(fig, labels: list) -> None:
-    """Hides a tolerance label that would overprint one already shown (the rows nearby
-    are labelled; the table has every value)."""
-    fig.draw_without_rendering()
-    shown: list = []
-    for t in labels:
-        box = t.get_window_extent()
-        if any(box.overlaps(b) for b in shown):
-            t.set_visible(False)
-        else:
-            shown.append(box)
-
 
 def _sci(v: float) -> str:
     return "nan" if not math.isfinite(v) else f"{v:.1e}"
@@ -381,8 +286,6 @@ def tradeoff(
     array), and the max angle error against the mpmath truth on the first
     ``truth_links`` of them. Times are the best of ``repeat`` single-thread batch calls.
     """
-    from .fourbar import closed_form_batch, sweep_batch
-
     t_start = time.perf_counter()
     for name in methods:
         if name not in METHODS:
@@ -502,131 +405,3 @@ def _mark_pareto(rows: list[Row]) -> list[Row]:
         Row(**{**asdict(r), "pareto": i in front, "pareto_newton": i in front_n})
         for i, r in enumerate(rows)
     ]
-
-
-# --- CLI --------------------------------------------------------------------------------
-
-
-def _tol_list(s: str) -> tuple[float, ...]:
-    try:
-        vals = tuple(float(x) for x in s.replace(" ", "").split(",") if x)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a comma-separated list of numbers: {s!r}") from None
-    if not vals or any(not (math.isfinite(v) and v > 0) for v in vals):
-        raise argparse.ArgumentTypeError(f"tolerances must be finite and > 0: {s!r}")
-    return vals
-
-
-def _method_list(s: str) -> tuple[str, ...]:
-    vals = tuple(x for x in s.replace(" ", "").split(",") if x)
-    bad = [v for v in vals if v not in METHODS]
-    if bad or not vals:
-        raise argparse.ArgumentTypeError(
-            f"unknown method(s) {bad}; choose from {', '.join(METHODS)}"
-        )
-    return vals
-
-
-def _positive(s: str) -> int:
-    v = int(s)
-    if v < 1:
-        raise argparse.ArgumentTypeError(f"must be >= 1, got {v}")
-    return v
-
-
-def _non_negative(s: str) -> int:
-    v = int(s)
-    if v < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {v}")
-    return v
-
-
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Adds the ``tradeoff`` subcommand's options."""
-    parser.description = (
-        "Speed/accuracy trade-off: for each tolerance and method, mean Newton iterations "
-        "per point, time per point (one thread) and max angle error against an mpmath "
-        "truth, over the seed linkage (6, 2, 5, 5) and random crank-rockers. Prints the "
-        "table and saves a Pareto plot (time vs error, log-log)."
-    )
-    parser.add_argument(
-        "--tols",
-        type=_tol_list,
-        default=DEFAULT_TOLS,
-        metavar="T1,T2,...",
-        help="tolerances (default: 1e-3,1e-4,...,1e-15)",
-    )
-    parser.add_argument(
-        "--methods",
-        type=_method_list,
-        default=tuple(METHODS),
-        metavar="M1,...",
-        help=f"methods among {', '.join(METHODS)} (default: all)",
-    )
-    parser.add_argument(
-        "--random",
-        type=_non_negative,
-        default=127,
-        metavar="M",
-        help="random crank-rockers besides the seed linkage (default 127)",
-    )
-    parser.add_argument(
-        "--truth-links",
-        type=_positive,
-        default=32,
-        metavar="K",
-        help="linkages (seed first) checked against the mpmath truth (default 32)",
-    )
-    parser.add_argument(
-        "--points",
-        type=_positive,
-        default=361,
-        metavar="N",
-        help="crank angles, 0..360 deg inclusive (default 361)",
-    )
-    parser.add_argument("--mode", choices=("open", "crossed"), default="open")
-    parser.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
-    parser.add_argument(
-        "--repeat", type=_positive, default=5, help="timing repeats, the best is kept (default 5)"
-    )
-    parser.add_argument("--max-iter", type=_positive, default=100, help="Newton iteration cap")
-    parser.add_argument(
-        "--plot",
-        default="tradeoff.png",
-        metavar="PATH",
-        help="where to save the Pareto plot (default tradeoff.png)",
-    )
-    parser.add_argument("--no-plot", action="store_true", help="do not save the plot")
-    parser.add_argument("--json", metavar="PATH", help="also write the results as JSON")
-    parser.add_argument("--markdown", action="store_true", help="print the table as Markdown")
-
-
-def run(args: argparse.Namespace) -> int:
-    """Runs the ``tradeoff`` subcommand; returns the exit code."""
-    theta2 = np.linspace(0.0, TAU, args.points) if args.points != 361 else None
-    try:
-        res = tradeoff(
-            args.tols,
-            args.methods,
-            n_random=args.random,
-            truth_links=args.truth_links,
-            seed=args.seed,
-            theta2=theta2,
-            mode=args.mode,
-            max_iter=args.max_iter,
-            repeat=args.repeat,
-        )
-    except ImportError as e:
-        print(f"planarkin tradeoff: {e}", file=sys.stderr)
-        return 2
-    print(res.summary())
-    print()
-    print(res.markdown() if args.markdown else res.table())
-    if not args.no_plot:
-        res.plot(args.plot)
-        print(f"\nPareto plot saved to {args.plot}")
-    if args.json:
-        with open(args.json, "w", encoding="utf-8") as f:
-            json.dump(res.to_dict(), f, indent=1)
-        print(f"results saved to {args.json}")
-    return 0

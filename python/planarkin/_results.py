@@ -1,0 +1,146 @@
+"""The vocabulary every sweep result shares, whichever subject (four-bar, scene) or
+implementation (kernel, NumPy reference) made it: the base classes, the summary they
+give, and the runs of a per-point mask. scipy's ``OptimizeResult`` is the model: a shared
+name means the same thing everywhere, and each subject adds its own names."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ._status import Status
+
+
+@dataclass(frozen=True)
+class SweepSummary:
+    """Totals over a sweep."""
+
+    points: int
+    converged: int
+    success_rate: float
+    nit_total: int
+    nit_mean: float
+    #: Largest residual of the converged points (NaN when none converged); None for
+    #: results that keep no residual (scenes).
+    residual_max: float | None
+    #: Count of points per status name (only statuses that occur).
+    statuses: dict[str, int]
+
+    def __str__(self) -> str:
+        counts = ", ".join(f"{k}={v}" for k, v in self.statuses.items())
+        residual = "" if self.residual_max is None else f"; max residual {self.residual_max:.3g}"
+        return (
+            f"{self.converged}/{self.points} converged ({counts}); iterations total "
+            f"{self.nit_total}, mean {self.nit_mean:.3f}{residual}"
+        )
+
+
+def status_counts(status: np.ndarray) -> dict[str, int]:
+    """Count per status name of an array of status codes (only statuses that occur)."""
+    codes, counts = np.unique(np.asarray(status), return_counts=True)
+    return {Status(int(c)).name: int(k) for c, k in zip(codes, counts, strict=True)}
+
+
+def true_runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """[start, stop) index ranges where a per-point ``mask`` is True (e.g. the runs of
+    unassemblable points of a sweep, or of solved ones)."""
+    d = np.diff(np.concatenate(([0], np.asarray(mask).astype(np.int8), [0])))
+    return list(zip(np.flatnonzero(d == 1).tolist(), np.flatnonzero(d == -1).tolist(), strict=True))
+
+
+class StatusResult:
+    """A result with a status code per point: ``theta`` (the input at each point),
+    ``status`` (int8 codes of :class:`planarkin.Status`), ``success``, ``statuses()``
+    and a one-line repr. Subclasses say what they are in :meth:`_describe`."""
+
+    __slots__ = ()
+    #: What ``len(theta)`` counts, as the repr names it.
+    _points_name = "input angles"
+
+    if TYPE_CHECKING:  # provided by the subclasses (fields or properties)
+
+        @property
+        def theta(self) -> np.ndarray: ...
+        @property
+        def status(self) -> np.ndarray: ...
+
+    @property
+    def success(self) -> np.ndarray:
+        """Boolean array: status == CONVERGED."""
+        return self.status == Status.CONVERGED
+
+    def statuses(self) -> dict[str, int]:
+        """Count of points per status name (only statuses that occur)."""
+        return status_counts(self.status)
+
+    def _describe(self) -> str:
+        """What the result is, for the repr (after the class name)."""
+        return ""
+
+    def __repr__(self) -> str:
+        # one line: the arrays are attributes, not part of the repr
+        t = np.asarray(self.theta)
+        span = f"{t[0]:.6g}..{t[-1]:.6g} rad" if t.size else "empty"
+        counts = ", ".join(f"{k}={v}" for k, v in self.statuses().items())
+        what = self._describe()
+        return (
+            f"<{type(self).__name__}{' ' + what if what else ''}, {t.size} "
+            f"{self._points_name} ({span}); {counts or 'no points'}>"
+        )
+
+
+class SweepResult(StatusResult):
+    """One sweep over N input values: the names every sweep result shares.
+
+    - ``theta`` (N,): the input coordinate at each point (a four-bar's crank angle theta2)
+    - ``status`` (N,) int8, ``success`` (N,) bool, ``nit`` (N,): Newton iterations
+    - ``det`` (N,): signed, scale-free conditioning; its sign names the branch followed,
+      its size the distance from a dead point (0 there); NaN where unsolved
+    - ``points``: point name -> (N, 2) positions; ``angles``: link name -> (N,) angles
+      (radians); NaN where unsolved
+    - ``statuses()``, ``summary()``, ``len()`` and a one-line repr
+
+    Each subject adds its own names (a four-bar's ``theta3``, ``residual``, ``omega4``; a
+    scene's ``plan``, ``step_det``, ``velocities``).
+    """
+
+    __slots__ = ()
+
+    if TYPE_CHECKING:  # provided by the subclasses (fields or cached properties)
+
+        @property
+        def nit(self) -> np.ndarray: ...
+        @property
+        def det(self) -> np.ndarray: ...
+        @property
+        def points(self) -> dict[str, np.ndarray]: ...
+        @property
+        def angles(self) -> dict[str, np.ndarray]: ...
+
+    def __len__(self) -> int:
+        return len(self.theta)
+
+    def summary(self) -> SweepSummary:
+        """Totals over the sweep: points, how many converged, iterations (total and mean
+        per point), the largest residual of the converged points (None for results that
+        keep no residual) and the count of each status that occurs."""
+        n = len(self.theta)
+        ok = self.success
+        converged = int(np.count_nonzero(ok))
+        nit_total = int(np.asarray(self.nit).sum(dtype=np.int64))
+        residual = getattr(self, "residual", None)  # only the four-bar keeps one
+        residual_max: float | None = None
+        if residual is not None:
+            res = np.asarray(residual)[ok]
+            residual_max = float(res.max()) if res.size else float("nan")
+        return SweepSummary(
+            points=n,
+            converged=converged,
+            success_rate=converged / n if n else float("nan"),
+            nit_total=nit_total,
+            nit_mean=nit_total / n if n else float("nan"),
+            residual_max=residual_max,
+            statuses=self.statuses(),
+        )

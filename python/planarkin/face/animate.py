@@ -1,0 +1,252 @@
+"""The one animator: a linkage moving through a sweep (a four-bar's, played as the scene
+it is, or any scene's) as a matplotlib animation, saved as a GIF and as a self-contained
+HTML page that plays on load. Poses are drawn by the one drawer (``draw``)."""
+
+from __future__ import annotations
+
+import html
+import math
+import re
+import tempfile
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from matplotlib.animation import FuncAnimation, HTMLWriter, PillowWriter
+from matplotlib.figure import Figure
+
+from .._status import Status
+from ..fourbar import COUPLER_POINT, Sweep
+from ..scene import Scene, SceneSweep
+from . import draw
+from .figures.fourbar import pose_points
+from .figures.scene import ground_size, tracer_names
+from .titles import fit_titles
+
+__all__ = ["animation", "fourbar", "fourbar_frames", "html_page", "save", "scene"]
+
+_TRACE = "tab:purple"
+
+
+def animation(
+    st: draw.Structure,
+    points: Mapping[str, np.ndarray],
+    theta: np.ndarray,
+    status: np.ndarray,
+    frames: Sequence[int],
+    *,
+    ground: Mapping[str, Any],
+    ground_size: float,
+    title: str,
+    symbol: str = "θ",
+    notes: Sequence[str] | None = None,
+    tracers: Sequence[str] = (),
+    fps: float = 12,
+    dpi: float = 80,
+    figsize: tuple[float, float] = (6.0, 4.8),
+) -> FuncAnimation:
+    """The linkage ``st`` moving through ``points`` (name -> (N, 2)) at the indices
+    ``frames``: the ground (points ``ground``) drawn once, each tracer's whole path faint
+    and its path so far in colour, the pose redrawn each frame (the input link red, the
+    rest blue), and a label "``symbol`` = input angle" with ``notes[i]`` and the status
+    where it is not CONVERGED."""
+    fig = Figure(figsize=figsize, dpi=dpi, layout="constrained")
+    ax = fig.subplots()
+    for p in tracers:
+        ax.plot(points[p][:, 0], points[p][:, 1], color="0.8", lw=1.0, zorder=1)
+    draw.ground(ax, st, ground, ground_size)
+    traces = {p: ax.plot([], [], color=_TRACE, lw=1.8, zorder=2)[0] for p in tracers}
+    label = ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", family="monospace")
+    ax.set_title(title, fontsize="medium")
+    ax.grid(True, alpha=0.3)
+    draw.frame(ax, *points.values(), list(ground.values()))
+    fit_titles(fig)
+    drawn: list = []
+
+    def draw_frame(i: int) -> list:
+        for a in drawn:
+            a.remove()
+        drawn.clear()
+        xy = {n: v[i] for n, v in points.items()}
+        drawn.extend(draw.pose(ax, st, xy, color="tab:blue", input_color="tab:red",
+                               tracer_color=_TRACE, lw=3, ms=5, star=12, fill_alpha=0.25,
+                               zorder=4))  # fmt: skip
+        for p, line in traces.items():
+            seen = points[p][: i + 1]
+            line.set_data(seen[:, 0], seen[:, 1])
+        code = Status(int(status[i]))
+        state = "" if code == Status.CONVERGED else "  " + code.name.lower().replace("_", " ")
+        note = f"  {notes[i]}" if notes is not None else ""
+        label.set_text(f"{symbol} = {math.degrees(theta[i]):6.1f}°{note}{state}")
+        return [*drawn, *traces.values(), label]
+
+    return FuncAnimation(fig, draw_frame, frames=list(frames), interval=1000.0 / fps, blit=False)
+
+
+# --- the four-bar, played as the scene it is ---------------------------------------------
+
+
+def _parts(sweep: Sweep | Sequence[Sweep]) -> list[Sweep]:
+    return [sweep] if isinstance(sweep, Sweep) else list(sweep)
+
+
+def fourbar_frames(sweep: Sweep | Sequence[Sweep], frames: int) -> np.ndarray:
+    """Indices, into the sweeps played one after another (their points concatenated), of
+    the points that :func:`fourbar` shows: at most ``frames``, evenly spaced; a single
+    sweep that closes the circle does not repeat its first pose."""
+    parts = _parts(sweep)
+    t2 = np.concatenate([np.asarray(p.theta2) for p in parts]) if parts else np.empty(0)
+    n = len(t2)
+    closes = len(parts) == 1 and n > 1 and math.isclose(abs(t2[-1] - t2[0]), math.tau)
+    idx = np.unique(np.linspace(0, n - 1 if closes else n, frames, endpoint=False).astype(int))
+    return idx[idx < n]
+
+
+def fourbar(
+    sweep: Sweep | Sequence[Sweep],
+    p: float,
+    delta: float,
+    *,
+    frames: int = 72,
+    fps: float = 12,
+    dpi: float = 80,
+) -> FuncAnimation:
+    """A four-bar moving through the sweep with its coupler curve traced; several sweeps
+    (e.g. :func:`planarkin.fourbar.analysis.rocking`) are played one after another, each
+    frame labelled with its assembly mode. Save it with :func:`save`."""
+    if frames < 1:
+        raise ValueError(f"frames must be >= 1, got {frames}")
+    parts = _parts(sweep)
+    if not parts:
+        raise ValueError("sweep: nothing to animate")
+    each = [pose_points(s, p, delta) for s in parts]
+    points = {n: np.concatenate([e[n] for e in each]) for n in each[0]}
+    r = ", ".join(f"{x:g}" for x in parts[0].lengths)
+    how = f"r = ({r})"
+    if len(parts) > 1:
+        how += ", crank rocking between its toggles"
+    else:
+        how += f", {parts[0].mode} mode"
+    return animation(
+        draw.fourbar(),
+        points,
+        np.concatenate([np.asarray(s.theta2) for s in parts]),
+        np.concatenate([np.asarray(s.status) for s in parts]),
+        fourbar_frames(parts, frames).tolist(),
+        ground={"O2": (0.0, 0.0), "O4": (parts[0].lengths[0], 0.0)},
+        ground_size=0.03 * max(parts[0].lengths),
+        title=f"{how}, p = {p:g}, δ = {math.degrees(delta):g}°",
+        symbol="θ2",
+        notes=[s.mode for s in parts for _ in range(len(s.theta2))] if len(parts) > 1 else None,
+        tracers=[COUPLER_POINT],
+        fps=fps,
+        dpi=dpi,
+    )
+
+
+# --- any scene ---------------------------------------------------------------------------
+
+
+def scene(
+    scene: Scene, sweep: SceneSweep, *, frames: int = 72, fps: float = 12, dpi: float = 80
+) -> FuncAnimation:
+    """The scene moving through the solved input angles of the sweep (at most ``frames``,
+    evenly spaced), its tracer points' paths traced."""
+    if frames < 1:
+        raise ValueError(f"frames must be >= 1, got {frames}")
+    ok = np.flatnonzero(sweep.success)
+    if not len(ok):
+        raise ValueError("the sweep solved no input angle: nothing to animate")
+    idx = ok[np.unique(np.linspace(0, len(ok) - 1, min(frames, len(ok))).round().astype(int))]
+    st = draw.Structure.of(scene)
+    drawn = scene.points
+    return animation(
+        st,
+        sweep.points,
+        sweep.theta,
+        sweep.status,
+        idx.tolist(),
+        ground={p: drawn[p] for p in st.links[st.ground]},
+        ground_size=ground_size(scene),
+        title=scene.name or "scene",
+        tracers=tracer_names(scene, sweep),
+        fps=fps,
+        dpi=dpi,
+        figsize=(6.0, 5.2),
+    )
+
+
+# --- saving: the GIF and the self-contained page -----------------------------------------
+
+
+def save(anim: FuncAnimation, gif: Path, page: Path, *, fps: float, title: str) -> None:
+    """Writes the animation as a GIF and as a self-contained HTML page (:func:`html_page`)."""
+    # matplotlib's stub types fps as int; the writers take any positive number
+    anim.save(str(gif), writer=PillowWriter(fps=fps))  # type: ignore[arg-type]
+    page.write_text(html_page(anim, fps=fps, title=title), encoding="utf-8")
+
+
+def _svg(*shapes: str) -> str:
+    """A 16 x 16 inline SVG icon in the button's text colour: no font needed."""
+    return (
+        '<svg viewBox="0 0 16 16" width="16" height="16" fill="currentColor" '
+        'aria-hidden="true" style="vertical-align:middle">' + "".join(shapes) + "</svg>"
+    )
+
+
+_BAR = '<rect x="{}" y="3" width="2.5" height="10"/>'
+_LEFT = '<polygon points="{},3 {},13 {},8"/>'  # a triangle pointing left
+_ICONS = {  # matplotlib's Font Awesome classes -> inline SVG
+    "fa-minus": _svg('<rect x="3" y="7" width="10" height="2.5"/>'),
+    "fa-fast-backward": _svg(_BAR.format(1.5), _LEFT.format(9, 9, 4), _LEFT.format(14, 14, 9)),
+    "fa-step-backward": _svg(_BAR.format(3), _LEFT.format(13, 13, 6)),
+    "fa-play fa-flip-horizontal": _svg(_LEFT.format(12.5, 12.5, 3.5)),
+    "fa-pause": _svg(_BAR.format(4), _BAR.format(9.5)),
+    "fa-play": _svg('<polygon points="3.5,3 3.5,13 12.5,8"/>'),
+    "fa-step-forward": _svg('<polygon points="3,3 3,13 10,8"/>', _BAR.format(10.5)),
+    "fa-fast-forward": _svg(
+        '<polygon points="2,3 2,13 7,8"/>', '<polygon points="7,3 7,13 12,8"/>', _BAR.format(12)
+    ),
+    "fa-plus": _svg('<rect x="3" y="6.75" width="10" height="2.5"/>',
+                    '<rect x="6.75" y="3" width="2.5" height="10"/>'),
+}  # fmt: skip
+
+
+def html_page(anim: FuncAnimation, *, fps: float = 12, title: str = "planarkin") -> str:
+    """A self-contained HTML page (frames embedded as base64 PNG, play controls in plain
+    JavaScript) for an animation, playing (looped) as soon as it loads. matplotlib's player
+    loads its button icons from a web font; they are drawn as inline SVG instead, so the
+    page needs no network and no particular font."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp, "anim.html")
+        # matplotlib's stub types fps as int, but the writers take any positive number
+        # (Animation.save itself passes fps=1000.0 / interval); a float fps is kept as is.
+        writer = HTMLWriter(
+            fps=fps,  # type: ignore[arg-type]
+            embed_frames=True,
+            default_mode="loop",
+            embed_limit=1e6,
+        )
+        anim.save(str(path), writer=writer)
+        body = path.read_text(encoding="utf-8")
+    body = re.sub(r"<link\b[^>]*\bhref=[\"']https?://[^>]*>", "", body)
+    body = re.sub(
+        r'<i class="fa ([^"]*)"></i>',
+        lambda m: _ICONS.get(m.group(1).strip(), _svg('<circle cx="8" cy="8" r="3"/>')),
+        body,
+    )
+    # start playing once matplotlib's player object exists (it is made in a timeout)
+    names = sorted(set(re.findall(r"\b(anim[0-9a-f]{32})\s*=\s*new Animation", body)))
+    autoplay = "".join(
+        f'(function start() {{ var a = window["{n}"]; '
+        "if (a) { a.play_animation(); } else { setTimeout(start, 10); } })();"
+        for n in names
+    )
+    title = html.escape(title)
+    return (
+        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
+        f"<title>{title}</title>\n<style>body{{font-family:sans-serif;margin:1.5em}}"
+        ".anim-buttons button{min-width:2.6em;font-size:1em}</style>\n</head>\n<body>\n"
+        f"<h3>{title}</h3>\n{body}\n<script>{autoplay}</script>\n</body>\n</html>\n"
+    )

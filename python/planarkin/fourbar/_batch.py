@@ -1,0 +1,56 @@
+"""Many four-bars at once: sweeps and closed forms of an (M, 4) array of linkages, in
+parallel in the kernel with the GIL released, returned as (M, N) arrays."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import _kernel
+from .._args import as_angles, as_int, as_theta2_1d, check_mode, sweep_args
+from ._results import BatchSweep
+
+
+def _threads(threads: object) -> int | None:
+    th = None if threads is None else as_int("threads", threads)
+    if th is not None and th < 1:
+        raise ValueError(f"threads must be >= 1 or None, got {th}")
+    return th
+
+
+def _links(links: object) -> np.ndarray:
+    arr = as_angles("links", links)
+    if arr.ndim != 2 or arr.shape[1] != 4:
+        raise ValueError(f"links must have shape (M, 4), got {arr.shape}")
+    return arr
+
+
+def sweep_batch(
+    links: object,
+    theta2: object = None,
+    *,
+    mode: str = "open",
+    tol: float = 1e-9,
+    max_iter: int = 100,
+    predictor: str = "quadratic",
+    method: str = "newton",
+    threads: int | None = None,
+) -> BatchSweep:
+    """Sweeps M linkages (an (M, 4) array of r1, r2, r3, r4) over N crank angles, in
+    parallel over linkages with the GIL released. Returns (M, N) arrays. ``threads=None``
+    uses all cores; ``method="closed-form"`` as in :meth:`FourBar.sweep`."""
+    arr = _links(links)
+    a = sweep_args(theta2, mode, tol, max_iter, predictor, method)
+    th = _threads(threads)
+    out = _kernel.sweep_batch(arr, a.theta2, a.mode, a.tol, a.max_iter, a.predictor, a.method, th)
+    return BatchSweep(arr, a.mode, a.theta2, *out, a.method)
+
+
+def closed_form_batch(
+    links: object, theta2: object = None, mode: str = "open", *, threads: int | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Closed-form (theta3, theta4) for M linkages at N crank angles: (M, N) arrays, NaN
+    where a linkage cannot assemble."""
+    arr = _links(links)
+    t2 = as_theta2_1d(theta2)
+    mode = check_mode(mode)
+    return _kernel.closed_form_batch(arr, t2, mode, _threads(threads))

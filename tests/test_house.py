@@ -1,0 +1,66 @@
+"""The house rules of the Python layer (issue 16): the extension has one door, the API
+loads no face, every module says what it is for, and the import contracts in
+pyproject.toml hold (run with import-linter when it is installed)."""
+
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import planarkin
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = Path(planarkin.__file__).resolve().parent
+
+
+def _modules() -> list[Path]:
+    return sorted(p for p in PACKAGE.rglob("*.py") if "__pycache__" not in p.parts)
+
+
+def test_only_the_door_imports_the_extension():
+    """Import graphs cannot see into planarkin._core; the contracts name planarkin._kernel
+    instead, so no other module may reach the extension around it."""
+    users = []
+    for path in _modules():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names: list[str] = []
+            if isinstance(node, ast.ImportFrom):
+                names = [node.module or "", *(a.name for a in node.names)]
+            elif isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            if any(n == "_core" or n.endswith("._core") for n in names):
+                users.append(path.relative_to(PACKAGE).as_posix())
+    assert users == ["_kernel.py"]
+
+
+def test_every_module_says_what_it_is_for():
+    for path in _modules():
+        doc = ast.get_docstring(ast.parse(path.read_text(encoding="utf-8")))
+        assert doc and len(doc.split()) >= 8, path.relative_to(PACKAGE)
+
+
+def test_the_api_loads_no_face_and_no_matplotlib():
+    code = (
+        "import sys, planarkin as pk; pk.FourBar(6, 2, 5, 5).sweep().points; "
+        "pk.scenes.load('jansen').sweep(); pk.reference.sweep(pk.FourBar(6, 2, 5, 5)); "
+        "print(sorted(m for m in sys.modules if m.startswith(('matplotlib', 'planarkin.face'))))"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.split() == ["[]"]
+
+
+def test_import_contracts_hold():
+    pytest.importorskip("importlinter")
+    code = (
+        "import sys; from importlinter.cli import lint_imports; "
+        f"sys.exit(lint_imports(config_filename={str(ROOT / 'pyproject.toml')!r}, no_cache=True))"
+    )
+    r = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=120, cwd=ROOT
+    )
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "0 broken" in r.stdout
