@@ -1,10 +1,14 @@
-"""Argument normalisation shared by the API and the NumPy reference: real scalars, angle
-arrays, modes, tolerances and the sweep options, each checked once at the boundary
-(ValueError naming the parameter), so both implementations refuse the same inputs."""
+"""Argument normalisation at the Python boundary, shared by the API and the NumPy
+reference: real scalars, integers, strings, angle arrays, guesses and crank rates become
+the plain types the kernel takes, or a ValueError naming the parameter.
+
+Ranges and choices (tol > 0, a known mode, 1..=16 homotopy runs) are not checked here:
+the core's validating constructors check them, once, for the API; the reference, which
+may not call the kernel, mirrors those rules in ``reference/_rules.py``, and a test checks
+that both refuse the same inputs with the same message."""
 
 from __future__ import annotations
 
-import math
 import operator
 from typing import TYPE_CHECKING, NamedTuple, cast
 
@@ -17,6 +21,7 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
+#: The choices the kernel accepts (the command line offers them; the core checks them).
 MODES = ("open", "crossed")
 PREDICTORS = ("previous", "tangent", "quadratic")
 METHODS = ("newton", "closed-form")
@@ -46,6 +51,31 @@ def as_int(name: str, value: object) -> int:
         raise ValueError(f"{name} must be an integer, got {value!r}") from None
 
 
+def as_i64(name: str, value: object) -> int:
+    """An integer the kernel can take (64 bits, signed), or ValueError naming the
+    parameter; its range is the kernel's to check."""
+    v = as_int(name, value)
+    if not -(2**63) <= v < 2**63:
+        raise ValueError(f"{name} must be an integer of at most 64 bits, got {v}")
+    return v
+
+
+def as_u64(name: str, value: object) -> int:
+    """A non-negative integer of at most 64 bits (a seed), or ValueError naming it."""
+    v = as_int(name, value)
+    if not 0 <= v < 2**64:
+        raise ValueError(f"{name} must be an integer in 0..2**64, got {v}")
+    return v
+
+
+def as_str(name: str, value: object) -> str:
+    """A string (an option's name, e.g. a mode), or ValueError naming the parameter; which
+    strings are valid is the kernel's to check."""
+    if not isinstance(value, str):
+        raise ValueError(f"{name} must be a string, got {value!r}")
+    return value
+
+
 def as_angles(name: str, value: object) -> np.ndarray:
     """A float64 array (any shape), or ValueError naming the parameter."""
     try:
@@ -67,22 +97,6 @@ def as_theta2_1d(value: object | None) -> np.ndarray:
     return arr
 
 
-def check_mode(mode: object) -> str:
-    if mode not in MODES:
-        raise ValueError(f"mode must be 'open' or 'crossed', got {mode!r}")
-    return mode  # type: ignore[return-value]
-
-
-def check_options(tol: object, max_iter: object) -> tuple[float, int]:
-    t = as_float("tol", tol)
-    if not (math.isfinite(t) and t > 0):
-        raise ValueError(f"tol must be finite and > 0, got {t}")
-    m = as_int("max_iter", max_iter)
-    if not 1 <= m <= 0xFFFFFFFF:
-        raise ValueError(f"max_iter must be an integer in 1..=4294967295, got {m}")
-    return t, m
-
-
 def check_guess(guess: object) -> tuple[float, float] | None:
     if guess is None:
         return None
@@ -93,8 +107,18 @@ def check_guess(guess: object) -> tuple[float, float] | None:
     return as_float("guess[0]", a), as_float("guess[1]", b)
 
 
+def crank_rates(omega2: object, alpha2: object) -> tuple[float | None, float | None]:
+    """Crank speed and acceleration for a sweep's velocities and accelerations, as floats
+    (None where not asked for); accelerations need a speed."""
+    if alpha2 is not None and omega2 is None:
+        raise ValueError("alpha2 needs omega2: accelerations depend on the crank speed")
+    w2 = None if omega2 is None else as_float("omega2", omega2)
+    a2 = None if alpha2 is None else as_float("alpha2", alpha2)
+    return w2, a2
+
+
 class SweepArgs(NamedTuple):
-    """Validated sweep arguments, shared by the API, the batch and the reference."""
+    """A sweep's arguments as the kernel takes them (types normalised, not yet checked)."""
 
     theta2: np.ndarray
     mode: str
@@ -104,36 +128,10 @@ class SweepArgs(NamedTuple):
     method: str
 
 
-def sweep_args(theta2, mode, tol, max_iter, predictor, method) -> SweepArgs:  # noqa: ANN001
-    """Validates the arguments every sweep takes (ValueError naming the parameter)."""
-    t, m = check_options(tol, max_iter)
+def sweep_inputs(theta2, mode, tol, max_iter, predictor, method) -> SweepArgs:  # noqa: ANN001
+    """Normalises the arguments every four-bar sweep takes (ValueError naming the
+    parameter for a wrong type); the kernel checks their values."""
     return SweepArgs(
-        as_theta2_1d(theta2), check_mode(mode), t, m, check_predictor(predictor),
-        check_method(method),
+        as_theta2_1d(theta2), as_str("mode", mode), as_float("tol", tol),
+        as_i64("max_iter", max_iter), as_str("predictor", predictor), as_str("method", method),
     )  # fmt: skip
-
-
-def motion_args(omega2: object, alpha2: object) -> tuple[float | None, float | None]:
-    """Crank speed and acceleration for a sweep's velocities/accelerations."""
-    if alpha2 is not None and omega2 is None:
-        raise ValueError("alpha2 needs omega2: accelerations depend on the crank speed")
-    w2 = None if omega2 is None else as_float("omega2", omega2)
-    a2 = None if alpha2 is None else as_float("alpha2", alpha2)
-    for name, v in (("omega2", w2), ("alpha2", a2)):
-        if v is not None and not math.isfinite(v):
-            raise ValueError(f"{name} must be finite, got {v}")
-    return w2, a2
-
-
-def check_method(method: object) -> str:
-    if method not in METHODS:
-        raise ValueError(f"method must be 'newton' or 'closed-form', got {method!r}")
-    return method  # type: ignore[return-value]
-
-
-def check_predictor(predictor: object) -> str:
-    if predictor not in PREDICTORS:
-        raise ValueError(
-            f"predictor must be 'previous', 'tangent' or 'quadratic', got {predictor!r}"
-        )
-    return predictor  # type: ignore[return-value]

@@ -6,15 +6,12 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _kernel
-from .._args import as_angles, as_int, as_theta2_1d, check_mode, sweep_args
+from .._args import as_angles, as_i64, as_str, as_theta2_1d, sweep_inputs
 from ._results import BatchSweep
 
 
 def _threads(threads: object) -> int | None:
-    th = None if threads is None else as_int("threads", threads)
-    if th is not None and th < 1:
-        raise ValueError(f"threads must be >= 1 or None, got {th}")
-    return th
+    return None if threads is None else as_i64("threads", threads)
 
 
 def _links(links: object) -> np.ndarray:
@@ -39,7 +36,7 @@ def sweep_batch(
     parallel over linkages with the GIL released. Returns (M, N) arrays. ``threads=None``
     uses all cores; ``method="closed-form"`` as in :meth:`FourBar.sweep`."""
     arr = _links(links)
-    a = sweep_args(theta2, mode, tol, max_iter, predictor, method)
+    a = sweep_inputs(theta2, mode, tol, max_iter, predictor, method)
     th = _threads(threads)
     out = _kernel.sweep_batch(arr, a.theta2, a.mode, a.tol, a.max_iter, a.predictor, a.method, th)
     return BatchSweep(arr, a.mode, a.theta2, *out, a.method)
@@ -52,5 +49,5 @@ def closed_form_batch(
     where a linkage cannot assemble."""
     arr = _links(links)
     t2 = as_theta2_1d(theta2)
-    mode = check_mode(mode)
+    mode = as_str("mode", mode)
     return _kernel.closed_form_batch(arr, t2, mode, _threads(threads))

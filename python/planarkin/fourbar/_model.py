@@ -1,5 +1,6 @@
-"""The FourBar: validates and broadcasts at the boundary, calls the Rust kernel and wraps
-its arrays in the plain result objects of ``_results``; ``to_scene`` draws it as a Scene."""
+"""The FourBar: normalises and broadcasts arguments at the boundary, calls the Rust kernel
+(whose validating constructors check the values: one rule, in one place) and wraps its
+arrays in the plain result objects of ``_results``; ``to_scene`` draws it as a Scene."""
 
 from __future__ import annotations
 
@@ -9,15 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _kernel
-from .._args import (
-    as_angles,
-    as_float,
-    check_guess,
-    check_mode,
-    check_options,
-    motion_args,
-    sweep_args,
-)
+from .._args import as_angles, as_float, as_i64, as_str, check_guess, crank_rates, sweep_inputs
 from .._status import Status
 from ._results import COUPLER_POINT, LINKS, Grashof, Limits, Solution, Sweep
 
@@ -35,13 +28,6 @@ def _broadcast(**arrays: object) -> tuple[tuple[int, ...], list[np.ndarray]]:
         raise ValueError(f"shapes do not broadcast: {shapes}") from None
     shape = b[0].shape
     return shape, [np.ascontiguousarray(x).ravel() for x in b]
-
-
-def _finite_rates(**rates: np.ndarray) -> None:
-    """Crank rates must be finite: NaN would give NaN rates on solved points."""
-    for name, a in rates.items():
-        if not np.isfinite(a).all():
-            raise ValueError(f"{name} must be finite, got {a[~np.isfinite(a)][0]}")
 
 
 class _KernelGeometry:
@@ -115,7 +101,7 @@ class FourBar:
         """Limit positions on ``mode`` from the closed form: toggles (where a crank that
         cannot turn fully stops), all dead points, the assemblable crank-angle intervals
         and the rocker's extreme angles."""
-        mode = check_mode(mode)
+        mode = as_str("mode", mode)
         toggles, dead, intervals, full, rocker = self._core.limits(mode)
         (t2min, t4min), (t2max, t4max) = rocker if rocker else ((None, None), (None, None))
         return Limits(
@@ -145,8 +131,8 @@ class FourBar:
         ``history=True`` records the residual at every iterate.
         """
         t2 = as_float("theta2", theta2)
-        mode = check_mode(mode)
-        tol, max_iter = check_options(tol, max_iter)
+        mode = as_str("mode", mode)
+        tol, max_iter = as_float("tol", tol), as_i64("max_iter", max_iter)
         g = check_guess(guess)
         t3, t4, st, nit, res, hist = self._core.solve(t2, mode, g, tol, max_iter, bool(history))
         status = Status(st)
@@ -179,9 +165,9 @@ class FourBar:
         the same statuses and velocities, no iterations (``nit`` 0, ``residual`` NaN: not
         computed); faster, but only the four-bar has one.
         """
-        a = sweep_args(theta2, mode, tol, max_iter, predictor, method)
+        a = sweep_inputs(theta2, mode, tol, max_iter, predictor, method)
         g = check_guess(guess)
-        w2, a2 = motion_args(omega2, alpha2)
+        w2, a2 = crank_rates(omega2, alpha2)
         t3, t4, st, nit, res, w, acc = self._core.sweep(
             a.theta2, a.mode, g, a.tol, a.max_iter, a.predictor, a.method, w2, a2
         )
@@ -195,7 +181,7 @@ class FourBar:
     def closed_form(self, theta2: object, mode: str = "open") -> tuple:
         """Closed-form (theta3, theta4) of ``mode``, broadcast over ``theta2``; NaN where
         the linkage cannot assemble (or the position is indeterminate)."""
-        mode = check_mode(mode)
+        mode = as_str("mode", mode)
         shape, (t2,) = _broadcast(theta2=theta2)
         t3, t4, _ = self._core.closed_form(t2, mode)
         return _shaped(shape, t3, t4)
@@ -203,7 +189,7 @@ class FourBar:
     def closed_form_status(self, theta2: object, mode: str = "open") -> np.ndarray:
         """Status of the closed form at each crank angle (CONVERGED, SINGULAR at dead
         points, NOT_ASSEMBLABLE, NON_FINITE), as an int8 array shaped like ``theta2``."""
-        mode = check_mode(mode)
+        mode = as_str("mode", mode)
         shape, (t2,) = _broadcast(theta2=theta2)
         return self._core.closed_form(t2, mode)[2].reshape(shape)
 
@@ -211,7 +197,6 @@ class FourBar:
         """(omega3, omega4) from J [w3, w4] = -dF/dtheta2 omega2, broadcast over the inputs.
         NaN at a dead point (|sin(theta4 - theta3)| below the singular threshold)."""
         shape, arrs = _broadcast(theta2=theta2, theta3=theta3, theta4=theta4, omega2=omega2)
-        _finite_rates(omega2=arrs[3])
         w3, w4, _ = self._core.velocity(*arrs)
         return _shaped(shape, w3, w4)
 
@@ -223,7 +208,6 @@ class FourBar:
         shape, arrs = _broadcast(
             theta2=theta2, theta3=theta3, theta4=theta4, omega2=omega2, alpha2=alpha2
         )
-        _finite_rates(omega2=arrs[3], alpha2=arrs[4])
         a3, a4, _ = self._core.acceleration(*arrs)
         return _shaped(shape, a3, a4)
 
@@ -285,7 +269,7 @@ class FourBar:
         # (Scene.as_fourbar), and a file-level import back would close a cycle
         from ..scene import Scene
 
-        mode = check_mode(mode)
+        mode = as_str("mode", mode)
         if theta2 is None:
             t2 = 0.0
             if self.closed_form_status(t2, mode) == Status.NOT_ASSEMBLABLE:

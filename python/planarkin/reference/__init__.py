@@ -6,14 +6,16 @@ buys. ``fourbar`` mirrors ``FourBar`` (sweep, solve, closed form, velocity, acce
 It reaches no kernel: neither the extension nor the API modules that wrap it (an import
 contract in pyproject.toml checks it), or the parity tests would check the kernel against
 itself. It builds the same result objects (``Sweep``, ``SceneSweep``) and shares the
-plain leaves (statuses, argument checks, the angle wrap).
+plain leaves (statuses, argument normalisation, the angle wrap), and checks the options
+by its own copy of the kernel's rules (``_rules``).
 """
 
 from .._angles import TAU, wrap
-from .._args import as_float, check_guess, check_mode, check_options, motion_args, sweep_args
+from .._args import as_float, check_guess
 from .._status import SINGULAR_THRESHOLD, Status
 from ..fourbar._results import Solution, Sweep
 from ..scene._results import SceneSweep
+from ._rules import check_mode, check_options, motion_args, sweep_args
 from .fourbar import (
     EPS,
     FLAT_ULPS,

@@ -17,16 +17,10 @@ import math
 import numpy as np
 
 from .._angles import TAU, wrap
-from .._args import (
-    as_float,
-    check_guess,
-    check_mode,
-    check_options,
-    motion_args,
-    sweep_args,
-)
+from .._args import as_float, check_guess
 from .._status import SINGULAR_THRESHOLD, Status
 from ..fourbar._results import Solution, Sweep
+from ._rules import check_mode, check_options, motion_args, sweep_args
 
 _NAN = float("nan")
 

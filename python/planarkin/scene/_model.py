@@ -14,8 +14,7 @@ import numpy as np
 
 from .. import _kernel
 from .._angles import TAU, wrap
-from .._args import as_angles, as_float, check_options
-from .._args import as_int as as_int_arg
+from .._args import as_angles, as_float, as_i64, as_u64
 from ..fourbar import LINKS, POINTS, FourBar
 from ._results import Assemblies, Assembly, Circuit, Plan, SceneSweep, Step, Trace
 from ._toml import dumps as toml_dumps
@@ -344,7 +343,7 @@ class Scene:
             t = as_angles("theta", theta)
             if t.ndim != 1:
                 raise ValueError(f"theta must be a 1-D array of input angles, got shape {t.shape}")
-        tol, max_iter = check_options(tol, max_iter)
+        tol, max_iter = as_float("tol", tol), as_i64("max_iter", max_iter)
         ms = as_float("max_step", max_step)
         w = None if omega is None else as_float("omega", omega)
         arrays = core.sweep(t, tol, max_iter, ms, w)
@@ -377,7 +376,7 @@ class Scene:
         finite complex solutions of each group (a self-check: 6 for a Stephenson triad,
         16 or 18 for the double butterfly's group)."""
         t = self.input_angle if theta is None else as_float("theta", theta)
-        raw = self._core.assemblies(t, _seed(seed), _homotopy_runs(runs))
+        raw = self._core.assemblies(t, as_u64("seed", seed), as_i64("runs", runs))
         return self._assemblies(t, raw)
 
     def _trace(self, raw: tuple) -> Trace:
@@ -404,7 +403,7 @@ class Scene:
         comes back to its start or ``max_points`` points are made. The input angle starts
         increasing. ``step`` is the largest arclength step (radians of rotation)."""
         st = None if start is None else self._pose(start, "start")
-        ms = as_int_arg("max_points", max_points)
+        ms = as_i64("max_points", max_points)
         return self._trace(self._core.trace(st, as_float("step", step), ms))
 
     def circuits(
@@ -423,10 +422,10 @@ class Scene:
         t = self.input_angle if theta is None else as_float("theta", theta)
         raw_a, raw_c = self._core.circuits(
             t,
-            _seed(seed),
-            _homotopy_runs(runs),
+            as_u64("seed", seed),
+            as_i64("runs", runs),
             as_float("step", step),
-            as_int_arg("max_points", max_points),
+            as_i64("max_points", max_points),
         )
         found = self._assemblies(t, raw_a)
         out = []
@@ -543,17 +542,3 @@ class Scene:
             names=names,
             coupler=coupler_points,
         )
-
-
-def _seed(seed: object) -> int:
-    s = as_int_arg("seed", seed)
-    if not 0 <= s < 2**64:
-        raise ValueError(f"seed must be in 0..2**64, got {s}")
-    return s
-
-
-def _homotopy_runs(runs: object) -> int:
-    r = as_int_arg("runs", runs)
-    if not 1 <= r <= 16:
-        raise ValueError(f"runs must be in 1..16, got {r}")
-    return r

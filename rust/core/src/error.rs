@@ -83,6 +83,72 @@ pub(crate) fn positive_finite(name: impl Into<String>, value: f64) -> Result<f64
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(Error::invalid(name, "must be finite and > 0", value))
+        Err(Error::invalid(name, "must be finite and > 0", Real(value)))
+    }
+}
+
+/// Checks that `value` is finite.
+pub(crate) fn finite(name: impl Into<String>, value: f64) -> Result<f64, Error> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::invalid(name, "must be finite", Real(value)))
+    }
+}
+
+/// A real number in a message, written as Python writes it (`repr`): the shortest digits
+/// that round-trip, an exponent of two digits or more with its sign (`1e-09`, `1e+16`),
+/// `nan`, `inf`. The core's messages then read the same as the Python layer's and the
+/// NumPy reference's.
+#[derive(Clone, Copy, Debug)]
+pub struct Real(pub f64);
+
+impl std::fmt::Display for Real {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        if x.is_nan() {
+            return f.write_str("nan");
+        }
+        if x.is_infinite() {
+            return f.write_str(if x > 0.0 { "inf" } else { "-inf" });
+        }
+        // Debug is the shortest round-trip form, exponential outside [1e-4, 1e16) as in Python
+        let s = format!("{x:?}");
+        match s.split_once('e') {
+            Some((mantissa, exp)) => {
+                let (sign, digits) = exp.strip_prefix('-').map_or(("+", exp), |d| ("-", d));
+                write!(f, "{mantissa}e{sign}{digits:0>2}")
+            }
+            None => f.write_str(&s),
+        }
+    }
+}
+
+/// A string in a message, quoted as Python's `repr` quotes a plain string.
+pub(crate) fn quoted(s: &str) -> String {
+    format!("'{s}'")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reals_read_as_python_writes_them() {
+        // the strings Python's repr() gives for the same doubles
+        for (x, py) in [
+            (1.0, "1.0"),
+            (-1e-9, "-1e-09"),
+            (1e16, "1e+16"),
+            (1.5e-300, "1.5e-300"),
+            (0.0001, "0.0001"),
+            (123456.0, "123456.0"),
+            (f64::NAN, "nan"),
+            (f64::NEG_INFINITY, "-inf"),
+            (5e-324, "5e-324"),
+        ] {
+            assert_eq!(Real(x).to_string(), py);
+        }
+        assert_eq!(positive_finite("tol", -1e-9).unwrap_err().to_string(), "tol must be finite and > 0, got -1e-09");
     }
 }

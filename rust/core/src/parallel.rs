@@ -42,6 +42,18 @@ fn pool(threads: usize) -> Result<Arc<rayon::ThreadPool>, Error> {
     Ok(p)
 }
 
+/// Validates a thread count as the caller gives it: None (all cores) or an integer >= 1.
+pub fn threads(n: Option<i64>) -> Result<Option<usize>, Error> {
+    match n {
+        None => Ok(None),
+        Some(t) => usize::try_from(t)
+            .ok()
+            .filter(|&t| t >= 1)
+            .map(Some)
+            .ok_or_else(|| Error::invalid("threads", "must be >= 1 or None", t)),
+    }
+}
+
 /// Runs `f` on a pool of `threads` threads (None: rayon's global pool, all cores).
 pub fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> Result<T, Error> {
     match threads {
@@ -58,6 +70,11 @@ mod tests {
     #[test]
     fn zero_threads_is_refused() {
         assert!(with_threads(Some(0), || ()).unwrap_err().to_string().starts_with("threads "));
+        assert_eq!(threads(None), Ok(None));
+        assert_eq!(threads(Some(3)), Ok(Some(3)));
+        for bad in [0, -2] {
+            assert_eq!(threads(Some(bad)).unwrap_err().to_string(), format!("threads must be >= 1 or None, got {bad}"));
+        }
         assert_eq!(with_threads(Some(1), || 3).unwrap(), 3);
     }
 }

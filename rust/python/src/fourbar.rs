@@ -8,6 +8,7 @@ use planarkin_core::fourbar::{
     transmission_into, validate_links, velocity_into, BatchOut, GrashofClass, MotionOut, SweepOut,
 };
 use planarkin_core::interrupt::Poll;
+use planarkin_core::parallel;
 use planarkin_core::solve::newton::SINGULAR_THRESHOLD;
 use planarkin_core::{FourBar, Mode, NewtonOptions, SweepOptions};
 use pyo3::exceptions::PyValueError;
@@ -263,9 +264,10 @@ fn sweep_batch_py<'py>(
     max_iter: i64,
     predictor: &str,
     method: &str,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<BatchArrays<'py>> {
     let opts = SweepOptions::new(mode, tol, max_iter, predictor, method).map_err(err)?;
+    let threads = parallel::threads(threads).map_err(err)?;
     let fbs = links_of(&links)?;
     let t2 = slice("theta2", &theta2)?;
     let (m, n) = (fbs.len(), t2.len());
@@ -295,9 +297,10 @@ fn closed_form_batch_py<'py>(
     links: PyReadonlyArray2<'py, f64>,
     theta2: PyReadonlyArray1<'py, f64>,
     mode: &str,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<(Arr2<'py, f64>, Arr2<'py, f64>)> {
     let mode = Mode::parse(mode).map_err(err)?;
+    let threads = parallel::threads(threads).map_err(err)?;
     let fbs = links_of(&links)?;
     let t2 = slice("theta2", &theta2)?;
     let (m, n) = (fbs.len(), t2.len());

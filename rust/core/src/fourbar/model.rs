@@ -4,7 +4,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use crate::error::{positive_finite, Error};
+use crate::error::{positive_finite, quoted, Real, Error};
 use crate::{wrap_angle, Status};
 
 /// Assembly mode: which of the (up to) two solutions at a crank angle.
@@ -31,7 +31,7 @@ impl Mode {
         match s {
             "open" => Ok(Mode::Open),
             "crossed" => Ok(Mode::Crossed),
-            other => Err(Error::invalid("mode", "must be 'open' or 'crossed'", format!("{other:?}"))),
+            other => Err(Error::invalid("mode", "must be 'open' or 'crossed'", quoted(other))),
         }
     }
 }
@@ -135,7 +135,7 @@ impl FourBar {
         for (i, &v) in r.iter().enumerate() {
             // below ~1e-308 times the longest the unit length is subnormal: kept if exact
             if v == 0.0 || times_pow2(v, e) != raw[i] {
-                return Err(Error::invalid(name(i), TOO_SHORT, raw[i]));
+                return Err(Error::invalid(name(i), TOO_SHORT, Real(raw[i])));
             }
         }
         let longest = times_pow2(big, -e);

@@ -3,7 +3,7 @@
 //! optional velocities and accelerations, and of a batch, and the default crank angles.
 
 use super::model::Mode;
-use crate::error::Error;
+use crate::error::{quoted, Error};
 use crate::solve::newton::NewtonOptions;
 
 /// How the next point's first guess is made from the last converged one.
@@ -25,7 +25,7 @@ impl Predictor {
             "tangent" => Ok(Predictor::Tangent),
             "quadratic" => Ok(Predictor::Quadratic),
             other => {
-                Err(Error::invalid("predictor", "must be 'previous', 'tangent' or 'quadratic'", format!("{other:?}")))
+                Err(Error::invalid("predictor", "must be 'previous', 'tangent' or 'quadratic'", quoted(other)))
             }
         }
     }
@@ -48,7 +48,7 @@ impl Method {
         match s {
             "newton" => Ok(Method::Newton),
             "closed-form" => Ok(Method::ClosedForm),
-            other => Err(Error::invalid("method", "must be 'newton' or 'closed-form'", format!("{other:?}"))),
+            other => Err(Error::invalid("method", "must be 'newton' or 'closed-form'", quoted(other))),
         }
     }
 }

@@ -6,9 +6,17 @@
 use super::model::{transmission_angle, FourBar, Mode};
 use super::options::check_len;
 use super::row::{closed_form_trig, sin_cos_fill};
-use crate::error::Error;
+use crate::error::{finite, Error};
 use crate::interrupt::{Interrupt, Poll};
 use crate::Status;
+
+/// Crank rates must be finite: a NaN rate would give NaN rates at solved points.
+fn all_finite(name: &str, rates: &[f64]) -> Result<(), Error> {
+    match rates.iter().find(|v| !v.is_finite()) {
+        Some(&v) => finite(name, v).map(|_| ()),
+        None => Ok(()),
+    }
+}
 
 /// Closed form of `mode` at each crank angle, with a status: Converged, NotAssemblable,
 /// Singular (conditioning below `singular`, or indeterminate), NonFinite. Angles are NaN
@@ -45,7 +53,8 @@ pub fn closed_form_into(
     Ok(())
 }
 
-/// Angular velocities at given positions. NaN and `Singular` at dead points.
+/// Angular velocities at given positions. NaN and `Singular` at dead points; a crank speed
+/// that is not finite is an error naming `omega2`.
 #[allow(clippy::too_many_arguments)]
 pub fn velocity_into(
     fb: &FourBar,
@@ -63,6 +72,7 @@ pub fn velocity_into(
     for (name, len) in [("theta3", theta3.len()), ("theta4", theta4.len()), ("omega2", omega2.len())] {
         check_len(name, len, n)?;
     }
+    all_finite("omega2", omega2)?;
     let poll = Poll::new(interrupt);
     for i in 0..n {
         poll.tick()?;
@@ -96,6 +106,8 @@ pub fn acceleration_into(
     {
         check_len(name, len, n)?;
     }
+    all_finite("omega2", omega2)?;
+    all_finite("alpha2", alpha2)?;
     let poll = Poll::new(interrupt);
     for i in 0..n {
         poll.tick()?;

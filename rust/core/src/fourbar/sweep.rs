@@ -6,7 +6,7 @@
 use super::model::FourBar;
 use super::options::{check_len, MotionOut, SweepOptions, SweepOut};
 use super::row::{sin_cos_table, sweep_row};
-use crate::error::Error;
+use crate::error::{finite, Error};
 use crate::interrupt::{Interrupt, Never, Poll};
 
 /// Sweeps `theta2` in order into `out` (and `motion` when given). `guess` seeds the
@@ -25,6 +25,10 @@ pub fn sweep_into(
     let n = theta2.len();
     out.check(n)?;
     if let Some(m) = &motion {
+        finite("omega2", m.omega2)?;
+        if let Some((alpha2, _, _)) = &m.alpha {
+            finite("alpha2", *alpha2)?;
+        }
         check_len("omega3", m.omega3.len(), n)?;
         check_len("omega4", m.omega4.len(), n)?;
         if let Some((_, a3, a4)) = &m.alpha {

@@ -6,7 +6,7 @@
 use super::dyad::DyadOut;
 use super::plan::{Op, Plan};
 use super::vec2::{perp, Xy};
-use crate::error::{try_grow, Error};
+use crate::error::{finite, try_grow, Error};
 use crate::interrupt::{Interrupt, Poll};
 use crate::solve::homotopy::{unit_circle_solutions_polled, HomotopyOptions};
 
@@ -58,9 +58,7 @@ impl Plan {
         opts: &HomotopyOptions,
         interrupt: &'p dyn Interrupt,
     ) -> Result<Assemblies, Error> {
-        if !theta.is_finite() {
-            return Err(Error::invalid("theta", "must be finite", theta));
-        }
+        finite("theta", theta)?;
         let mut group_slot = vec![usize::MAX; self.ops.len()];
         let mut groups = 0;
         for (i, op) in self.ops.iter().enumerate() {

@@ -1,7 +1,7 @@
 //! What a scene sweep takes and writes: its validated options and the caller-owned
 //! output slices (row-major over input angles).
 
-use crate::error::{positive_finite, Error};
+use crate::error::{finite, positive_finite, Error};
 use crate::solve::newton::NewtonOptions;
 
 /// Options of a scene sweep, validated once.
@@ -20,9 +20,7 @@ impl SceneSweepOptions {
     pub fn new(newton: NewtonOptions, max_step: f64, omega: Option<f64>) -> Result<Self, Error> {
         positive_finite("max_step", max_step)?;
         if let Some(w) = omega {
-            if !w.is_finite() {
-                return Err(Error::invalid("omega", "must be finite", w));
-            }
+            finite("omega", w)?;
         }
         Ok(Self { newton, max_step, omega })
     }

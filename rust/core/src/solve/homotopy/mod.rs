@@ -32,6 +32,7 @@
 use nalgebra::{Complex, DMatrix, DVector};
 
 use crate::interrupt::{Never, Poll};
+use crate::error::Real;
 use crate::{wrap_angle, Error};
 
 type C = Complex<f64>;
@@ -90,7 +91,7 @@ impl HomotopyOptions {
             return Err(Error::invalid("max_steps", "must be >= 1", 0));
         }
         if !(self.max_step > 0.0 && self.max_step <= 1.0) {
-            return Err(Error::invalid("max_step", "must be in (0, 1]", self.max_step));
+            return Err(Error::invalid("max_step", "must be in (0, 1]", Real(self.max_step)));
         }
         Ok(())
     }
