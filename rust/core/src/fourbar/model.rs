@@ -4,7 +4,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use crate::error::{positive_finite, quoted, Real, Error};
+use crate::error::{positive_finite, quoted, Error, Real};
 use crate::{wrap_angle, Status};
 
 /// Assembly mode: which of the (up to) two solutions at a crank angle.

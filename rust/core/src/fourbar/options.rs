@@ -24,9 +24,7 @@ impl Predictor {
             "previous" => Ok(Predictor::Previous),
             "tangent" => Ok(Predictor::Tangent),
             "quadratic" => Ok(Predictor::Quadratic),
-            other => {
-                Err(Error::invalid("predictor", "must be 'previous', 'tangent' or 'quadratic'", quoted(other)))
-            }
+            other => Err(Error::invalid("predictor", "must be 'previous', 'tangent' or 'quadratic'", quoted(other))),
         }
     }
 }

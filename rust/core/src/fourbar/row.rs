@@ -41,11 +41,11 @@ pub(crate) fn sweep_row(
     motion: Option<MotionOut<'_>>,
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
-    let simd = crate::simd::enabled();
+    let vectorized = crate::simd::enabled();
     match opts.method {
-        Method::ClosedForm if simd => simd::closed_form::sweep(fb, theta2, trig, opts, out, motion, poll),
+        Method::ClosedForm if vectorized => simd::closed_form::sweep(fb, theta2, trig, opts, out, motion, poll),
         Method::ClosedForm => scalar::closed_form_sweep(fb, theta2, trig, opts, out, motion, poll),
-        Method::Newton if simd => simd::row::newton_row(fb, theta2, trig, guess, opts, out, motion, poll),
+        Method::Newton if vectorized => simd::row::newton_row(fb, theta2, trig, guess, opts, out, motion, poll),
         Method::Newton => scalar::newton_sweep(fb, theta2, trig, guess, opts, out, motion, poll),
     }
 }

@@ -31,8 +31,8 @@
 
 use nalgebra::{Complex, DMatrix, DVector};
 
-use crate::interrupt::{Never, Poll};
 use crate::error::Real;
+use crate::interrupt::{Never, Poll};
 use crate::{wrap_angle, Error};
 
 type C = Complex<f64>;
