@@ -16,9 +16,9 @@ import math
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import SEED_LINKAGE, random_links
 from numpy.testing import assert_array_equal
 from planarkin import reference as ref
+from truth import SEED_LINKAGE, random_links
 
 pytestmark = pytest.mark.usefixtures("scalar_path")
 

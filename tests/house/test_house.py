@@ -12,7 +12,7 @@ from pathlib import Path
 import planarkin
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = Path(planarkin.__file__).resolve().parent
 
 

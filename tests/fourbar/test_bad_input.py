@@ -9,8 +9,8 @@ import re
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import SEED_LINKAGE, mp_solve
 from planarkin import reference as ref
+from truth import SEED_LINKAGE, mp_solve
 
 BAD_LENGTHS = [0, 0.0, -0.0, -1, -1e-300, math.nan, math.inf, -math.inf, np.float64("nan"),
                "abc", "", None, 1j, 1 + 0j, np.complex128(2), [1.0, 2.0], object(),

@@ -14,7 +14,7 @@ import time
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import SEED_LINKAGE
+from truth import SEED_LINKAGE
 
 # --- memory ------------------------------------------------------------------------------------
 

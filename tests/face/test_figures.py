@@ -10,7 +10,6 @@ from unittest import mock
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import angdiff, mp_solve, mp_toggles
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.text import Text
@@ -18,6 +17,7 @@ from planarkin.face import animate, cli
 from planarkin.face.cli import analyze
 from planarkin.face.figures import fourbar as plot
 from planarkin.fourbar import analysis
+from truth import angdiff, mp_solve, mp_toggles
 
 SEED = (6.0, 2.0, 5.0, 5.0)
 THETA2 = np.radians(np.arange(0.0, 360.1, 2.0))

@@ -29,7 +29,7 @@ from planarkin.synthesis import (
 )
 from planarkin.synthesis.problem import SWEEP_TOL
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SHIPPED = ROOT / "examples" / "ackermann"
 
 

@@ -1,5 +1,5 @@
 """Truth: results against independent values: a 50-digit mpmath circle intersection
-(conftest.mp_solve), mpmath derivatives of it, direct geometry, textbook numbers, and
+(truth.mp_solve), mpmath derivatives of it, direct geometry, textbook numbers, and
 exact rational arithmetic for the Grashof decision."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import mpmath
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import (
+from truth import (
     SEED_LINKAGE,
     angdiff,
     bound_rad,

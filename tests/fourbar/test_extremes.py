@@ -1,6 +1,6 @@
 """Extremes: scale, huge crank angles, extreme length ratios, non-Grashof sweeps,
 toggles and dead points, branch jumps, change-point linkages, NaN crank angles.
-Every number is checked against the 50-digit mpmath truth (conftest.mp_solve)."""
+Every number is checked against the 50-digit mpmath truth (truth.mp_solve)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,8 @@ import mpmath
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import (
+from numpy.testing import assert_array_equal
+from truth import (
     SEED_LINKAGE,
     angdiff,
     bound_rad,
@@ -20,7 +21,6 @@ from conftest import (
     random_links,
     resolvable,
 )
-from numpy.testing import assert_array_equal
 
 MODES = ("open", "crossed")
 DEG = math.pi / 180
