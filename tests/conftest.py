@@ -1,5 +1,6 @@
 """Fixtures shared by every test folder. The independent truth they check against is in
-truth.py (importable from any folder: ``pythonpath = ["tests"]`` in pyproject.toml)."""
+truth.py, and helpers the folders share are in _support.py (both importable from any
+folder: ``pythonpath = ["tests"]`` in pyproject.toml)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
-"""An independent high-precision truth for the four-bar, shared by every test folder.
+"""Independent truths shared by every test folder: a high-precision four-bar and the
+Ackermann steering condition.
 
 Nothing here imports planarkin: ``mp_solve`` intersects two circles in mpmath at 50
 significant digits, from the exact binary values of the lengths and the crank angle (which
@@ -224,3 +225,14 @@ def resolvable(r, sin34, tol, margin=1000.0) -> bool:
         return False
     big = max(float(x) for x in r)
     return margin * EPS * big / (min(float(r[2]), float(r[3])) * s) < tol
+
+
+def ackermann(dl: np.ndarray) -> np.ndarray:
+    """The right knuckle's rotation that the Ackermann condition asks of a steering linkage
+    at left knuckle rotation ``dl`` (track 0.6 of the wheelbase)."""
+    # cot(delta_outer) - cot(delta_inner) = 0.6, counter-clockwise positive
+    out = np.zeros_like(dl)
+    p, n = dl > 0, dl < 0
+    out[p] = np.arctan(1 / (1 / np.tan(dl[p]) + 0.6))
+    out[n] = -np.arctan(1 / (1 / np.tan(-dl[n]) - 0.6))
+    return out

@@ -326,6 +326,23 @@ def test_bad_option_is_one_line_and_exit_code_2(argv, tmp_path):
     assert not out_dir.exists()  # nothing written
 
 
+def test_cli_step_too_small_is_a_one_line_error(tmp_path):
+    """`planarkin analyze --step 1e-9` asked NumPy for 2.6 TiB and ended in a traceback."""
+    for cmd in ("analyze", "animate"):
+        out = subprocess.run(
+            [sys.executable, "-m", "planarkin", cmd, "--step", "1e-9", "--out", str(tmp_path)],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+        assert out.returncode == 2
+        lines = out.stderr.strip().splitlines()
+        assert len(lines) == 1, out.stderr
+        assert lines[0].startswith("planarkin: error: --step")
+        assert "360000000001 crank angles" in lines[0]
+        assert "Traceback" not in out.stderr
+
+
 def test_python_dash_m_runs_the_same_command():
     p = subprocess.run(
         [sys.executable, "-m", "planarkin", "analyze", "--links", "1", "2", "3", "0"],

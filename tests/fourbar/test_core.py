@@ -268,31 +268,6 @@ def test_velocity_nan_at_dead_point_both():
     assert all(math.isnan(x) for x in ref.acceleration(fb, 0.3, 1.0, 1.0, 1.0, 0.0))
 
 
-def test_reference_imports_nothing_from_extension():
-    """DESIGN.md: the reference must not import the extension, or parity is vacuous."""
-    import ast
-    import inspect
-
-    # the API modules that wrap the kernel (the reference may use their plain results)
-    wrappers = {"planarkin.fourbar", "planarkin.fourbar._model", "planarkin.fourbar._batch",
-                "planarkin.scene", "planarkin.scene._model", "planarkin.simd"}  # fmt: skip
-    for module in (ref, ref.fourbar, ref.scene):
-        src = inspect.getsource(module)
-        package = module.__name__ if hasattr(module, "__path__") else module.__package__
-        for node in ast.walk(ast.parse(src)):
-            if isinstance(node, ast.ImportFrom):
-                for door in ("_core", "_kernel"):  # the extension, and its one door
-                    assert door not in (node.module or ""), node.module
-                    assert all(a.name != door for a in node.names)
-                parts = package.split(".")[: len(package.split(".")) - node.level + 1]
-                absolute = node.module if not node.level else ".".join(
-                    parts + ([node.module] if node.module else []))  # fmt: skip
-                named = {absolute, *(f"{absolute}.{a.name}" for a in node.names)}
-                assert not named & wrappers, (module.__name__, absolute)
-            if isinstance(node, ast.Import):
-                assert all("_core" not in a.name for a in node.names)
-
-
 def test_scalar_inputs_give_scalars():
     """0-d inputs give Python floats / 0-d arrays, like the reference (was a bug: as_angles
     used np.ascontiguousarray, which turns 0-d into shape (1,))."""

@@ -166,10 +166,3 @@ def test_never_assemblable_linkage_has_no_interval():
     lim = pk.FourBar(10, 1, 1, 1).limits()
     assert lim.intervals == () and lim.rocker_min is None and not lim.full_rotation
     assert np.all(pk.FourBar(10, 1, 1, 1).sweep().status == pk.Status.NOT_ASSEMBLABLE)
-
-
-def test_status_vocabulary_matches_the_kernel():
-    from planarkin import _core
-
-    assert [(s.value, s.message) for s in pk.Status] == [(c, m) for c, _, m in _core.STATUSES]
-    assert pk.SINGULAR_THRESHOLD == _core.SINGULAR_THRESHOLD

@@ -1,7 +1,7 @@
 """One result vocabulary: the four-bar's Sweep, the scene's SceneSweep and what the two
-references return share their names and meanings (scipy's OptimizeResult is the model);
-the four-bar's det, points and angles against independent formulas; the lazy members
-cost nothing until read."""
+references return share their names and meanings (scipy's OptimizeResult is the model),
+and the status codes are the kernel's. What each subject's results add is tested in its
+folder (fourbar/test_results.py, scene/test_scene.py)."""
 
 from __future__ import annotations
 
@@ -68,75 +68,6 @@ def test_summaries_keep_the_fourbar_text_and_drop_the_residual_for_scenes():
     assert str(t).startswith("361/361 converged (CONVERGED=361); iterations total 0")
 
 
-@pytest.mark.parametrize("mode", ["open", "crossed"])
-@pytest.mark.parametrize("links", [SEED, TRIPLE_ROCKER, (4.0, 3.0, 1.5, 2.0)], ids=str)
-def test_fourbar_det_points_and_angles_against_formulas(links, mode):
-    fb = pk.FourBar(*links)
-    r1, r2, r3, r4 = links
-    for s in (fb.sweep(mode=mode), pk.reference.sweep(fb, mode=mode)):
-        assert s.theta is s.theta2
-        t2, t3, t4 = s.theta2, s.theta3, s.theta4
-        np.testing.assert_allclose(s.det, np.sin(t4 - t3), rtol=0, atol=1e-15)
-        p = s.points
-        np.testing.assert_array_equal(p["O2"], np.zeros((len(s), 2)))
-        np.testing.assert_array_equal(p["O4"], np.tile([r1, 0.0], (len(s), 1)))
-        a = np.column_stack((r2 * np.cos(t2), r2 * np.sin(t2)))
-        np.testing.assert_allclose(p["A"], a, rtol=0, atol=1e-14)  # finite where unsolved too
-        b = np.column_stack((r1 + r4 * np.cos(t4), r4 * np.sin(t4)))  # through the rocker
-        np.testing.assert_allclose(p["B"], b, rtol=0, atol=1e-12)
-        assert np.isnan(p["B"][~s.success]).all()
-        assert s.angles == {"crank": t2, "coupler": t3, "rocker": t4}
-    # the kernel's lazy members against the reference's NumPy ones
-    api, ref = fb.sweep(mode=mode), pk.reference.sweep(fb, mode=mode)
-    np.testing.assert_allclose(api.det, ref.det, rtol=0, atol=1e-12)
-    for n in api.points:
-        np.testing.assert_allclose(api.points[n], ref.points[n], rtol=0, atol=1e-12)
-
-
-def test_lazy_members_are_computed_once_on_first_access():
-    s = pk.FourBar(*SEED).sweep()
-    assert not {"det", "points", "angles"} & set(vars(s))  # a sweep computes none of them
-    assert s.det is s.det and s.points is s.points and s.angles is s.angles
-    assert {"det", "points", "angles"} <= set(vars(s))
-    hand_made = pk.Sweep(s.lengths, s.mode, s.theta2, s.theta3, s.theta4, s.status, s.nit,
-                         s.residual)  # fmt: skip
-    with pytest.raises(ValueError, match="no det"):
-        _ = hand_made.det
-    assert hand_made.angles["rocker"] is s.theta4  # plain renaming needs no geometry
-
-
-def test_the_scene_reference_det_is_signed_and_vanishes_at_dead_points():
-    """The reference's det is the Hadamard ratio of its own Jacobian: not the kernel's
-    number, but the same branch (a fixed sign relation) and the same zeros."""
-    fb = pk.FourBar(*TRIPLE_ROCKER)
-    sc = fb.to_scene(mode="crossed")
-    theta = sc.input_angle + np.linspace(-1.5, 1.5, 301)
-    api = sc.sweep(theta)
-    ref = pk.reference.scene_sweep(sc.to_dict(), theta)
-    both = api.success & ref.success
-    assert both.sum() > 250
-    assert len(set(np.sign(api.det[both] * ref.det[both]))) == 1
-    assert np.all(np.abs(ref.det[both]) <= 1.0)
-    # towards a toggle both go to zero together
-    toggle = max(fb.limits("crossed").toggles)
-    near = sc.input_angle + toggle - 10.0 ** -np.arange(1.0, 9.0)
-    a, r = sc.sweep(near).det, pk.reference.scene_sweep(sc.to_dict(), near).det
-    assert np.isfinite(a).all() and np.isfinite(r).all()
-    assert np.all(np.diff(np.abs(a)) < 0) and np.all(np.diff(np.abs(r)) < 0)
-    assert abs(a[-1]) < 1e-3 and abs(r[-1]) < 1e-3
-
-
-def test_batch_sweep_has_the_names_that_make_sense_for_many_linkages():
-    links = np.array([SEED, TRIPLE_ROCKER])
-    b = pk.sweep_batch(links)
-    assert b.theta is b.theta2 and b.theta.shape == (361,)
-    assert b.success.shape == (2, 361)
-    counts = b.statuses()
-    assert sum(counts.values()) == 2 * 361 and counts["CONVERGED"] == int(b.success.sum())
-    text = repr(b)
-    assert "\n" not in text and "2 linkages" in text and "361 crank angles" in text
-
-
 def test_theta_is_the_input_coordinate_of_every_result():
     fb = pk.FourBar(*SEED)
     t = np.radians([10.0, 20.0, 30.0])
@@ -145,3 +76,10 @@ def test_theta_is_the_input_coordinate_of_every_result():
     np.testing.assert_array_equal(sc.sweep(t).theta, t)
     np.testing.assert_array_equal(pk.reference.scene_sweep(sc.to_dict(), t).theta, t)
     assert math.isclose(sc.sweep().theta[0], sc.input_angle)
+
+
+def test_status_vocabulary_matches_the_kernel():
+    from planarkin import _core
+
+    assert [(s.value, s.message) for s in pk.Status] == [(c, m) for c, _, m in _core.STATUSES]
+    assert pk.SINGULAR_THRESHOLD == _core.SINGULAR_THRESHOLD
