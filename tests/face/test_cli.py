@@ -327,7 +327,8 @@ def test_bad_option_is_one_line_and_exit_code_2(argv, tmp_path):
 
 
 def test_cli_step_too_small_is_a_one_line_error(tmp_path):
-    """`planarkin analyze --step 1e-9` asked NumPy for 2.6 TiB and ended in a traceback."""
+    """`analyze` and `animate` with `--step 1e-9` (360000000001 crank angles, 2.6 TiB of
+    outputs): a one-line error naming --step and the count, exit code 2, no traceback."""
     for cmd in ("analyze", "animate"):
         out = subprocess.run(
             [sys.executable, "-m", "planarkin", cmd, "--step", "1e-9", "--out", str(tmp_path)],
@@ -404,13 +405,13 @@ def test_linkage_that_never_assembles(tmp_path):
     assert "cannot be assembled at any crank angle" in out
 
 
-# --- wall time (issue 13, item 11) -----------------------------------------------------------
+# --- wall time ------------------------------------------------------------------------------
 
 
 def test_sweep_time_is_a_warm_median(monkeypatch):
-    """The table printed the first call (0.254 ms, cold caches) for a ~40 us sweep: now the
-    median of warm calls, the first call untimed. A fake clock makes each call's duration
-    known: the first call costs 1000, the others 3, 1, 2, 5, 4, ... units."""
+    """The sweep's wall time is the median of warm calls, the first call (cold caches, many
+    times a warm one) untimed. A fake clock makes each call's duration known: the first
+    call costs 1000, the others 3, 1, 2, 5, 4 units, so the answer is 3 over 5 runs."""
     costs = iter([1000.0, 3.0, 1.0, 2.0, 5.0, 4.0])
     clock = [0.0]
     monkeypatch.setattr(_common.time, "perf_counter", lambda: clock[0])

@@ -85,8 +85,9 @@ def _result(rows):
 
 
 def test_plot_labels_do_not_overprint_and_ticks_are_plain_numbers():
-    """Before: the tolerance labels near 1e-15 rad printed over each other, and a time
-    axis spanning less than a decade read '4x10^1'."""
+    """Tolerance labels near the 1e-15 rad floor do not overprint (no two drawn labels'
+    extents overlap; nearby tolerances share one label 'a..b'), and a time axis spanning
+    less than a decade has plain-number ticks ('40', not '4x10^1')."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.text import Annotation
 

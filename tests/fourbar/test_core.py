@@ -269,8 +269,8 @@ def test_velocity_nan_at_dead_point_both():
 
 
 def test_scalar_inputs_give_scalars():
-    """0-d inputs give Python floats / 0-d arrays, like the reference (was a bug: as_angles
-    used np.ascontiguousarray, which turns 0-d into shape (1,))."""
+    """0-d inputs give Python floats / 0-d arrays, like the reference, not arrays of shape
+    (1,) (what np.ascontiguousarray makes of a 0-d array)."""
     fb = pk.FourBar(*SEED_LINKAGE)
     t3, t4 = fb.closed_form(0.5, "open")
     r3, r4 = ref.closed_form(fb, 0.5, "open")
@@ -286,12 +286,12 @@ def test_scalar_inputs_give_scalars():
     assert np.shape(fb.closed_form_status(0.5)) == ()
 
 
-# --- result objects (issue 13, item 10) ----------------------------------------------------
+# --- result objects -----------------------------------------------------------------------
 
 
 def test_sweep_repr_is_a_short_summary():
-    """repr(Sweep) printed every array (23 568 characters): now one line that names the
-    linkage, the mode and the status counts (counted here with NumPy)."""
+    """repr(Sweep) is one short line, not the arrays: it names the linkage, the mode and the
+    status counts (counted here with NumPy); a batch's repr is as short."""
     fb = pk.FourBar(2.0, 5.0, 2.5, 2.0)  # triple rocker: two statuses
     s = fb.sweep(omega2=1.0, alpha2=0.0)
     text = repr(s)

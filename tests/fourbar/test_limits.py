@@ -145,8 +145,9 @@ def test_change_point_folds_are_dead_points_where_the_sweep_is_singular(r, folds
     """A change-point linkage folds flat (all links collinear) at theta2 = 0 when
     r1 + r4 = r2 + r3 or r1 + r3 = r2 + r4, and at pi when r1 + r2 = r3 + r4 (exact
     rational arithmetic here). Those are dead points: limits() lists them, and the sweep
-    says SINGULAR there; and every SINGULAR point of a sweep is a listed dead point.
-    Before: (1.8, 0.6, 1.8, 0.6) listed pi but not 0, where the sweep was SINGULAR."""
+    says SINGULAR there; and every SINGULAR point of a sweep is a listed dead point. The
+    decimal scalings (e.g. (6, 2, 6, 2) x 0.3) list their fold at 0 too, however the
+    distances at the fold round."""
     fb = pk.FourBar(*r)
     assert fb.grashof().condition == "change-point"
     lim = fb.limits(mode)

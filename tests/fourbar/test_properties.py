@@ -46,8 +46,8 @@ def check_point(r, t2, mode, t3, t4, status, residual, tol):
     """One solved point against the truth of its mode."""
     tr = mp_solve(r, t2, mode)
     if tr is not None and tr.sin34 == 0:
-        # exactly on a dead or change point (e.g. a kite at t2 = 0): never a number (a sweep
-        # arriving by continuation used to report CONVERGED ~1e-4 rad off; found here)
+        # exactly on a dead or change point (e.g. a kite at t2 = 0): never a number, also for
+        # a sweep arriving by continuation (whose residual alone can pass ~1e-4 rad off)
         assert status != S.CONVERGED
         return
     if status == S.CONVERGED:

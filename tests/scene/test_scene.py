@@ -341,7 +341,7 @@ def test_sweep_follows_the_drawn_assembly_from_the_drawn_angle():
 
 
 def test_group_iterations_per_point():
-    # the target: under 1.5 Newton iterations per point at tol 1e-9, 1 deg steps
+    # continuation of a group: under 1.5 Newton iterations per point at tol 1e-9, 1 deg steps
     for name in ("stephenson3", "double-butterfly-1", "double-butterfly-2"):
         sc = pk.scenes.load(name)
         t = sc.input_angle + np.arange(61) * DEG
