@@ -14,6 +14,7 @@ from _support import out_rotation
 from truth import ackermann
 
 
+@pytest.mark.slow  # 4 s: a real, if short, synthesis
 def test_cli_synthesize_ackermann_quick(tmp_path):
     from planarkin.face.cli import main
 

@@ -203,7 +203,11 @@ def test_seed_sweep_within_residual_bound(mode, predictor):
     assert max_err(SEED_LINKAGE, s.theta2, s.theta3, s.theta4, mode) < 5e-9
 
 
-@pytest.mark.parametrize("predictor", PREDICTORS)
+# about 0.8 s a predictor; every predictor is checked on the seed linkage above
+@pytest.mark.parametrize(
+    "predictor",
+    ["quadratic", *(pytest.param(p, marks=pytest.mark.slow) for p in ("tangent", "previous"))],
+)
 def test_random_sweeps_within_residual_bound(predictor):
     """Random Grashof and non-Grashof linkages: each converged point within the residual
     bound of the mpmath truth of its mode; each NOT_ASSEMBLABLE point has no real

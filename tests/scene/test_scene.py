@@ -143,6 +143,16 @@ def test_builtin_rigidity_and_orientation(builtin):
                 assert (np.sign(now) == np.sign(c0)).all(), (link, a, b, c)
 
 
+#: the scenes whose reference sweep (pure Python) takes over a second: not in the inner loop
+SLOW_REFERENCE = {"double-butterfly-1", "double-butterfly-2", "peaucellier"}
+
+
+@pytest.mark.parametrize(
+    "builtin",
+    [pytest.param(n, marks=pytest.mark.slow) if n in SLOW_REFERENCE else n
+     for n in pk.scenes.names()],
+    indirect=True,
+)  # fmt: skip
 def test_builtin_matches_the_numpy_reference(builtin):
     sc, sw = builtin
     ref = scene_sweep(sc.to_dict(), sw.theta)

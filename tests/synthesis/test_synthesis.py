@@ -312,6 +312,7 @@ def test_multistart_on_a_thread_pool():
     assert res.best.max_error < 1e-5
 
 
+@pytest.mark.slow  # starts a local dask cluster; the thread pool above runs the same starts
 def test_multistart_on_a_dask_local_cluster():
     distributed = pytest.importorskip("dask.distributed")
     p, x0 = _small_problem()
@@ -327,6 +328,7 @@ def test_multistart_on_a_dask_local_cluster():
     assert res.starts == 2 and res.best.max_error < 1e-5
 
 
+@pytest.mark.slow  # 6 s: SLSQP from two starts
 def test_seed_objective_on_the_generated_mechanism():
     # the seed's method: SLSQP on the generated output's RMS error over the 8 combinations
     p, x0 = _small_problem()
