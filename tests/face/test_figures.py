@@ -1,6 +1,6 @@
-"""What the figures show (issue 13, items 6 and 9): every line against the sweep it was
-drawn from, computed here independently in NumPy (labels included, so swapping two
-legends fails), and no text of any figure outside the canvas at any resolution."""
+"""What the figures show: every line against the sweep it was drawn from, computed here
+independently in NumPy (labels included, so swapping two legends fails), and no text of
+any figure outside the canvas at any resolution."""
 
 from __future__ import annotations
 
@@ -10,7 +10,6 @@ from unittest import mock
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import angdiff, mp_solve, mp_toggles
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.text import Text
@@ -18,6 +17,7 @@ from planarkin.face import animate, cli
 from planarkin.face.cli import analyze
 from planarkin.face.figures import fourbar as plot
 from planarkin.fourbar import analysis
+from truth import angdiff, mp_solve, mp_toggles
 
 SEED = (6.0, 2.0, 5.0, 5.0)
 THETA2 = np.radians(np.arange(0.0, 360.1, 2.0))
@@ -166,20 +166,24 @@ def cli_figures(links, mode="open", newton_at=45.0):
     return res, analyze._figures(res, args)
 
 
+# drawing a case's eight figures takes about 2 s: the inner loop (-m "not slow") keeps the
+# widest titles at 300 dpi
+SLOW = pytest.mark.slow
 CASES = [
-    (SEED, "open", 45.0),
-    (SEED, "crossed", 45.0),
-    ((4.0, 3.0, 1.5, 2.0), "open", 45.0),  # the crank cannot turn fully
-    ((6.0, 2.0, 6.0, 2.0), "open", 0.0),  # change points; the demo at a dead point
+    pytest.param(SEED, "open", 45.0, marks=SLOW),
+    pytest.param(SEED, "crossed", 45.0, marks=SLOW),
+    pytest.param((4.0, 3.0, 1.5, 2.0), "open", 45.0, marks=SLOW),  # the crank cannot turn fully
+    pytest.param((6.0, 2.0, 6.0, 2.0), "open", 0.0, marks=SLOW),  # change points; demo at one
     ((123.456, 2.5, 119.75, 7.125), "crossed", 200.0),  # long numbers in every title
 ]
 
 
 @pytest.mark.parametrize("links, mode, newton_at", CASES, ids=str)
-@pytest.mark.parametrize("dpi", [100, 300])
+@pytest.mark.parametrize("dpi", [pytest.param(100, marks=SLOW), 300])
 def test_no_text_leaves_the_canvas(links, mode, newton_at, dpi):
-    """Before: figure_d lost 'α2 = 0 rad/s²' off its title at 300 dpi, and figure_b's
-    title was cut whenever the Newton demo ended on the other mode."""
+    """No text of any figure of 'analyze' leaves the canvas at 100 or 300 dpi (matplotlib's
+    own text extents after a draw), for long numbers in every title, a crank that cannot
+    turn fully, and change points with the Newton demo at a dead point."""
     _, figures = cli_figures(links, mode, newton_at)
     for name, draw in figures.items():
         assert texts_outside(draw(), dpi) == [], name
@@ -189,7 +193,7 @@ def test_convergence_title_fits_when_the_demo_ends_on_the_other_mode():
     fb = pk.FourBar(*SEED)
     guess = (math.radians(80), math.radians(100))
     sol = fb.solve(math.radians(45), mode="crossed", guess=guess, history=True)
-    assert sol.status == pk.Status.BRANCH_JUMP  # the case that was cut
+    assert sol.status == pk.Status.BRANCH_JUMP  # the longest convergence title
     fig = plot.convergence(sol, guess=guess, tol=1e-9)
     for dpi in (100, 300):
         assert texts_outside(fig, dpi) == []
@@ -201,15 +205,14 @@ def test_figures_use_constrained_layout():
         assert draw().get_layout_engine().__class__.__name__ == "ConstrainedLayoutEngine", name
 
 
-# --- animating a crank that cannot turn fully (item 8) ---------------------------------------
+# --- animating a crank that cannot turn fully ----------------------------------------------
 
 
 def test_a_crank_that_cannot_turn_fully_rocks_between_its_toggles():
-    """(4, 3, 1.5, 2): the crank stops at +-57.9 deg. The animation used to drive it
-    through its unreachable span (68% of the frames showed the crank alone); now it rocks
-    between the toggles, on the open mode one way and, having passed the toggle, on the
-    crossed mode back, every frame a whole linkage moving continuously. Checked against
-    the mpmath toggle angles and mpmath positions."""
+    """(4, 3, 1.5, 2): the crank stops at +-57.9 deg. The animation rocks between the
+    toggles, on the open mode one way and, having passed the toggle, on the crossed mode
+    back, every frame a whole linkage moving continuously (never the crank alone in its
+    unreachable span). Checked against the mpmath toggle angles and mpmath positions."""
     r = (4.0, 3.0, 1.5, 2.0)
     fb = pk.FourBar(*r)
     sweep = fb.sweep()

@@ -1,6 +1,6 @@
-"""The house rules of the Python layer (issue 16): the extension has one door, the API
-loads no face, every module says what it is for, and the import contracts in
-pyproject.toml hold (run with import-linter when it is installed)."""
+"""The house rules of the Python layer: the extension has one door, the NumPy reference
+reaches no kernel, the API loads no face, every module says what it is for, and the import
+contracts in pyproject.toml hold (run with import-linter when it is installed)."""
 
 from __future__ import annotations
 
@@ -11,8 +11,9 @@ from pathlib import Path
 
 import planarkin
 import pytest
+from planarkin import reference as ref
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = Path(planarkin.__file__).resolve().parent
 
 
@@ -34,6 +35,31 @@ def test_only_the_door_imports_the_extension():
             if any(n == "_core" or n.endswith("._core") for n in names):
                 users.append(path.relative_to(PACKAGE).as_posix())
     assert users == ["_kernel.py"]
+
+
+def test_reference_imports_nothing_from_extension():
+    """DESIGN.md: the reference must not import the extension, or parity is vacuous."""
+    import ast
+    import inspect
+
+    # the API modules that wrap the kernel (the reference may use their plain results)
+    wrappers = {"planarkin.fourbar", "planarkin.fourbar._model", "planarkin.fourbar._batch",
+                "planarkin.scene", "planarkin.scene._model", "planarkin.simd"}  # fmt: skip
+    for module in (ref, ref.fourbar, ref.scene):
+        src = inspect.getsource(module)
+        package = module.__name__ if hasattr(module, "__path__") else module.__package__
+        for node in ast.walk(ast.parse(src)):
+            if isinstance(node, ast.ImportFrom):
+                for door in ("_core", "_kernel"):  # the extension, and its one door
+                    assert door not in (node.module or ""), node.module
+                    assert all(a.name != door for a in node.names)
+                parts = package.split(".")[: len(package.split(".")) - node.level + 1]
+                absolute = node.module if not node.level else ".".join(
+                    parts + ([node.module] if node.module else []))  # fmt: skip
+                named = {absolute, *(f"{absolute}.{a.name}" for a in node.names)}
+                assert not named & wrappers, (module.__name__, absolute)
+            if isinstance(node, ast.Import):
+                assert all("_core" not in a.name for a in node.names)
 
 
 def test_every_module_says_what_it_is_for():

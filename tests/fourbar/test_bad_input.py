@@ -9,8 +9,8 @@ import re
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import SEED_LINKAGE, mp_solve
 from planarkin import reference as ref
+from truth import SEED_LINKAGE, mp_solve
 
 BAD_LENGTHS = [0, 0.0, -0.0, -1, -1e-300, math.nan, math.inf, -math.inf, np.float64("nan"),
                "abc", "", None, 1j, 1 + 0j, np.complex128(2), [1.0, 2.0], object(),
@@ -337,7 +337,8 @@ def test_velocity_arrays_not_real(fb, bad):
 
 @pytest.mark.parametrize("bad", [math.nan, math.inf], ids=repr)
 def test_non_finite_crank_rates_at_given_positions(fb, bad):
-    """NaN omega2 used to give NaN rates on CONVERGED points: ValueError, as for lengths."""
+    """A NaN or infinite crank rate at given positions is a ValueError naming omega2 or
+    alpha2, as for lengths, never NaN rates at valid positions."""
     with raises_named("omega2"):
         fb.velocity(0.3, 1.2, 2.0, [1.0, bad])
     with raises_named("omega2"):
@@ -347,7 +348,8 @@ def test_non_finite_crank_rates_at_given_positions(fb, bad):
 
 
 def test_coupler_curve_needs_a_sweep_of_this_linkage(fb):
-    """Another linkage's sweep was used silently; a non-Sweep raised AttributeError."""
+    """coupler_curve takes a Sweep of this linkage only: another linkage's sweep or anything
+    that is not a Sweep is a ValueError naming ``sweep``; its own sweep gives the curve."""
     other = pk.FourBar(6, 2, 5, 4.5).sweep()
     with raises_named("sweep"):
         fb.coupler_curve(other, 3.0, 0.5)

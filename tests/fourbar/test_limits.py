@@ -88,7 +88,7 @@ def test_toggles_match_mpmath_and_bound_the_assemblable_set(r):
             assert fb.closed_form_status(a) == pk.Status.NOT_ASSEMBLABLE
 
 
-@pytest.mark.parametrize("mode", ["open", "crossed"])
+@pytest.mark.parametrize("mode", ["open", pytest.param("crossed", marks=pytest.mark.slow)])
 def test_rocker_extremes_contain_every_sampled_angle(mode):
     rng = np.random.default_rng(7)
     t = np.linspace(-math.pi, math.pi, 40001)
@@ -145,8 +145,9 @@ def test_change_point_folds_are_dead_points_where_the_sweep_is_singular(r, folds
     """A change-point linkage folds flat (all links collinear) at theta2 = 0 when
     r1 + r4 = r2 + r3 or r1 + r3 = r2 + r4, and at pi when r1 + r2 = r3 + r4 (exact
     rational arithmetic here). Those are dead points: limits() lists them, and the sweep
-    says SINGULAR there; and every SINGULAR point of a sweep is a listed dead point.
-    Before: (1.8, 0.6, 1.8, 0.6) listed pi but not 0, where the sweep was SINGULAR."""
+    says SINGULAR there; and every SINGULAR point of a sweep is a listed dead point. The
+    decimal scalings (e.g. (6, 2, 6, 2) x 0.3) list their fold at 0 too, however the
+    distances at the fold round."""
     fb = pk.FourBar(*r)
     assert fb.grashof().condition == "change-point"
     lim = fb.limits(mode)
@@ -166,10 +167,3 @@ def test_never_assemblable_linkage_has_no_interval():
     lim = pk.FourBar(10, 1, 1, 1).limits()
     assert lim.intervals == () and lim.rocker_min is None and not lim.full_rotation
     assert np.all(pk.FourBar(10, 1, 1, 1).sweep().status == pk.Status.NOT_ASSEMBLABLE)
-
-
-def test_status_vocabulary_matches_the_kernel():
-    from planarkin import _core
-
-    assert [(s.value, s.message) for s in pk.Status] == [(c, m) for c, _, m in _core.STATUSES]
-    assert pk.SINGULAR_THRESHOLD == _core.SINGULAR_THRESHOLD

@@ -219,7 +219,14 @@ def _group_newton_starts(sc, theta, starts, rng):
     return poses[ok]
 
 
-@pytest.mark.parametrize("name", ["stephenson3", "double-butterfly-1", "double-butterfly-2"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "stephenson3",  # the inner loop's case: 3 s on 2 cores, the double butterflies 7 s each
+        pytest.param("double-butterfly-1", marks=pytest.mark.slow),
+        pytest.param("double-butterfly-2", marks=pytest.mark.slow),
+    ],
+)
 def test_every_newton_solution_is_among_the_assemblies(name):
     # completeness: what random Newton starts find, the homotopy found too
     sc = pk.scenes.load(name)

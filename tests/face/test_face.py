@@ -45,8 +45,8 @@ NOT_FOR_A_SCENE = [
 
 @pytest.mark.parametrize(("argv", "message"), NOT_FOR_A_SCENE, ids=" ".join)
 def test_a_fourbar_option_with_a_scene_is_an_error(argv, message, tmp_path):
-    """Before: 'analyze jansen --links 6 2 5 5' analysed Jansen's linkage and said nothing
-    of the lengths it had dropped."""
+    """A four-bar option with a SCENE ('analyze jansen --links 6 2 5 5') is a one-line error
+    that names the options, exit code 2, nothing written: never dropped in silence."""
     out_dir = tmp_path / "out"
     code, out, err = run(*argv, "--out", str(out_dir))
     assert code == 2 and out == ""
@@ -62,7 +62,8 @@ def test_the_same_options_are_fine_for_the_fourbar(tmp_path):
 
 
 def test_animate_takes_no_crank_speed(tmp_path):
-    """--rpm never changed an animation (it was accepted and dropped): now it is refused."""
+    """An animation has no crank speed: --rpm is an unrecognised argument (one line, exit
+    code 2), not an option accepted and ignored."""
     code, out, err = run("animate", "--rpm", "50", "--out", str(tmp_path))
     assert code == 2 and out == ""
     assert err.startswith("planarkin: error: unrecognized arguments: --rpm")
@@ -138,8 +139,9 @@ def test_ctrl_c_is_one_line_and_exit_130(tmp_path):
 
 @pytest.mark.skipif(not os.path.isdir("/proc"), reason="finds the worker processes in /proc")
 def test_ctrl_c_stops_synthesis_workers_at_once(tmp_path):
-    """Before: the process pool finished its running and queued starts (about 100 s)
-    before the command noticed, then printed a 20-line traceback."""
+    """Ctrl-C while two worker processes run synthesis starts: within 5 s one line and exit
+    code 130, nothing written, and no worker left alive (read from /proc), rather than the
+    pool finishing its running and queued starts (about 100 s here) first."""
     p = _start(["synthesize", "ackermann", "--starts", "6", "--samples", "300",
                 "--maxiter", "200", "--workers", "2", "--no-tolerance", "--no-figures",
                 "--out", str(tmp_path / "syn")])  # fmt: skip

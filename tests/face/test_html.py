@@ -1,4 +1,4 @@
-"""The HTML animation (issue 13, item 7): its nine buttons draw their icons as inline SVG
+"""The HTML animation: its nine buttons draw their icons as inline SVG
 (no web font, no Unicode media symbols that Debian's default fonts lack) and it starts
 playing on load. The browser checks run in headless Chromium and are skipped when no
 ``chromium`` is installed."""
@@ -50,8 +50,9 @@ class Buttons(HTMLParser):
 
 
 def test_buttons_are_inline_svg_without_glyphs(page):
-    """Before: five of the nine buttons held Unicode media symbols (U+23EE..) that showed
-    as empty boxes with Debian's default fonts."""
+    """Each of the nine buttons draws its icon as inline SVG and holds no text: no Unicode
+    media symbol (U+23EE..), which Debian's default fonts show as an empty box, and no web
+    font."""
     p = Buttons()
     p.feed(page)
     assert len(p.buttons) == 9

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import mp_solve
+from truth import mp_solve
 
 # bit-for-bit parity with the reference: the scalar path (SIMD parity: test_simd.py)
 pytestmark = pytest.mark.usefixtures("scalar_path")

@@ -13,7 +13,7 @@ import sys
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import SEED_LINKAGE, random_links
+from truth import SEED_LINKAGE, random_links
 
 TOL = 1e-12  # documented parity tolerance of the SIMD path (rad)
 

@@ -326,6 +326,24 @@ def test_bad_option_is_one_line_and_exit_code_2(argv, tmp_path):
     assert not out_dir.exists()  # nothing written
 
 
+def test_cli_step_too_small_is_a_one_line_error(tmp_path):
+    """`analyze` and `animate` with `--step 1e-9` (360000000001 crank angles, 2.6 TiB of
+    outputs): a one-line error naming --step and the count, exit code 2, no traceback."""
+    for cmd in ("analyze", "animate"):
+        out = subprocess.run(
+            [sys.executable, "-m", "planarkin", cmd, "--step", "1e-9", "--out", str(tmp_path)],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+        assert out.returncode == 2
+        lines = out.stderr.strip().splitlines()
+        assert len(lines) == 1, out.stderr
+        assert lines[0].startswith("planarkin: error: --step")
+        assert "360000000001 crank angles" in lines[0]
+        assert "Traceback" not in out.stderr
+
+
 def test_python_dash_m_runs_the_same_command():
     p = subprocess.run(
         [sys.executable, "-m", "planarkin", "analyze", "--links", "1", "2", "3", "0"],
@@ -387,13 +405,13 @@ def test_linkage_that_never_assembles(tmp_path):
     assert "cannot be assembled at any crank angle" in out
 
 
-# --- wall time (issue 13, item 11) -----------------------------------------------------------
+# --- wall time ------------------------------------------------------------------------------
 
 
 def test_sweep_time_is_a_warm_median(monkeypatch):
-    """The table printed the first call (0.254 ms, cold caches) for a ~40 us sweep: now the
-    median of warm calls, the first call untimed. A fake clock makes each call's duration
-    known: the first call costs 1000, the others 3, 1, 2, 5, 4, ... units."""
+    """The sweep's wall time is the median of warm calls, the first call (cold caches, many
+    times a warm one) untimed. A fake clock makes each call's duration known: the first
+    call costs 1000, the others 3, 1, 2, 5, 4 units, so the answer is 3 over 5 runs."""
     costs = iter([1000.0, 3.0, 1.0, 2.0, 5.0, 4.0])
     clock = [0.0]
     monkeypatch.setattr(_common.time, "perf_counter", lambda: clock[0])

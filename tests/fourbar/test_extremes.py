@@ -1,6 +1,6 @@
 """Extremes: scale, huge crank angles, extreme length ratios, non-Grashof sweeps,
 toggles and dead points, branch jumps, change-point linkages, NaN crank angles.
-Every number is checked against the 50-digit mpmath truth (conftest.mp_solve)."""
+Every number is checked against the 50-digit mpmath truth (truth.mp_solve)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,8 @@ import mpmath
 import numpy as np
 import planarkin as pk
 import pytest
-from conftest import (
+from numpy.testing import assert_array_equal
+from truth import (
     SEED_LINKAGE,
     angdiff,
     bound_rad,
@@ -20,7 +21,6 @@ from conftest import (
     random_links,
     resolvable,
 )
-from numpy.testing import assert_array_equal
 
 MODES = ("open", "crossed")
 DEG = math.pi / 180
@@ -320,8 +320,8 @@ def test_one_nanorad_inside_toggle():
 def test_sweep_into_toggle_within_1e9(predictor, mode):
     """(5, 3, 4, 3): toggle at t2 = 120 deg exactly (cos t2 = (25 + 9 - 49) / 30 = -1/2).
     Sweep 117, 118, 119 deg, then 120 deg - 1e-9 rad: CONVERGED within 1e-9 rad, or
-    SINGULAR. (Was a bug: CONVERGED, nit 10, residual 7.0e-10 < tol, theta3 1.48e-5 rad
-    off; fixed by also requiring the Newton correction below tol.)"""
+    SINGULAR. A residual below tol is not enough there (one of 7.0e-10 comes with theta3
+    1.48e-5 rad off): the Newton correction must be below tol too."""
     r = (5.0, 3.0, 4.0, 3.0)
     (tg,) = mp_toggles(r)
     assert abs(float(tg) - 2 * math.pi / 3) < 1e-15
@@ -340,8 +340,8 @@ def test_sweep_into_toggle_within_1e9(predictor, mode):
 APPROACH = [
     (5.0, 3.0, 4.0, 3.0),
     (4.0, 3.0, 2.0, 3.5),
-    # 1e-14 rad from its toggle at 0.9014 rad this was CONVERGED 1.32e-9 rad off while the
-    # singular threshold ignored min(r3, r4) / L
+    # 1e-14 rad from its toggle at 0.9014 rad: CONVERGED 1.32e-9 rad off unless the
+    # singular threshold weighs |sin(t4 - t3)| by min(r3, r4) / L
     (7.0, 4.0, 2.5, 3.0),
 ]
 
@@ -376,8 +376,8 @@ def test_approach_toggle_decades(r):
     assert all(f is not None for f in switch)  # a dead point is flagged at last
 
 
-# Both were CONVERGED 1.5e-9 and 1.3e-8 rad off while the singular threshold was a plain
-# |sin(t4 - t3)| < 1e-7; the conditioning now carries min(r3, r4) / L.
+# Points a plain |sin(t4 - t3)| < 1e-7 threshold passes as CONVERGED 1.5e-9 and 1.3e-8 rad
+# off; the documented threshold is on the conditioning |sin(t4 - t3)| min(r3, r4) / L.
 @pytest.mark.parametrize(
     "r, t2, mode",
     [
@@ -518,17 +518,18 @@ def test_change_point_linkages(r, mode, predictor):
     "grid, mode, predictor",
     [
         # (10, 1, 1, 10) at t2 = 0: A = (1, 0), |A O4| = 9 = r4 - r3, all links collinear.
-        # before the fix: CONVERGED, theta3 = 3.14147058 (truth pi), 1.2e-4 rad off, nit 6
+        # unflagged, this ends CONVERGED: theta3 = 3.14147058 (truth pi), 1.2e-4 rad off, nit 6
         ([14.375, 0.0078125, 0.0], "open", "previous"),
-        # before the fix: CONVERGED, 9.6e-7 rad off, residual 4.1e-14, |sin| 8.6e-7
+        # unflagged: CONVERGED, 9.6e-7 rad off, residual 4.1e-14, |sin| 8.6e-7
         ([14.375, 0.0078125, 0.0], "open", "tangent"),
-        # 3 deg steps: before the fix CONVERGED 1.5e-4 rad off at t2 = 0
+        # 3 deg steps; unflagged: CONVERGED 1.5e-4 rad off at t2 = 0
         (list(np.arange(-30, 1, 3) * DEG), "crossed", "tangent"),
     ],
 )
 def test_change_point_reached_by_continuation(grid, mode, predictor):
-    """Found by hypothesis (was a bug, now fixed): the exact change point reached by
-    continuation must be SINGULAR, as solve() from the closed form says."""
+    """The exact change point of (10, 1, 1, 10) at t2 = 0 (all links collinear: sin(t4 - t3)
+    is 0 in mpmath), reached by continuation on grids that end there, is SINGULAR, as
+    solve() from the closed form says."""
     r = (10.0, 1.0, 1.0, 10.0)
     fb = pk.FourBar(*r)
     assert fb.grashof().barker == "S2X"
@@ -625,11 +626,12 @@ def test_nan_crank_angle_inside_array(mode, predictor):
     assert summ.statuses == {"NON_FINITE": 4, "CONVERGED": len(t2) - 4}
 
 
-# --- any finite scale (issue 13, item 2) ------------------------------------------------------
+# --- any finite scale ---------------------------------------------------------------------------
 
-#: Scales across the whole double range. Before the unit-length change: every point
-#: SINGULAR at 1e-100, NON_FINITE at 2^340, NOT_ASSEMBLABLE at 1e160 and above, and
-#: limits() said the crank does not turn fully at 1e-300.
+#: Scales across the whole double range, including those where arithmetic in the given
+#: units (not scaled to a unit longest link) breaks down: every point SINGULAR at 1e-100,
+#: NON_FINITE at 2^340, NOT_ASSEMBLABLE at 1e160 and above, and a crank that seems unable
+#: to turn fully at 1e-300.
 EXTREME_SCALES = [2.0**-1070, 1e-300, 1e-100, 2.0**-340, 1e-9, 1e100, 1e160, 2.0**340, 1e300]
 
 

@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import planarkin as pk
 import pytest
+from _support import out_rotation
 from planarkin.synthesis import (
     STEERING_KNUCKLE,
     TYPE_I,
@@ -28,21 +29,10 @@ from planarkin.synthesis import (
     synthesize,
 )
 from planarkin.synthesis.problem import SWEEP_TOL
+from truth import ackermann
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SHIPPED = ROOT / "examples" / "ackermann"
-
-
-def _out_rotation(sc: pk.Scene, phi: np.ndarray) -> np.ndarray:
-    """The output link's rotation from the drawn pose, read from swept points."""
-    link, pivot = sc.output
-    first = next(p for p in sc.links[link] if p != pivot)
-    sw = sc.sweep(sc.input_angle + phi, outputs=[first], tol=1e-12)
-    assert np.all(sw.status == 0)
-    p0, q0 = np.array(sc.points[pivot]), np.array(sc.points[first])
-    v = sw.points[first] - p0
-    a = np.arctan2(v[:, 1], v[:, 0]) - math.atan2(*(q0 - p0)[::-1])
-    return np.angle(np.exp(1j * a))
 
 
 def _type1() -> pk.Scene:
@@ -119,7 +109,7 @@ def test_zero_split_closed_form_is_the_true_output(which):
         # loop 2's radicand reaches zero near 0.5 rad: past it the real linkage goes on
         # while a fixed-sign closed form changes root (see the next test)
         phi = np.linspace(0.0, 0.45, 25)
-    out = _out_rotation(sc, phi)
+    out = out_rotation(sc, phi)
     g = SeedPlan(tpl, sc.points).generated(phi, out)
     assert np.max(np.abs(g.theta - out)) < 1e-12
     assert np.all(g.radicand > 0)
@@ -132,7 +122,7 @@ def test_fixed_signs_lose_the_real_linkage_where_a_radicand_touches_zero():
     pts = _knuckle_from_builtin()
     sc = pk.Scene.from_dict(STEERING_KNUCKLE.scene_dict(pts))
     phi = np.linspace(0.0, 0.9, 19)
-    out = _out_rotation(sc, phi)
+    out = out_rotation(sc, phi)
     g = SeedPlan(STEERING_KNUCKLE, sc.points).generated(phi, out)
     i = int(np.argmin(g.radicand[:, 1]))
     assert 0 < i < phi.size - 1 and g.radicand[i, 1] < 1e-3
@@ -167,7 +157,7 @@ def test_generated_and_true_error_relation():
         sw = sc.sweep(sc.input_angle + phi, outputs=["output"])
         if not np.all(sw.status == 0):
             continue
-        out = _out_rotation(sc, phi)
+        out = out_rotation(sc, phi)
         e_a = 1e-6 * (1 + np.sin(3 * phi + rng.uniform(0, 6)))
         plan = SeedPlan(TYPE_I, sc.points)
         g = plan.generated(phi, out - e_a)
@@ -246,14 +236,14 @@ def test_recovery_function_generation():
     sc = _type1()
     phi = np.linspace(0.05, 1.0, 15)
     dense = np.linspace(0.05, 1.0, 41)
-    out, dout = _out_rotation(sc, phi), _out_rotation(sc, dense)
+    out, dout = out_rotation(sc, phi), out_rotation(sc, dense)
     space, x_true, x0 = _type1_space(sc, 2e-3, np.random.default_rng(5))
     p = Problem(space, FunctionTarget(phi, out, dense, dout), det_margin=1e-3)
     r0 = np.abs(p.residuals(x0)[0]).max()
     res = run_start(p, x0, maxiter=300)
     assert res.feasible
     # the true linkage of the result, swept here, against the prescribed outputs
-    got = _out_rotation(space.scene(res.x), phi)
+    got = out_rotation(space.scene(res.x), phi)
     assert np.max(np.abs(got - out)) / np.ptp(out) < 1e-6 < r0
 
 
@@ -274,15 +264,6 @@ def test_recovery_path_generation():
 # --- the shipped Ackermann design -----------------------------------------------------------
 
 
-def _ackermann(dl: np.ndarray) -> np.ndarray:
-    # cot(delta_outer) - cot(delta_inner) = 0.6, counter-clockwise positive
-    out = np.zeros_like(dl)
-    p, n = dl > 0, dl < 0
-    out[p] = np.arctan(1 / (1 / np.tan(dl[p]) + 0.6))
-    out[n] = -np.arctan(1 / (1 / np.tan(-dl[n]) - 0.6))
-    return out
-
-
 @pytest.mark.skipif(not (SHIPPED / "design.json").exists(), reason="no shipped design")
 def test_shipped_ackermann_design_meets_the_target():
     sc = pk.Scene.load(SHIPPED / "design.json")
@@ -294,7 +275,7 @@ def test_shipped_ackermann_design_meets_the_target():
     lo = -math.atan(1 / (1 / math.tan(hi) + 0.6))
     for n, key in ((31, "true_max_error_deg"), (1001, "true_max_error_deg_1001")):
         dl = np.linspace(lo, hi, n)
-        err = np.degrees(np.max(np.abs(_out_rotation(sc, dl) - _ackermann(dl))))
+        err = np.degrees(np.max(np.abs(out_rotation(sc, dl) - ackermann(dl))))
         assert err == pytest.approx(rep[key], rel=1e-6, abs=1e-9)
         assert err <= 0.01
     sw = sc.sweep(sc.input_angle + np.linspace(lo, hi, 1001), outputs="all")
@@ -317,7 +298,7 @@ def _small_problem() -> tuple[Problem, np.ndarray]:
     sc = _type1()
     phi = np.linspace(0.05, 0.8, 9)
     dense = np.linspace(0.05, 0.8, 21)
-    out, dout = _out_rotation(sc, phi), _out_rotation(sc, dense)
+    out, dout = out_rotation(sc, phi), out_rotation(sc, dense)
     space, _, x0 = _type1_space(sc, 1e-3, np.random.default_rng(9))
     return Problem(space, FunctionTarget(phi, out, dense, dout), det_margin=1e-3), x0
 
@@ -331,6 +312,7 @@ def test_multistart_on_a_thread_pool():
     assert res.best.max_error < 1e-5
 
 
+@pytest.mark.slow  # starts a local dask cluster; the thread pool above runs the same starts
 def test_multistart_on_a_dask_local_cluster():
     distributed = pytest.importorskip("dask.distributed")
     p, x0 = _small_problem()
@@ -346,35 +328,7 @@ def test_multistart_on_a_dask_local_cluster():
     assert res.starts == 2 and res.best.max_error < 1e-5
 
 
-# --- the command ------------------------------------------------------------------------------
-
-
-def test_cli_synthesize_ackermann_quick(tmp_path):
-    from planarkin.face.cli import main
-
-    out = tmp_path / "ack"
-    argv = ["synthesize", "ackermann", "--out", str(out), "--starts", "2", "--samples", "300",
-            "--maxiter", "30", "--no-tolerance", "--select", "accurate"]  # fmt: skip
-    assert main(argv) == 0
-    rep = json.loads((out / "report.json").read_text())
-    sc = pk.Scene.load(out / "design.json")
-    assert rep["starts"] == 2 and rep["det_sign_changes"] == 0
-    for name in ("error.png", "conditioning.png", "linkage.png"):
-        assert (out / name).stat().st_size > 1000
-    # the reported true error is the scene's, against the formula written here
-    lo, hi = -math.atan(1 / (1 / math.tan(math.radians(61.0)) + 0.6)), math.radians(61.0)
-    dl = np.linspace(lo, hi, 1001)
-    err = np.degrees(np.max(np.abs(_out_rotation(sc, dl) - _ackermann(dl))))
-    assert err == pytest.approx(rep["true_max_error_deg_1001"], rel=1e-6, abs=1e-9)
-
-
-def test_cli_synthesize_bad_input(capsys):
-    from planarkin.face.cli import main
-
-    assert main(["synthesize", "ackermann", "--starts", "0"]) == 2
-    assert "--starts" in capsys.readouterr().err
-
-
+@pytest.mark.slow  # 6 s: SLSQP from two starts
 def test_seed_objective_on_the_generated_mechanism():
     # the seed's method: SLSQP on the generated output's RMS error over the 8 combinations
     p, x0 = _small_problem()
@@ -390,5 +344,5 @@ def test_seed_objective_on_the_generated_mechanism():
     e_g = np.max(np.abs(g.theta - t.phi_out)) / t.scale
     assert e_g < 1e-6
     # and the true linkage, swept here, is as close
-    got = _out_rotation(seed.space.scene(best.x), t.phi_in)
+    got = out_rotation(seed.space.scene(best.x), t.phi_in)
     assert np.max(np.abs(got - t.phi_out)) / t.scale < 1e-5
