@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from truth import SEED_LINKAGE
 
 
 @pytest.fixture
@@ -22,10 +21,3 @@ def scalar_path():
 @pytest.fixture
 def rng():
     return np.random.default_rng(20240601)
-
-
-@pytest.fixture
-def seed_fb():
-    import planarkin as pk
-
-    return pk.FourBar(*SEED_LINKAGE)

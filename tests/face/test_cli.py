@@ -4,9 +4,7 @@ bad options and awkward linkages are reported."""
 
 from __future__ import annotations
 
-import contextlib
 import csv
-import io
 import json
 import math
 import subprocess
@@ -16,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import planarkin as pk
 import pytest
+from _support import run_cli as run
 from planarkin.face import cli
 from planarkin.face.cli import _common
 from planarkin.face.cli import tradeoff as tradeoff_cli
@@ -41,17 +40,6 @@ COLUMNS = [
     "alpha3 [rad/s^2]", "alpha4 [rad/s^2]", "transmission_angle [deg]", "branch_indicator [-]",
     "coupler_x [length]", "coupler_y [length]",
 ]  # fmt: skip
-
-
-def run(*argv: str) -> tuple[int, str, str]:
-    """Runs ``planarkin argv`` in-process: (exit code, stdout, stderr)."""
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            code = cli.main(list(argv))
-        except SystemExit as e:  # argparse
-            code = e.code if isinstance(e.code, int) else 1
-    return code, out.getvalue(), err.getvalue()
 
 
 def read_csv(path: Path) -> tuple[list[str], dict[str, np.ndarray]]:

@@ -4,8 +4,6 @@ command with one line and exit code 130, and stops synthesis workers at once."""
 
 from __future__ import annotations
 
-import contextlib
-import io
 import os
 import signal
 import subprocess
@@ -14,18 +12,7 @@ import textwrap
 import time
 
 import pytest
-from planarkin.face import cli
-
-
-def run(*argv: str) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            code = cli.main(list(argv))
-        except SystemExit as e:  # argparse
-            code = e.code if isinstance(e.code, int) else 1
-    return code, out.getvalue(), err.getvalue()
-
+from _support import run_cli as run
 
 NOT_FOR_A_SCENE = [
     (("analyze", "jansen", "--links", "6", "2", "5", "5"), "--links does not apply to a scene"),

@@ -14,11 +14,6 @@ from planarkin.face import cli
 from planarkin.reference import scene_sweep
 
 
-def run(*argv, capsys=None):
-    code = cli.main(list(argv))
-    return code
-
-
 def test_analyze_scene_writes_what_the_reference_computes(tmp_path, capsys):
     out = tmp_path / "o"
     assert cli.main(["analyze", "jansen", "--out", str(out), "--no-figures", "--step", "5"]) == 0

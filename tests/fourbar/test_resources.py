@@ -5,15 +5,14 @@ naming the sizes instead of aborting the process, and long kernel calls answer C
 from __future__ import annotations
 
 import os
-import signal
 import subprocess
 import sys
 import textwrap
-import time
 
 import numpy as np
 import planarkin as pk
 import pytest
+from _support import interrupted_child
 from truth import SEED_LINKAGE
 
 # --- memory ------------------------------------------------------------------------------------
@@ -67,30 +66,9 @@ SLOW = {
 @pytest.mark.parametrize("call", list(SLOW))
 def test_ctrl_c_interrupts_a_long_kernel_call(call):
     """A child process starts a kernel call that would run for minutes; SIGINT must end
-    it with KeyboardInterrupt (the hang guard of 60 s is not a timing assertion: the
-    call itself takes far longer)."""
-    code = textwrap.dedent(
-        f"""
-        import numpy as np, planarkin as pk
-        fb = pk.FourBar(6, 2, 5, 5)
-        print("ready", flush=True)
-        {SLOW[call]}
-        print("finished", flush=True)
-        """
-    )
-    p = subprocess.Popen(
-        [sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
-    )
-    try:
-        assert p.stdout is not None
-        assert p.stdout.readline().strip() == "ready"
-        time.sleep(0.5)  # let the kernel call start
-        p.send_signal(signal.SIGINT)
-        out, err = p.communicate(timeout=60)
-    finally:
-        if p.poll() is None:
-            p.kill()
-            p.communicate()
+    it with KeyboardInterrupt."""
+    setup = "import numpy as np, planarkin as pk\nfb = pk.FourBar(6, 2, 5, 5)"
+    code, out, err = interrupted_child(setup, SLOW[call], wait=0.5)  # let the call start
     assert "finished" not in out
-    assert p.returncode != 0
+    assert code != 0
     assert err.rstrip().splitlines()[-1] == "KeyboardInterrupt", err

@@ -45,7 +45,18 @@ def test_reference_imports_nothing_from_extension():
     # the API modules that wrap the kernel (the reference may use their plain results)
     wrappers = {"planarkin.fourbar", "planarkin.fourbar._model", "planarkin.fourbar._batch",
                 "planarkin.scene", "planarkin.scene._model", "planarkin.simd"}  # fmt: skip
-    for module in (ref, ref.fourbar, ref.scene):
+    import importlib
+
+    modules = [ref] + [
+        importlib.import_module(f"planarkin.reference.{p.stem}")
+        for p in sorted((PACKAGE / "reference").glob("*.py"))
+        if p.stem != "__init__"
+    ]
+    assert {m.__name__ for m in modules} >= {
+        "planarkin.reference.fourbar",
+        "planarkin.reference.scene",
+    }
+    for module in modules:
         src = inspect.getsource(module)
         package = module.__name__ if hasattr(module, "__path__") else module.__package__
         for node in ast.walk(ast.parse(src)):
@@ -60,6 +71,17 @@ def test_reference_imports_nothing_from_extension():
                 assert not named & wrappers, (module.__name__, absolute)
             if isinstance(node, ast.Import):
                 assert all("_core" not in a.name for a in node.names)
+
+
+def test_the_tests_truth_imports_nothing_from_planarkin():
+    """tests/truth.py is what the kernel and the reference are checked against: it must not
+    compute anything with planarkin (mpmath and math only)."""
+    tree = ast.parse((ROOT / "tests" / "truth.py").read_text(encoding="utf-8"))
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            assert not (node.module or "").startswith("planarkin"), node.module
+        elif isinstance(node, ast.Import):
+            assert all(not a.name.startswith("planarkin") for a in node.names)
 
 
 def test_every_module_says_what_it_is_for():

@@ -6,12 +6,12 @@ MemoryError, not an aborted process."""
 from __future__ import annotations
 
 import os
-import signal
 import subprocess
 import sys
 import textwrap
 
 import pytest
+from _support import interrupted_child
 
 #: Calls that run for minutes on double-butterfly-2 (measured: the traces and the group
 #: sweep take tens of minutes at these steps; 1000 assemblies about 30 s).
@@ -26,36 +26,17 @@ SLOW = {
 @pytest.mark.skipif(os.name != "posix", reason="sends SIGINT")
 @pytest.mark.parametrize("call", list(SLOW))
 def test_ctrl_c_interrupts_a_long_scene_call(call):
-    """The first kernel call of a fresh process, interrupted: KeyboardInterrupt, never a
-    PanicException (the hang guard of 60 s is not a timing assertion: the call itself
-    takes far longer)."""
-    code = textwrap.dedent(
-        f"""
-        import planarkin as pk
-        sc = pk.scenes.load("double-butterfly-2")
-        print("ready", flush=True)
-        {SLOW[call]}
-        print("finished", flush=True)
-        """
-    )
-    p = subprocess.Popen(
-        [sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
-    )
-    try:
-        assert p.stdout is not None
-        assert p.stdout.readline().strip() == "ready"
-        p.send_signal(signal.SIGINT)
-        out, err = p.communicate(timeout=60)
-    finally:
-        if p.poll() is None:
-            p.kill()
-            p.communicate()
+    """The first kernel call of a fresh process, interrupted as soon as it starts:
+    KeyboardInterrupt, never a PanicException."""
+    setup = "import planarkin as pk\nsc = pk.scenes.load('double-butterfly-2')"
+    code, out, err = interrupted_child(setup, SLOW[call])
     assert "finished" not in out
-    assert p.returncode != 0
+    assert code != 0
     assert err.rstrip().splitlines()[-1] == "KeyboardInterrupt", err
     assert "PanicException" not in err
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="RLIMIT_AS")
 def test_a_trace_that_outgrows_memory_is_a_memory_error():
     """A trace asked for 10^12 points at a step that never lets it close, under a 1 GiB
