@@ -56,6 +56,14 @@ impl<'a> Poll<'a> {
             self.left.set(left - 1);
             return Ok(());
         }
+        self.ask()
+    }
+
+    /// The rare part of [`Poll::tick`], out of line: the hot loops that tick keep only a
+    /// decrement and a branch.
+    #[cold]
+    #[inline(never)]
+    fn ask(&self) -> Result<(), Error> {
         self.left.set(CHECK_EVERY);
         if self.source.interrupted() {
             Err(Error::Interrupted)

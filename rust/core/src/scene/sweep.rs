@@ -280,8 +280,8 @@ impl<'p> Solver<'p> {
     /// Continuation to `to` from where the groups are (the one farthest away sets the
     /// start): uniform steps of at most `max_step`, each halved while some group fails; a
     /// group that still fails at the smallest step has met a dead point there, and angles
-    /// past it are LIMIT. Ends with an evaluation at `to`. Every evaluation is counted on
-    /// `poll` (a small `max_step` makes many).
+    /// past it are LIMIT. Ends with an evaluation at `to`. Every step is counted on `poll`
+    /// (a small `max_step` makes many).
     fn advance(&mut self, to: f64, poll: &Poll<'_>) -> Result<(), Error> {
         let from = self
             .groups
@@ -295,7 +295,10 @@ impl<'p> Solver<'p> {
         let mut a = from;
         for k in 1..=m {
             let b = if k == m { to } else { from + h * (k as f64 / m as f64) };
-            if !self.reach(a, b, 0, poll)? {
+            // a small max_step makes many steps: each is counted (the halvings of one
+            // step are bounded by MAX_HALVINGS)
+            poll.tick()?;
+            if !self.reach(a, b, 0) {
                 break;
             }
             a = b;
@@ -306,10 +309,9 @@ impl<'p> Solver<'p> {
         Ok(())
     }
 
-    fn reach(&mut self, a: f64, b: f64, depth: u32, poll: &Poll<'_>) -> Result<bool, Error> {
-        poll.tick()?;
+    fn reach(&mut self, a: f64, b: f64, depth: u32) -> bool {
         if !self.eval(b) {
-            return Ok(true);
+            return true;
         }
         if depth >= MAX_HALVINGS || !b.is_finite() {
             // what still fails this close to its last solution is at a dead point
@@ -321,10 +323,10 @@ impl<'p> Solver<'p> {
                     }
                 }
             }
-            return Ok(false);
+            return false;
         }
         let mid = 0.5 * (a + b);
-        Ok(self.reach(a, mid, depth + 1, poll)? && self.reach(mid, b, depth + 1, poll)?)
+        self.reach(a, mid, depth + 1) && self.reach(mid, b, depth + 1)
     }
 
     /// The dead point (input angle) that stops the first group at LIMIT, if any.
