@@ -57,6 +57,14 @@ PATH = re.compile(r"\b((?:crate|super)(?:::\w+)+)")
 INLINE_TESTS = re.compile(r"#\[cfg\(test\)\]\s*mod tests\s*\{.*", re.S)
 
 
+def _owner(files: dict[tuple[str, ...], Path], parts: list[str]) -> tuple[str, ...] | None:
+    """The file a module path comes from: the longest module prefix that names a file."""
+    for k in range(len(parts), -1, -1):
+        if tuple(parts[:k]) in files:
+            return tuple(parts[:k])
+    return None
+
+
 def rust_edges(root: Path) -> dict[str, set[str]]:
     edges: dict[str, set[str]] = defaultdict(set)
     for crate in RUST_CRATES:
@@ -67,12 +75,6 @@ def rust_edges(root: Path) -> dict[str, set[str]]:
         for path in src.rglob("*.rs"):
             parts = path.relative_to(src).with_suffix("").parts
             files[parts[:-1] if parts[-1] in ("mod", "lib") else parts] = path
-
-        def owner(parts: list[str]) -> tuple[str, ...] | None:
-            for k in range(len(parts), -1, -1):  # the longest module prefix names the file
-                if tuple(parts[:k]) in files:
-                    return tuple(parts[:k])
-            return None
 
         for key, path in files.items():
             text = INLINE_TESTS.sub("", path.read_text(encoding="utf-8"))
@@ -90,7 +92,7 @@ def rust_edges(root: Path) -> dict[str, set[str]]:
                 while p and p[0] in ("super", "self"):
                     here = here[:-1] if p[0] == "super" else here
                     p = p[1:]
-                target = owner(here + p)
+                target = _owner(files, here + p)
                 if target is None or target == key or key[: len(target)] == target:
                     continue
                 edges[str(path.relative_to(root))].add(str(files[target].relative_to(root)))

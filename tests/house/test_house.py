@@ -112,3 +112,16 @@ def test_import_contracts_hold():
     )
     assert r.returncode == 0, r.stdout + r.stderr
     assert "0 broken" in r.stdout
+
+
+def test_no_import_circles_in_either_language():
+    """tools/import_circles.py: no files of python/planarkin, nor of the Rust crates,
+    import each other in a loop."""
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "tools" / "import_circles.py"), str(ROOT)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert r.stdout.strip().splitlines()[-1] == "import circles: 0"
