@@ -230,10 +230,5 @@ class BatchSweep(StatusResult):
         """The input coordinate: the (N,) crank angles theta2."""
         return self.theta2
 
-    @property
-    def success(self) -> np.ndarray:
-        """Boolean (M, N) array: status == CONVERGED."""
-        return self.status == Status.CONVERGED
-
     def _describe(self) -> str:
         return f"{len(self.links)} linkages, {self.mode} mode, {self.method}"

@@ -45,11 +45,17 @@ def check_method(method: object) -> str:
     return _choice("method", method, METHODS)
 
 
+def positive_finite(name: str, value: object) -> float:
+    """A real number, finite and > 0 (the core's ``positive_finite``)."""
+    v = as_float(name, value)
+    if not (math.isfinite(v) and v > 0):
+        raise ValueError(f"{name} must be finite and > 0, got {v!r}")
+    return v
+
+
 def check_options(tol: object, max_iter: object) -> tuple[float, int]:
     """tol finite and > 0, max_iter an integer in 1..=4294967295 (``NewtonOptions::new``)."""
-    t = as_float("tol", tol)
-    if not (math.isfinite(t) and t > 0):
-        raise ValueError(f"tol must be finite and > 0, got {t!r}")
+    t = positive_finite("tol", tol)
     m = as_i64("max_iter", max_iter)
     if not 1 <= m <= 0xFFFFFFFF:
         raise ValueError(f"max_iter must be an integer in 1..=4294967295, got {m}")

@@ -124,7 +124,7 @@ _SIN_C = (-1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0)
 _COS_C = (-0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0)
 
 
-def rotate(s: float, c: float, dx: float) -> tuple[float, float]:
+def sin_cos_shifted(s: float, c: float, dx: float) -> tuple[float, float]:
     """sin(x + dx), cos(x + dx) from sin x, cos x for |dx| <= 2^-7 (Taylor, degree 7/8)."""
     x2 = dx * dx
     sd = dx + dx * x2 * (_SIN_C[0] + x2 * (_SIN_C[1] + x2 * _SIN_C[2]))
@@ -135,11 +135,11 @@ def rotate(s: float, c: float, dx: float) -> tuple[float, float]:
 def _trig(x3: float, x4: float, cache: list) -> tuple:
     """sin/cos of the iterate: by angle addition from the loop's last libm evaluation when
     both angles are within 2^-7 of it, else from libm (which then becomes the anchor);
-    rotations never chain. The cache is one per crank angle."""
+    shifts never chain. The cache is one per crank angle."""
     last = cache[0]
     if last is not None and abs(x3 - last[0]) < INCREMENT_MAX and abs(x4 - last[1]) < INCREMENT_MAX:
-        s3, c3 = rotate(last[2], last[3], x3 - last[0])
-        s4, c4 = rotate(last[4], last[5], x4 - last[1])
+        s3, c3 = sin_cos_shifted(last[2], last[3], x3 - last[0])
+        s4, c4 = sin_cos_shifted(last[4], last[5], x4 - last[1])
     else:
         s3, c3 = _sin(x3), _cos(x3)
         s4, c4 = _sin(x4), _cos(x4)

@@ -15,6 +15,7 @@ import numpy as np
 from .._angles import TAU, wrap
 from .._status import Status
 from ..scene._results import SceneSweep
+from ._rules import check_options, positive_finite
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -299,13 +300,9 @@ def scene_sweep(
         th = sys_.theta0 + np.arange(361) * (TAU / 360)
     else:
         th = np.atleast_1d(np.asarray(theta, dtype=np.float64)).ravel()
-    if not (tol > 0 and math.isfinite(tol)):
-        raise ValueError(f"tol must be finite and > 0, got {tol}")
-    if not (max_step > 0 and math.isfinite(max_step)):
-        raise ValueError(f"max_step must be finite and > 0, got {max_step}")
-    max_iter = int(max_iter)
-    if max_iter < 1:
-        raise ValueError(f"max_iter must be >= 1, got {max_iter}")
+    # the kernel's rules for these options (SceneSweepOptions::new), as the reference's own
+    tol, max_iter = check_options(tol, max_iter)
+    max_step = positive_finite("max_step", max_step)
     n = th.size
     status = np.zeros(n, dtype=np.int8)
     nit = np.zeros(n, dtype=np.int64)

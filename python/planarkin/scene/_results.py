@@ -10,7 +10,6 @@ from functools import cached_property
 import numpy as np
 
 from .._results import SweepResult
-from .._status import Status
 
 
 @dataclass(frozen=True)
@@ -150,11 +149,6 @@ class SceneSweep(SweepResult):
         """link -> (N,) angular velocities when ``omega`` was given."""
         w = self.angular_velocity_array
         return None if w is None else {n: w[:, j] for j, n in enumerate(self.link_names)}
-
-    @property
-    def success(self) -> np.ndarray:
-        """(N,) bool: every step converged."""
-        return self.status == Status.CONVERGED
 
     def _describe(self) -> str:
         steps = "no plan (reference)" if self.plan is None else f"{len(self.plan)} steps"
