@@ -5,6 +5,8 @@ use super::vec2::{cross, dot, perp, sub, Xy};
 
 /// Known points closer than this fraction of r1 + r2 coincide.
 const COINCIDENT: f64 = 1e-12;
+/// Rounding of |k1 k2| and of the Heron factors, relative to d + r1 + r2.
+const ROUNDING: f64 = 4.0 * f64::EPSILON;
 
 /// Point `p` at distance `r1` from known point `k1` and `r2` from `k2`, on side `side`
 /// (+1: left of k1 -> k2) — the side of the drawn pose.
@@ -54,12 +56,16 @@ impl Dyad {
         if d <= tiny {
             return if (r1 - r2).abs() <= tiny { DyadOut::Indeterminate } else { DyadOut::NotAssemblable };
         }
+        // a factor below zero by no more than the rounding of d is a dead point (the two
+        // links in line), not a failure to close: sweeps step over it
+        let round = ROUNDING * (d + r1 + r2);
         let q1 = d + r1 - r2;
         let q2 = d - r1 + r2;
         let q3 = r1 + r2 - d;
-        if !(q1 >= 0.0 && q2 >= 0.0 && q3 >= 0.0) {
+        if !(q1 >= -round && q2 >= -round && q3 >= -round) {
             return DyadOut::NotAssemblable;
         }
+        let (q1, q2, q3) = (q1.max(0.0), q2.max(0.0), q3.max(0.0));
         let two_dh = ((r1 + r2 + d) * q1 * q2 * q3).sqrt();
         let along = d2 + (r1 - r2) * (r1 + r2);
         let h = side * two_dh;

@@ -1,12 +1,18 @@
 //! A scene sweep: the plan solved at each input angle, following the drawn assembly.
 //!
-//! Dyads are closed forms on their drawn side, so they need no history. Groups use
-//! continuation from the drawn pose: to the first angle along the shortest way round, then
-//! along the angles in order, in steps of at most `max_step`, each predicted to second
-//! order from the last two tangents (dphi/dtheta = -J^-1 dF/dtheta). A step whose Newton
-//! solve fails, jumps, or lands on another branch (the sign of the group's conditioning
-//! changed) is halved, down to `max_step / 2^16`; what still fails is reported with its
-//! status, and points that do not depend on it are solved all the same.
+//! Continuation from the drawn pose: to the first angle along the shortest way round, then
+//! along the angles in order, in steps of at most `max_step`. A dyad is a closed form on
+//! the side it is on, and that side is carried along the path: each step predicts the
+//! dyad's signed conditioning from the last one and its derivative, and where the other
+//! side matches the prediction (the two links fell in line and went through: a change
+//! point, as a parallelogram's) the step is halved until it is below `max_step / 2^14`
+//! and the side then flips, so the motion goes on with its smooth tangent. A group is
+//! predicted to second order from its last two tangents (dphi/dtheta = -J^-1 dF/dtheta).
+//! A step where a dyad cannot close (a fold: the motion's dead point) or a group's Newton
+//! solve fails, jumps, or lands on another branch (the sign of its conditioning changed)
+//! is halved, down to `max_step / 2^16`; what still fails there has met a dead point, and
+//! angles past it are LIMIT. Points that do not depend on a failure are solved all the
+//! same.
 
 use super::columns;
 use super::dyad::{Dyad, DyadOut};
@@ -16,9 +22,16 @@ use super::plan::{Op, Plan};
 use super::vec2::{cross, dot, perp, sub, Xy};
 use crate::error::Error;
 use crate::interrupt::{Interrupt, Poll};
+use crate::solve::homotopy::HomotopyOptions;
 use crate::solve::newton::NewtonOptions;
 use crate::{wrap_angle, Status};
 
+/// A column sweep whose every step keeps at least this conditioning (and whose angles are
+/// at most `max_step` apart) has met no dead point or change point on its way.
+const CERTIFIED: f64 = 0.05;
+/// Largest group whose assemblies are counted (by the homotopy) to tell LIMIT from
+/// NOT_ASSEMBLABLE at the angles a sweep does not reach.
+const CLASSIFIED_GROUP: usize = 4;
 /// How many times a failing continuation step is halved.
 const MAX_HALVINGS: u32 = 16;
 /// Newton steps per continuation step before it is halved (at most the user's max_iter).
@@ -26,6 +39,35 @@ const STEP_ITER: u32 = 5;
 /// A converged group whose rotations moved more than this from the prediction (with a
 /// prediction made over at most one `max_step`) has jumped to another solution.
 const JUMP: f64 = 0.25;
+/// A dyad changes side only over a step shorter than `max_step / 2^FLIP_HALVINGS`: there a
+/// prediction that crosses zero is a change point, not a near miss.
+const FLIP_HALVINGS: i32 = 14;
+/// A group through a change point lands this close to its prediction (a jump to the other
+/// branch near a fold lands about the square root of the step away).
+const FLIP_JUMP: f64 = 1e-5;
+
+/// Continuation state of one dyad: the side it is on and its last signed conditioning.
+#[derive(Clone, Copy, Debug)]
+struct DyadState {
+    side: f64,
+    theta: f64,
+    det: f64,
+    /// d det / d theta at `theta` (NaN when unknown: no prediction).
+    ddet: f64,
+    /// A fold met while continuing in direction `dir`: angles past it are LIMIT.
+    limit: Option<(f64, f64)>,
+}
+
+impl DyadState {
+    /// The predicted signed conditioning at `theta` (NaN: no prediction).
+    fn predict(&self, theta: f64, max_step: f64) -> f64 {
+        let h = theta - self.theta;
+        if h.abs() > 4.0 * max_step {
+            return f64::NAN;
+        }
+        self.det + self.ddet * h
+    }
+}
 
 #[derive(Clone, Copy, Debug)]
 struct Tangent {
@@ -44,11 +86,15 @@ struct GroupState {
     /// A dead point met while continuing in direction `dir` (+1 / -1): angles past it in
     /// that direction are LIMIT without a solve.
     limit: Option<(f64, f64)>,
+    /// Sign of the conditioning on the branch followed (as drawn; it changes at a change
+    /// point).
+    sign: f64,
 }
 
 impl GroupState {
     /// Second order from the last two tangents; first order with one; the last solution
-    /// itself after a gap (a prediction over several steps is worse than none).
+    /// itself after a gap or where the tangent is steep (a prediction over several steps,
+    /// or across a dead point's square-root turn, is worse than none).
     fn predict(&self, theta: f64, n: usize, max_step: f64) -> [f64; MAX] {
         let h = theta - self.theta;
         let mut x = self.phi;
@@ -71,9 +117,12 @@ impl GroupState {
                 }
                 None => t1.dphi[k] * h,
             };
-            if dx.is_finite() {
-                *xk += dx;
+            // a steep tangent (near a dead point) predicts worse than none: start from the
+            // last solution (the branch is then picked by the conditioning's sign)
+            if !(dx.abs() <= 0.5 * JUMP) {
+                return self.phi;
             }
+            *xk += dx;
         }
         x
     }
@@ -96,8 +145,12 @@ struct Solver<'p> {
     any_failure: bool,
     /// Group state per op (None for other ops).
     groups: Vec<Option<GroupState>>,
+    /// Dyad state per op (None for other ops).
+    dyads: Vec<Option<DyadState>>,
     nit: u32,
     last_eval: f64,
+    /// Length of the continuation step being taken (infinite outside `reach`).
+    step: f64,
 }
 
 impl<'p> Solver<'p> {
@@ -107,7 +160,8 @@ impl<'p> Solver<'p> {
             plan,
             opts,
             step_newton: NewtonOptions { max_iter: opts.newton.max_iter.min(STEP_ITER), ..opts.newton },
-            need_vel: plan.has_group() || opts.omega.is_some(),
+            // velocities give the groups' tangents and the dyads' predictions
+            need_vel: true,
             pos: vec![[f64::NAN; 2]; n],
             vel: vec![[0.0; 2]; n],
             pst: vec![Status::Converged; n],
@@ -118,18 +172,31 @@ impl<'p> Solver<'p> {
             groups: plan
                 .ops
                 .iter()
-                .map(|o| {
-                    matches!(o, Op::Group(_)).then_some(GroupState {
+                .map(|o| match o {
+                    Op::Group(g) => Some(GroupState {
                         theta: plan.theta0,
                         phi: [0.0; MAX],
                         tangent: None,
                         previous: None,
                         limit: None,
-                    })
+                        sign: g.sign,
+                    }),
+                    _ => None,
+                })
+                .collect(),
+            dyads: plan
+                .ops
+                .iter()
+                .map(|o| match o {
+                    Op::Dyad(d) => {
+                        Some(DyadState { side: d.side, theta: plan.theta0, det: f64::NAN, ddet: f64::NAN, limit: None })
+                    }
+                    _ => None,
                 })
                 .collect(),
             nit: 0,
             last_eval: f64::NAN,
+            step: f64::INFINITY,
         };
         for &(p, xy) in &plan.fixed {
             s.pos[p] = xy;
@@ -167,10 +234,15 @@ impl<'p> Solver<'p> {
                     (st, 1.0)
                 }
                 Op::Dyad(d) => {
-                    let r = match bad(&self.pst, &[d.k1, d.k2]) {
-                        Some(st) => (st, f64::NAN),
-                        None => self.dyad(d),
+                    let (r, own) = match bad(&self.pst, &[d.k1, d.k2]) {
+                        Some(st) => ((st, f64::NAN), false),
+                        None => {
+                            let r = self.dyad(i, d, theta);
+                            (r, matches!(r.0, Status::NotAssemblable | Status::BranchJump))
+                        }
                     };
+                    self.own_failure[i] = own;
+                    failed |= own;
                     self.pst[d.p] = r.0;
                     r
                 }
@@ -211,25 +283,51 @@ impl<'p> Solver<'p> {
         failed
     }
 
-    fn dyad(&mut self, d: &Dyad) -> (Status, f64) {
-        let (a, b) = (self.pos[d.k1], self.pos[d.k2]);
-        match d.solve(a, b) {
-            DyadOut::Solved(p, det) => {
-                if !(det.abs() >= self.opts.newton.singular) {
-                    return (if det.is_nan() { Status::NonFinite } else { Status::Singular }, det);
-                }
-                self.pos[d.p] = p;
-                if self.need_vel {
-                    match Dyad::velocity(p, a, b, self.vel[d.k1], self.vel[d.k2]) {
-                        Some(v) => self.vel[d.p] = v,
-                        None => return (Status::Singular, det),
-                    }
-                }
-                (Status::Converged, det)
+    /// The dyad of op `i` at `theta` on the side it is on; the side flips at a change point
+    /// (see the module's notes). A fold is NOT_ASSEMBLABLE here (the caller halves the step
+    /// and, at the smallest, records the dead point).
+    fn dyad(&mut self, i: usize, d: &Dyad, theta: f64) -> (Status, f64) {
+        let state = self.dyads[i].expect("a dyad has a state");
+        if let Some((at, dir)) = state.limit {
+            if (theta - at) * dir > 0.0 {
+                return (Status::Limit, f64::NAN);
             }
-            DyadOut::NotAssemblable => (Status::NotAssemblable, f64::NAN),
-            DyadOut::Indeterminate => (Status::Singular, 0.0),
         }
+        let (a, b) = (self.pos[d.k1], self.pos[d.k2]);
+        let mut side = state.side;
+        let (mut p, mut det) = match d.solve_side(a, b, side) {
+            DyadOut::Solved(p, det) => (p, det),
+            DyadOut::NotAssemblable => return (Status::NotAssemblable, f64::NAN),
+            DyadOut::Indeterminate => return (Status::Singular, 0.0),
+        };
+        let pred = state.predict(theta, self.opts.max_step);
+        // the other side fits the prediction better: the links went through a line
+        if (pred - det).abs() > (pred + det).abs() {
+            let fine = self.step <= self.opts.max_step * 2f64.powi(-FLIP_HALVINGS);
+            if !fine {
+                return (Status::BranchJump, det);
+            }
+            side = -side;
+            if let DyadOut::Solved(q, t) = d.solve_side(a, b, side) {
+                (p, det) = (q, t);
+            }
+        }
+        if !(det.abs() >= self.opts.newton.singular) {
+            if det.is_nan() {
+                return (Status::NonFinite, det);
+            }
+            // at a dead point: the path reached it (the slope carries over)
+            self.dyads[i] = Some(DyadState { side, theta, det, ..state });
+            return (Status::Singular, det);
+        }
+        self.pos[d.p] = p;
+        let (va, vb) = (self.vel[d.k1], self.vel[d.k2]);
+        let Some(v) = Dyad::velocity(p, a, b, va, vb) else { return (Status::Singular, det) };
+        self.vel[d.p] = v;
+        // d det / d theta of cross(a - p, b - p) / (r1 r2)
+        let ddet = (cross(sub(va, v), sub(b, p)) + cross(sub(a, p), sub(vb, v))) / (d.r1 * d.r2);
+        self.dyads[i] = Some(DyadState { side, theta, det, ddet, limit: None });
+        (Status::Converged, det)
     }
 
     fn group(&mut self, i: usize, theta: f64) -> (Status, f64) {
@@ -245,14 +343,36 @@ impl<'p> Solver<'p> {
         let delta = g.deltas(|p| self.pos[p]);
         let ddelta = g.deltas(|p| self.vel[p]);
         let nc = g.closures.len();
-        let out: GroupSolve = g.solve(&delta[..nc], Some(&ddelta[..nc]), &guess[..n], &self.step_newton);
+        let solve = |guess: &[f64], opts: &NewtonOptions| g.solve(&delta[..nc], Some(&ddelta[..nc]), guess, opts);
+        let jump = |out: &GroupSolve, guess: &[f64]| {
+            (0..n).map(|k| wrap_angle(out.phi[k] - guess[k]).abs()).fold(0.0, f64::max)
+        };
+        let mut out: GroupSolve = solve(&guess[..n], &self.step_newton);
         self.nit += out.nit;
-        let mut status = out.status;
-        if status == Status::Converged {
-            let jumped = (0..n).any(|k| wrap_angle(out.phi[k] - guess[k]).abs() > JUMP);
-            if out.det * g.sign < 0.0 || jumped {
-                status = Status::BranchJump;
+        if out.status == Status::MaxIterations && self.opts.newton.max_iter > self.step_newton.max_iter {
+            // Newton converges only linearly near a dead point: give it the user's budget
+            out = solve(&guess[..n], &self.opts.newton);
+            self.nit += out.nit;
+        }
+        let mut sign = state.sign;
+        if out.status == Status::Converged && out.det * sign < 0.0 {
+            // near a dead point both branches are close: the prediction reflected through
+            // the solution found starts Newton on the other one
+            let mirror: Vec<f64> = (0..n).map(|k| guess[k] - wrap_angle(out.phi[k] - guess[k])).collect();
+            let again = solve(&mirror, &self.opts.newton);
+            self.nit += again.nit;
+            if again.status == Status::Converged && again.det * sign > 0.0 && jump(&again, &guess[..n]) <= JUMP {
+                out = again;
+            } else if self.step <= self.opts.max_step * 2f64.powi(-FLIP_HALVINGS)
+                && jump(&out, &guess[..n]) <= FLIP_JUMP
+            {
+                // on the predicted path over a tiny step, through a change point
+                sign = -sign;
             }
+        }
+        let mut status = out.status;
+        if status == Status::Converged && (out.det * sign < 0.0 || jump(&out, &guess[..n]) > JUMP) {
+            status = Status::BranchJump;
         }
         if status != Status::Converged {
             return (status, out.det);
@@ -273,6 +393,7 @@ impl<'p> Solver<'p> {
         st.tangent = Some(t);
         st.theta = theta;
         st.phi = out.phi;
+        st.sign = sign;
         st.limit = None;
         (Status::Converged, out.det)
     }
@@ -288,6 +409,7 @@ impl<'p> Solver<'p> {
             .iter()
             .flatten()
             .map(|g| g.theta)
+            .chain(self.dyads.iter().flatten().map(|d| d.theta))
             .max_by(|a, b| (a - to).abs().total_cmp(&(b - to).abs()))
             .unwrap_or(to);
         let h = to - from;
@@ -310,7 +432,10 @@ impl<'p> Solver<'p> {
     }
 
     fn reach(&mut self, a: f64, b: f64, depth: u32) -> bool {
-        if !self.eval(b) {
+        self.step = (b - a).abs();
+        let failed = self.eval(b);
+        self.step = f64::INFINITY;
+        if !failed {
             return true;
         }
         if depth >= MAX_HALVINGS || !b.is_finite() {
@@ -323,6 +448,13 @@ impl<'p> Solver<'p> {
                     }
                 }
             }
+            for (i, st) in self.dyads.iter_mut().enumerate() {
+                if let Some(d) = st.as_mut() {
+                    if self.own_failure[i] && self.op_status[i] != Status::Limit {
+                        d.limit = Some((d.theta, (b - d.theta).signum()));
+                    }
+                }
+            }
             return false;
         }
         let mid = 0.5 * (a + b);
@@ -331,11 +463,13 @@ impl<'p> Solver<'p> {
 
     /// The dead point (input angle) that stops the first group at LIMIT, if any.
     fn limit_angle(&self) -> f64 {
-        for (i, st) in self.groups.iter().enumerate() {
-            if let (Some(g), Status::Limit) = (st, self.op_status[i]) {
-                if let Some((at, _)) = g.limit {
-                    return at;
-                }
+        for (i, (g, d)) in self.groups.iter().zip(&self.dyads).enumerate() {
+            if self.op_status[i] != Status::Limit {
+                continue;
+            }
+            let limit = g.and_then(|g| g.limit).or_else(|| d.and_then(|d| d.limit));
+            if let Some((at, _)) = limit {
+                return at;
             }
         }
         f64::NAN
@@ -443,7 +577,10 @@ impl Plan {
             check("angular velocity", w.len(), n * nl)?;
         }
         if !self.has_group() {
-            return columns::sweep(self, theta, opts, &mut out, &poll);
+            columns::sweep(self, theta, opts, &mut out, &poll)?;
+            if self.certified(theta, opts, &out) {
+                return Ok(());
+            }
         }
         let limit = Status::Limit.code();
         self.continuation(theta, 0..n, opts, &mut out, false, &poll)?;
@@ -452,6 +589,59 @@ impl Plan {
             let last = (0..n).rev().take_while(|&k| out.status[k] == limit || !theta[k].is_finite()).last();
             if let Some(first) = last {
                 self.continuation(theta, (first..n).rev(), opts, &mut out, true, &poll)?;
+            }
+        }
+        self.classify_limits(theta, &mut out, interrupt)
+    }
+
+    /// A column sweep (dyads on their drawn sides) is the drawn circuit's motion when no
+    /// dyad came near a dead point: every angle solved, each step's conditioning at least
+    /// [`CERTIFIED`] in size, and the angles in sweep order (from the drawn angle) no more
+    /// than `max_step` apart. Otherwise the plan is followed by continuation.
+    fn certified(&self, theta: &[f64], opts: &SceneSweepOptions, out: &SceneSweepOut<'_>) -> bool {
+        let mut prev = self.theta0;
+        for (k, &t) in theta.iter().enumerate() {
+            let h = if k == 0 { wrap_angle(t - prev) } else { t - prev };
+            if !(h.abs() <= opts.max_step) {
+                return false;
+            }
+            prev = t;
+        }
+        out.status.iter().all(|&s| s == Status::Converged.code()) && out.step_det.iter().all(|d| d.abs() >= CERTIFIED)
+    }
+
+    /// An angle that the drawn circuit does not reach is LIMIT when the linkage has some
+    /// assembly there (another circuit or branch) and NOT_ASSEMBLABLE when it has none:
+    /// every assembly is enumerated there (dyad sides; the homotopy for groups of at most
+    /// [`CLASSIFIED_GROUP`] links). A plan with a larger group keeps LIMIT (its all-solution
+    /// solve costs milliseconds per angle: [`Plan::assemblies`] answers it on request).
+    fn classify_limits(
+        &self,
+        theta: &[f64],
+        out: &mut SceneSweepOut<'_>,
+        interrupt: &dyn Interrupt,
+    ) -> Result<(), Error> {
+        let (limit, none) = (Status::Limit.code(), Status::NotAssemblable.code());
+        let (np, ns) = (self.points.len(), self.steps.len());
+        let hopts = HomotopyOptions::default();
+        if self.ops.iter().any(|o| matches!(o, Op::Group(g) if g.n() > CLASSIFIED_GROUP)) {
+            return Ok(());
+        }
+        for (k, &t) in theta.iter().enumerate() {
+            if out.status[k] != limit || !t.is_finite() {
+                continue;
+            }
+            if !self.assemblies(t, &hopts, interrupt)?.list.is_empty() {
+                continue;
+            }
+            out.status[k] = none;
+            out.limit[k] = f64::NAN;
+            for code in
+                out.step_status[k * ns..(k + 1) * ns].iter_mut().chain(&mut out.point_status[k * np..(k + 1) * np])
+            {
+                if *code == limit {
+                    *code = none;
+                }
             }
         }
         Ok(())
@@ -494,7 +684,18 @@ impl Plan {
                             l.0 += shift;
                         }
                     }
-                    s.last_eval = t;
+                    for d in s.dyads.iter_mut().flatten() {
+                        d.theta += t - start;
+                        if let Some(l) = d.limit.as_mut() {
+                            l.0 += t - start;
+                        }
+                    }
+                    if start == t {
+                        s.last_eval = t;
+                    } else {
+                        // the same pose, solved at the angle asked for (not a turn away)
+                        s.eval(t);
+                    }
                     started = true;
                 } else {
                     s.advance(t, poll)?;
