@@ -6,9 +6,8 @@ another assembly and NOT_ASSEMBLABLE where it has none. Checked against closed f
 import math
 
 import numpy as np
-import pytest
-
 import planarkin as pk
+import pytest
 
 
 def four_bar(r1, r2, r3, r4, theta, side=1.0, b=None):

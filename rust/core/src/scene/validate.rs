@@ -6,6 +6,7 @@ use std::collections::HashMap;
 
 use nalgebra::DMatrix;
 
+use super::plan;
 use super::vec2::{perp, sub, Xy};
 use super::{Link, Pivoted, Scene, SceneSpec};
 use crate::error::Error;
@@ -15,11 +16,22 @@ const COINCIDENT: f64 = 1e-12;
 /// The constraint Jacobian at the drawn pose is rank deficient when its smallest singular
 /// value is below this fraction of its largest.
 const RANK_TOL: f64 = 1e-9;
+/// Largest Jacobian (unknowns) whose singular values are computed when the plan cannot
+/// prove full rank (cubic time: about 0.1 s at this size).
+const DENSE_COLUMNS: usize = 600;
+/// Most points (and most links) a scene may have: loading stays near linear in its size,
+/// so this bounds a file's memory and time (a million points load in seconds).
+const MAX_ENTRIES: usize = 1_000_000;
 
 pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
     let SceneSpec { points, links, ground, input, output } = spec;
     if points.is_empty() {
         return Err(Error::scene("points", "the scene has no points"));
+    }
+    for (what, n) in [("points", points.len()), ("links", links.len())] {
+        if n > MAX_ENTRIES {
+            return Err(Error::scene(what, format!("{n} entries; a scene may have at most {MAX_ENTRIES}")));
+        }
     }
     let mut index: HashMap<&str, usize> = HashMap::new();
     for (i, (name, xy)) in points.iter().enumerate() {
@@ -38,6 +50,8 @@ pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
     }
     let mut link_index: HashMap<&str, usize> = HashMap::new();
     let mut parsed = Vec::with_capacity(links.len());
+    // the link (plus one) that last listed each point: a repeat within a link in O(1)
+    let mut listed_by = vec![0usize; points.len()];
     for (k, (name, pts)) in links.iter().enumerate() {
         let entry = format!("links.{name}");
         if link_index.insert(name.as_str(), k).is_some() {
@@ -49,41 +63,34 @@ pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
         let mut idx = Vec::with_capacity(pts.len());
         for p in pts {
             let &i = index.get(p.as_str()).ok_or_else(|| Error::scene(&entry, format!("unknown point {p:?}")))?;
-            if idx.contains(&i) {
+            if listed_by[i] == k + 1 {
                 return Err(Error::scene(&entry, format!("lists point {p:?} twice")));
             }
+            listed_by[i] = k + 1;
             idx.push(i);
         }
         parsed.push(Link { name: name.clone(), points: idx });
     }
 
-    // Size of the scene: the largest distance between two points of one link.
-    let dist = |a: usize, b: usize| {
-        let d = sub(drawn[a], drawn[b]);
-        (d[0] * d[0] + d[1] * d[1]).sqrt()
-    };
-    let mut size = 0.0_f64;
-    for l in &parsed {
-        for (i, &a) in l.points.iter().enumerate() {
-            for &b in &l.points[i + 1..] {
-                size = size.max(dist(a, b));
-            }
-        }
+    // Size of the scene: the largest diagonal of a link's bounding box, measured after an
+    // exact power-of-two scaling by its largest side (no square overflows or underflows,
+    // from 1e-300 to 1e300).
+    let mut side = 0.0_f64;
+    let boxes: Vec<(Xy, Xy)> = parsed.iter().map(|l| bounding_box(l.points.iter().map(|&p| drawn[p]))).collect();
+    for (lo, hi) in &boxes {
+        side = side.max(hi[0] - lo[0]).max(hi[1] - lo[1]);
     }
-    if !size.is_finite() {
+    if !side.is_finite() {
         return Err(Error::scene("points", "coordinates are too large to measure (a distance overflows)"));
     }
+    let pre = power_of_two_below(side);
+    let size = boxes.iter().map(|(lo, hi)| ((hi[0] - lo[0]) / pre).hypot((hi[1] - lo[1]) / pre)).fold(0.0, f64::max);
     for l in &parsed {
-        for (i, &a) in l.points.iter().enumerate() {
-            for &b in &l.points[i + 1..] {
-                let d = dist(a, b);
-                if !(d > COINCIDENT * size) {
-                    return Err(Error::scene(
-                        format!("links.{}", l.name),
-                        format!("points {:?} and {:?} coincide (distance {d:e})", names[a], names[b]),
-                    ));
-                }
-            }
+        if let Some((a, b, d)) = coincident(&l.points, &drawn, pre, COINCIDENT * size) {
+            return Err(Error::scene(
+                format!("links.{}", l.name),
+                format!("points {:?} and {:?} coincide (distance {:e})", names[a], names[b], d * pre),
+            ));
         }
     }
 
@@ -139,8 +146,7 @@ pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
         ));
     }
 
-    let e = size.log2().floor() as i32;
-    let scale = 2f64.powi(e);
+    let scale = power_of_two_below(size * pre);
     let origin = drawn[input.pivot];
     let xy: Vec<Xy> = drawn.iter().map(|&p| [(p[0] - origin[0]) / scale, (p[1] - origin[1]) / scale]).collect();
     let d = sub(xy[input.tip], xy[input.pivot]);
@@ -149,6 +155,50 @@ pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
     let sc = Scene { names, drawn, xy, origin, scale, links: parsed, point_links, ground, input, output, theta0 };
     rank_check(&sc)?;
     Ok(sc)
+}
+
+/// The largest power of two at most `x` (> 0, finite; subnormal sizes included).
+fn power_of_two_below(x: f64) -> f64 {
+    if !(x > 0.0) {
+        return 1.0;
+    }
+    // exact for normal and subnormal x: powi would over- or underflow past 2^1023 / 2^-1022
+    let e = x.log2().floor() as i32;
+    let p = 2f64.powi(e.clamp(-1022, 1023));
+    let p = if e < -1022 { p * 2f64.powi(e + 1022) } else { p };
+    if p > x {
+        p / 2.0
+    } else {
+        p
+    }
+}
+
+fn bounding_box(points: impl Iterator<Item = Xy>) -> (Xy, Xy) {
+    points.fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
+        ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
+    })
+}
+
+/// Two of `points` closer than `tol` (in units of `pre`): the first such pair and its
+/// distance. Sorted by x, each point is compared with those within `tol` of it in x: near
+/// linear for the points of one link, however many.
+fn coincident(points: &[usize], drawn: &[Xy], pre: f64, tol: f64) -> Option<(usize, usize, f64)> {
+    // (x, y, position in the link's list)
+    let mut order: Vec<(f64, f64, usize)> =
+        points.iter().enumerate().map(|(k, &p)| (drawn[p][0] / pre, drawn[p][1] / pre, k)).collect();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // the pair first in the link's listed order, as a reader scans it
+    let mut found: Option<(usize, usize, f64)> = None;
+    for (i, a) in order.iter().enumerate() {
+        for b in order[i + 1..].iter().take_while(|b| b.0 - a.0 <= tol) {
+            let d = (b.0 - a.0).hypot(b.1 - a.1);
+            let pair = (a.2.min(b.2), a.2.max(b.2));
+            if !(d > tol) && found.is_none_or(|f| pair < (f.0, f.1)) {
+                found = Some((pair.0, pair.1, d));
+            }
+        }
+    }
+    found.map(|(i, j, d)| (points[i], points[j], d))
 }
 
 /// M = 3 (links - 1) - 2 joints.
@@ -160,7 +210,42 @@ pub(super) fn gruebler(links: usize, point_links: &[Vec<usize>]) -> i64 {
 /// The constraint Jacobian at the drawn pose, with the input angle held, must be square and
 /// of full rank: otherwise the drawn pose is a dead point, or the linkage has more freedom
 /// there than its count says (e.g. a structure that moves because of special geometry).
+///
+/// The plan is the cheap proof: it solves the constraints in order, so where each of its
+/// steps is regular at the drawn pose the Jacobian is block triangular with regular blocks
+/// (time linear in the scene's size). Otherwise, up to [`DENSE_COLUMNS`] unknowns, the
+/// singular values decide (and say why); a larger scene gets the plan's own answer.
 fn rank_check(sc: &Scene) -> Result<(), Error> {
+    let points: Vec<usize> = (0..sc.names.len()).collect();
+    let links: Vec<usize> = (0..sc.links.len()).collect();
+    let planned = plan::compile(sc, &points, &links);
+    if let Ok(p) = &planned {
+        let (_, dets) = p.dets_at(&sc.xy);
+        match dets.iter().position(|d| !(d.abs() > RANK_TOL)) {
+            None => return Ok(()),
+            Some(k) if 3 * (sc.links.len() - 1) > DENSE_COLUMNS => {
+                let step = &p.steps()[k];
+                let at: Vec<&str> = step.points.iter().map(|&q| sc.names[q].as_str()).collect();
+                return Err(Error::scene(
+                    "mobility",
+                    format!(
+                        "the drawn pose is a dead point: the {} solving {at:?} has conditioning {:.1e}",
+                        step.kind.name(),
+                        dets[k]
+                    ),
+                ));
+            }
+            Some(_) => {}
+        }
+    }
+    if 3 * (sc.links.len() - 1) > DENSE_COLUMNS {
+        return planned.map(|_| ());
+    }
+    dense_rank_check(sc)
+}
+
+/// [`rank_check`] by the singular values of the whole Jacobian.
+fn dense_rank_check(sc: &Scene) -> Result<(), Error> {
     // unknowns: (tx, ty, phi) of every non-ground link; a link's points are
     // t + R(phi) (p - p_first)
     let col: Vec<Option<usize>> = {
