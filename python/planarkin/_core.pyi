@@ -152,7 +152,7 @@ class Plan:
         omega: float | None,
     ) -> tuple[
         _F64, _F64, _I8, npt.NDArray[np.uint32], _F64, _F64, _I8, _F64, _I8,
-        tuple[_F64, _F64] | None,
+        tuple[_F64, _F64, _F64, _F64] | None,
     ]: ...  # fmt: skip
 
 def set_simd(enabled: bool) -> bool: ...

@@ -96,6 +96,9 @@ class SceneSweep(SweepResult):
     #: (N, P, 2) velocities and (N, L) angular velocities when ``omega`` was given.
     velocity_array: np.ndarray | None = None
     angular_velocity_array: np.ndarray | None = None
+    #: (N, P, 2) accelerations and (N, L) angular accelerations at constant ``omega``.
+    acceleration_array: np.ndarray | None = None
+    angular_acceleration_array: np.ndarray | None = None
     #: The names of the P reported points and of the L reported links, in array order.
     point_names: tuple[str, ...] = field(default=(), kw_only=True)
     link_names: tuple[str, ...] = field(default=(), kw_only=True)
@@ -118,6 +121,8 @@ class SceneSweep(SweepResult):
             point_status_array=pstat,
             velocity_array=None if vel is None else vel[0],
             angular_velocity_array=None if vel is None else vel[1],
+            acceleration_array=None if vel is None else vel[2],
+            angular_acceleration_array=None if vel is None else vel[3],
             point_names=plan.points,
             link_names=plan.links,
         )
@@ -149,6 +154,18 @@ class SceneSweep(SweepResult):
         """link -> (N,) angular velocities when ``omega`` was given."""
         w = self.angular_velocity_array
         return None if w is None else {n: w[:, j] for j, n in enumerate(self.link_names)}
+
+    @cached_property
+    def accelerations(self) -> dict[str, np.ndarray] | None:
+        """name -> (N, 2) accelerations (scene units per time squared) at constant ``omega``."""
+        a = self.acceleration_array
+        return None if a is None else {n: a[:, j] for j, n in enumerate(self.point_names)}
+
+    @cached_property
+    def angular_accelerations(self) -> dict[str, np.ndarray] | None:
+        """link -> (N,) angular accelerations at constant ``omega``."""
+        a = self.angular_acceleration_array
+        return None if a is None else {n: a[:, j] for j, n in enumerate(self.link_names)}
 
     def _describe(self) -> str:
         steps = "no plan (reference)" if self.plan is None else f"{len(self.plan)} steps"

@@ -131,7 +131,7 @@ type SceneSweepArrays<'py> = (
     Arr2<'py, i8>,
     Arr2<'py, f64>,
     Arr2<'py, i8>,
-    Option<(Arr3<'py, f64>, Arr2<'py, f64>)>,
+    Option<(Arr3<'py, f64>, Arr2<'py, f64>, Arr3<'py, f64>, Arr2<'py, f64>)>,
 );
 
 #[pymethods]
@@ -155,7 +155,8 @@ impl PyPlan {
     }
 
     /// Sweep: (points (N,P,2), angles (N,L), status, nit, det, limit, step_status (N,S),
-    /// step_det (N,S), point_status (N,P), (velocity (N,P,2), angular velocity (N,L))?).
+    /// step_det (N,S), point_status (N,P), (velocity (N,P,2), angular velocity (N,L),
+    /// acceleration (N,P,2), angular acceleration (N,L))?).
     #[pyo3(signature = (theta, tol, max_iter, max_step, omega))]
     fn sweep<'py>(
         &self,
@@ -180,6 +181,7 @@ impl PyPlan {
         let (mut step_status, mut step_det, mut point_status) =
             (zeros(what, nsn)?, zeros(what, nsn)?, zeros(what, npn / 2)?);
         let mut vel = omega.map(|_| Ok::<_, PyErr>((zeros(what, npn)?, zeros(what, nln)?))).transpose()?;
+        let mut acc = omega.map(|_| Ok::<_, PyErr>((zeros(what, npn)?, zeros(what, nln)?))).transpose()?;
         Signals::detach(py, |signals| {
             let out = SceneSweepOut {
                 points: &mut points,
@@ -192,6 +194,7 @@ impl PyPlan {
                 step_det: &mut step_det,
                 point_status: &mut point_status,
                 velocity: vel.as_mut().map(|(v, w)| (v.as_mut_slice(), w.as_mut_slice())),
+                acceleration: acc.as_mut().map(|(v, w)| (v.as_mut_slice(), w.as_mut_slice())),
             };
             plan.sweep(t, &opts, out, signals)
         })?;
@@ -205,7 +208,9 @@ impl PyPlan {
             grid(py, n, ns, step_status),
             grid(py, n, ns, step_det),
             grid(py, n, np, point_status),
-            vel.map(|(v, w)| (cube(py, (n, np, 2), v), grid(py, n, nl, w))),
+            vel.zip(acc).map(|((v, w), (a, al))| {
+                (cube(py, (n, np, 2), v), grid(py, n, nl, w), cube(py, (n, np, 2), a), grid(py, n, nl, al))
+            }),
         ))
     }
 }

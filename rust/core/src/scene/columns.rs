@@ -9,6 +9,7 @@
 use super::dyad::{Dyad, DyadOut};
 use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
+use super::vec2::angular_acceleration;
 use crate::error::Error;
 use crate::interrupt::Poll;
 use crate::Status;
@@ -24,6 +25,9 @@ struct Columns {
     y: Vec<f64>,
     vx: Vec<f64>,
     vy: Vec<f64>,
+    /// Second derivatives by the input angle (empty unless accelerations are asked for).
+    ax: Vec<f64>,
+    ay: Vec<f64>,
     st: Vec<i8>,
 }
 
@@ -35,6 +39,7 @@ pub(super) fn sweep(
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
     let np = plan.npoints;
+    // velocities and accelerations go together: both come with `omega`
     let vel = opts.omega.is_some();
     let nv = if vel { np * B } else { 0 };
     let mut c = Columns {
@@ -42,6 +47,8 @@ pub(super) fn sweep(
         y: vec![0.0; np * B],
         vx: vec![0.0; nv],
         vy: vec![0.0; nv],
+        ax: vec![0.0; nv],
+        ay: vec![0.0; nv],
         st: vec![OK; np * B],
     };
     for &(p, xy) in &plan.fixed {
@@ -89,6 +96,8 @@ pub(super) fn sweep(
                             let (u0, u1) = (cs[j], sn[j]);
                             c.vx[o + j] = -lam * u1 - mu * u0;
                             c.vy[o + j] = lam * u0 - mu * u1;
+                            c.ax[o + j] = -(lam * u0 - mu * u1);
+                            c.ay[o + j] = -(lam * u1 + mu * u0);
                         }
                     }
                 }
@@ -109,6 +118,12 @@ pub(super) fn sweep(
                             let (dx, dy) = (c.vx[ob + j] - ax, c.vy[ob + j] - ay);
                             c.vx[oq + j] = ax + (m0 * dx - m1 * dy);
                             c.vy[oq + j] = ay + (m1 * dx + m0 * dy);
+                        }
+                        for j in 0..m {
+                            let (ax, ay) = (c.ax[oa + j], c.ay[oa + j]);
+                            let (dx, dy) = (c.ax[ob + j] - ax, c.ay[ob + j] - ay);
+                            c.ax[oq + j] = ax + (m0 * dx - m1 * dy);
+                            c.ay[oq + j] = ay + (m1 * dx + m0 * dy);
                         }
                     }
                     for j in 0..m {
@@ -175,10 +190,15 @@ fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det
             let p = [c.x[op + j], c.y[op + j]];
             let (a, b) = ([c.x[o1 + j], c.y[o1 + j]], [c.x[o2 + j], c.y[o2 + j]]);
             let (va, vb) = ([c.vx[o1 + j], c.vy[o1 + j]], [c.vx[o2 + j], c.vy[o2 + j]]);
-            match Dyad::velocity(p, a, b, va, vb) {
-                Some(v) => {
+            let (wa, wb) = ([c.ax[o1 + j], c.ay[o1 + j]], [c.ax[o2 + j], c.ay[o2 + j]]);
+            let solved = Dyad::velocity(p, a, b, va, vb)
+                .and_then(|v| Dyad::acceleration(p, a, b, v, va, vb, wa, wb).map(|w| (v, w)));
+            match solved {
+                Some((v, w)) => {
                     c.vx[op + j] = v[0];
                     c.vy[op + j] = v[1];
+                    c.ax[op + j] = w[0];
+                    c.ay[op + j] = w[1];
                 }
                 None => {
                     let st = Status::Singular.code();
@@ -240,6 +260,22 @@ fn write_block(
                 let (dx, dy) = (c.x[ob] - c.x[oa], c.y[ob] - c.y[oa]);
                 let (dvx, dvy) = (c.vx[ob] - c.vx[oa], c.vy[ob] - c.vy[oa]);
                 *dst = if ok(a) && ok(b) { (dx * dvy - dy * dvx) / (dx * dx + dy * dy) * omega } else { f64::NAN };
+            }
+        }
+        if let Some((acc, alpha)) = out.acceleration.as_mut() {
+            let w2 = omega * omega;
+            for (dst, &p) in acc[2 * k * np..2 * (k + 1) * np].chunks_exact_mut(2).zip(&plan.points) {
+                let o = p * B + j;
+                let good = ok(p);
+                dst[0] = if good { c.ax[o] * sc * w2 } else { f64::NAN };
+                dst[1] = if good { c.ay[o] * sc * w2 } else { f64::NAN };
+            }
+            for (dst, &(a, b)) in alpha[k * nl..(k + 1) * nl].iter_mut().zip(&plan.link_points) {
+                let (oa, ob) = (a * B + j, b * B + j);
+                let d = [c.x[ob] - c.x[oa], c.y[ob] - c.y[oa]];
+                let dv = [c.vx[ob] - c.vx[oa], c.vy[ob] - c.vy[oa]];
+                let dw = [c.ax[ob] - c.ax[oa], c.ay[ob] - c.ay[oa]];
+                *dst = if ok(a) && ok(b) { angular_acceleration(d, dv, dw) * w2 } else { f64::NAN };
             }
         }
         let mut det = 1.0;

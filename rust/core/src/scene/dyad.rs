@@ -86,13 +86,28 @@ impl Dyad {
     #[inline]
     pub(super) fn velocity(p: Xy, a: Xy, b: Xy, va: Xy, vb: Xy) -> Option<Xy> {
         let (e1, e2) = (sub(p, a), sub(p, b));
-        let det = cross(e1, e2);
-        if det == 0.0 {
-            return None;
-        }
-        let (c1, c2) = (dot(e1, va), dot(e2, vb));
-        Some([(c1 * e2[1] - c2 * e1[1]) / det, (e1[0] * c2 - e2[0] * c1) / det])
+        solve2(e1, e2, dot(e1, va), dot(e2, vb))
     }
+
+    /// Acceleration of the solved point (velocity `v`) from the known points' velocities
+    /// and accelerations: (p - k_i) . (w - w_i) + |v - v_i|^2 = 0. `None` at a dead point.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn acceleration(p: Xy, a: Xy, b: Xy, v: Xy, va: Xy, vb: Xy, wa: Xy, wb: Xy) -> Option<Xy> {
+        let (e1, e2) = (sub(p, a), sub(p, b));
+        let (d1, d2) = (sub(v, va), sub(v, vb));
+        solve2(e1, e2, dot(e1, wa) - dot(d1, d1), dot(e2, wb) - dot(d2, d2))
+    }
+}
+
+/// x with e1 . x = c1 and e2 . x = c2 (Cramer); `None` when e1 and e2 are parallel.
+#[inline]
+fn solve2(e1: Xy, e2: Xy, c1: f64, c2: f64) -> Option<Xy> {
+    let det = cross(e1, e2);
+    if det == 0.0 {
+        return None;
+    }
+    Some([(c1 * e2[1] - c2 * e1[1]) / det, (e1[0] * c2 - e2[0] * c1) / det])
 }
 
 #[cfg(test)]
@@ -120,5 +135,26 @@ mod tests {
         let v = Dyad::velocity(p, a, b, va, vb).unwrap();
         assert!(dot(sub(p, a), sub(v, va)).abs() < 1e-15);
         assert!(dot(sub(p, b), sub(v, vb)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn acceleration_is_the_second_derivative_of_the_closed_form() {
+        // k1 turns on a unit circle (k1'' = -k1), k2 is fixed: central differences of the
+        // solved point against the closed-form acceleration
+        let d = Dyad { p: 0, k1: 0, k2: 0, r1: 2.5, r2: 2.0, side: 1.0, links: [0, 0] };
+        let at = |t: f64| {
+            let DyadOut::Solved(p, _) = d.solve([t.cos(), t.sin()], [3.0, 0.5]) else { panic!() };
+            p
+        };
+        let (t, h) = (0.7_f64, 1e-4);
+        let (pm, p0, pp) = (at(t - h), at(t), at(t + h));
+        let a = [t.cos(), t.sin()];
+        let va = [-a[1], a[0]];
+        let v = Dyad::velocity(p0, a, [3.0, 0.5], va, [0.0; 2]).unwrap();
+        let w = Dyad::acceleration(p0, a, [3.0, 0.5], v, va, [0.0; 2], [-a[0], -a[1]], [0.0; 2]).unwrap();
+        for k in 0..2 {
+            let fd = (pp[k] - 2.0 * p0[k] + pm[k]) / (h * h);
+            assert!((fd - w[k]).abs() < 1e-6, "{k}: {fd} vs {}", w[k]);
+        }
     }
 }

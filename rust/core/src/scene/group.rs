@@ -341,6 +341,36 @@ impl Group {
         debug_assert_eq!(pos.len(), na + self.nodes.len());
     }
 
+    /// d2phi / dtheta2 at rotations `phi` with rates `dphi`, from the anchors' second
+    /// derivatives `dd2` (a_plus'' - a_minus'' per closure): differentiating each closure
+    /// twice, J phi'' = -dd2 + sum_j R(phi_j) u_cj phi_j'^2. `None` where J is singular.
+    pub(super) fn second(&self, phi: &[f64], dphi: &[f64], dd2: &[Xy]) -> Option<[f64; MAX]> {
+        dispatch!(self.n(), second_n, self, phi, dphi, dd2)
+    }
+
+    /// Accelerations of the nodes (per unit input rate squared): a node at base + R(phi) v
+    /// has base'' + phi'' perp(R v) - phi'^2 R v.
+    pub(super) fn place_acceleration(
+        &self,
+        dphi: &[f64],
+        ddphi: &[f64],
+        pos: impl Fn(usize) -> Xy,
+        anchor_acc: &[Xy],
+        mut put: impl FnMut(usize, Xy),
+    ) {
+        let mut acc: Vec<Xy> = anchor_acc.to_vec();
+        let na = self.anchors.len();
+        let point_of = |g: usize| if g < na { self.anchors[g] } else { self.nodes[g - na].point };
+        for nd in &self.nodes {
+            let r = sub(pos(nd.point), pos(point_of(nd.base)));
+            let (w, dw) = (dphi[nd.link], ddphi[nd.link]);
+            let ab = acc[nd.base];
+            let a = [ab[0] - dw * r[1] - w * w * r[0], ab[1] + dw * r[0] - w * w * r[1]];
+            acc.push(a);
+            put(nd.point, a);
+        }
+    }
+
     /// Velocities of the nodes (per unit input rate) from the anchors' velocities and dphi.
     pub(super) fn place_velocity(
         &self,
@@ -399,6 +429,31 @@ fn cond_n<const N: usize>(g: &Group, delta: &[Xy], phi: &[f64]) -> f64 {
     let x = SVector::<f64, N>::from_fn(|k, _| phi[k]);
     let (_, j) = System::<N>::eval(&At { g, delta }, &x);
     hadamard_ratio(&j)
+}
+
+fn second_n<const N: usize>(g: &Group, phi: &[f64], dphi: &[f64], dd2: &[Xy]) -> Option<[f64; MAX]> {
+    let mut j = SMatrix::<f64, N, N>::zeros();
+    let mut rhs = SVector::<f64, N>::zeros();
+    for (c, cl) in g.closures.iter().enumerate() {
+        let (mut rx, mut ry) = (-dd2[c][0], -dd2[c][1]);
+        for (k, u) in cl.u.iter().enumerate() {
+            if u[0] == 0.0 && u[1] == 0.0 {
+                continue;
+            }
+            let r = turn(cs_of(phi[k]), *u);
+            let w2 = dphi[k] * dphi[k];
+            rx += r[0] * w2;
+            ry += r[1] * w2;
+            j[(2 * c, k)] = -r[1];
+            j[(2 * c + 1, k)] = r[0];
+        }
+        rhs[2 * c] = rx;
+        rhs[2 * c + 1] = ry;
+    }
+    let x = newton::eliminate(j, rhs, &mut 1.0)?;
+    let mut out = [f64::NAN; MAX];
+    out[..N].copy_from_slice(x.as_slice());
+    Some(out)
 }
 
 fn solve_n<const N: usize>(

@@ -11,7 +11,8 @@ pub struct SceneSweepOptions {
     pub newton: NewtonOptions,
     /// Largest continuation step of a group (radians of input angle).
     pub max_step: f64,
-    /// Input angular velocity: point and link velocities are computed when given.
+    /// Input angular velocity (constant): point and link velocities and accelerations are
+    /// computed when given.
     pub omega: Option<f64>,
 }
 
@@ -50,4 +51,7 @@ pub struct SceneSweepOut<'a> {
     pub point_status: &'a mut [i8],
     /// (N, P, 2) and (N, L): velocities and angular velocities, when `omega` is given.
     pub velocity: Option<(&'a mut [f64], &'a mut [f64])>,
+    /// (N, P, 2) and (N, L): accelerations and angular accelerations at constant `omega`,
+    /// when given.
+    pub acceleration: Option<(&'a mut [f64], &'a mut [f64])>,
 }

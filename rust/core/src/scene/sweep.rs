@@ -19,7 +19,7 @@ use super::dyad::{Dyad, DyadOut};
 use super::group::{GroupSolve, MAX};
 use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
-use super::vec2::{cross, dot, perp, sub, Xy};
+use super::vec2::{angular_acceleration, cross, dot, perp, sub, Xy};
 use crate::error::Error;
 use crate::interrupt::{Interrupt, Poll};
 use crate::solve::homotopy::HomotopyOptions;
@@ -136,6 +136,9 @@ struct Solver<'p> {
     need_vel: bool,
     pos: Vec<Xy>,
     vel: Vec<Xy>,
+    /// Second derivatives of positions by the input (accelerations when `omega` is given).
+    acc: Vec<Xy>,
+    need_acc: bool,
     pst: Vec<Status>,
     op_status: Vec<Status>,
     op_det: Vec<f64>,
@@ -164,6 +167,8 @@ impl<'p> Solver<'p> {
             need_vel: true,
             pos: vec![[f64::NAN; 2]; n],
             vel: vec![[0.0; 2]; n],
+            acc: vec![[0.0; 2]; n],
+            need_acc: opts.omega.is_some(),
             pst: vec![Status::Converged; n],
             op_status: vec![Status::Converged; plan.ops.len()],
             op_det: vec![1.0; plan.ops.len()],
@@ -230,6 +235,8 @@ impl<'p> Solver<'p> {
                     let p = plan.pivot;
                     self.pos[*q] = [p[0] + lam * u[0] + mu * pu[0], p[1] + lam * u[1] + mu * pu[1]];
                     self.vel[*q] = [lam * pu[0] - mu * u[0], lam * pu[1] - mu * u[1]];
+                    // a point turning about the pivot: q'' = -(q - pivot)
+                    self.acc[*q] = [-(lam * u[0] + mu * pu[0]), -(lam * u[1] + mu * pu[1])];
                     self.pst[*q] = st;
                     (st, 1.0)
                 }
@@ -255,6 +262,11 @@ impl<'p> Solver<'p> {
                         let (va, vb) = (self.vel[*a], self.vel[*b]);
                         let rv = rot_m(*m, sub(vb, va));
                         self.vel[*q] = [va[0] + rv[0], va[1] + rv[1]];
+                    }
+                    if self.need_acc {
+                        let (wa, wb) = (self.acc[*a], self.acc[*b]);
+                        let rw = rot_m(*m, sub(wb, wa));
+                        self.acc[*q] = [wa[0] + rw[0], wa[1] + rw[1]];
                     }
                     self.pst[*q] = st;
                     (st, 1.0)
@@ -324,6 +336,13 @@ impl<'p> Solver<'p> {
         let (va, vb) = (self.vel[d.k1], self.vel[d.k2]);
         let Some(v) = Dyad::velocity(p, a, b, va, vb) else { return (Status::Singular, det) };
         self.vel[d.p] = v;
+        if self.need_acc {
+            let (wa, wb) = (self.acc[d.k1], self.acc[d.k2]);
+            match Dyad::acceleration(p, a, b, v, va, vb, wa, wb) {
+                Some(w) => self.acc[d.p] = w,
+                None => return (Status::Singular, det),
+            }
+        }
         // d det / d theta of cross(a - p, b - p) / (r1 r2)
         let ddet = (cross(sub(va, v), sub(b, p)) + cross(sub(a, p), sub(vb, v))) / (d.r1 * d.r2);
         self.dyads[i] = Some(DyadState { side, theta, det, ddet, limit: None });
@@ -384,6 +403,13 @@ impl<'p> Solver<'p> {
         let vel = &mut self.vel;
         let anchor_vel: Vec<Xy> = g.anchors.iter().map(|&a| vel[a]).collect();
         g.place_velocity(&out.dphi[..n], |p| pos[p], &anchor_vel, |p, v| vel[p] = v);
+        if self.need_acc {
+            let dd2 = g.deltas(|p| self.acc[p]);
+            let ddphi = g.second(&out.phi[..n], &out.dphi[..n], &dd2[..nc]).unwrap_or([f64::NAN; MAX]);
+            let anchor_acc: Vec<Xy> = g.anchors.iter().map(|&a| self.acc[a]).collect();
+            let acc = &mut self.acc;
+            g.place_acceleration(&out.dphi[..n], &ddphi[..n], |p| pos[p], &anchor_acc, |p, w| acc[p] = w);
+        }
         for nd in &g.nodes {
             self.pst[nd.point] = Status::Converged;
         }
@@ -515,6 +541,19 @@ impl<'p> Solver<'p> {
                 *dst = if ok(a) && ok(b) { cross(d, dv) / dot(d, d) * omega } else { f64::NAN };
             }
         }
+        if let Some((acc, alpha)) = out.acceleration.as_mut() {
+            let w2 = self.opts.omega.unwrap_or(0.0).powi(2);
+            for (dst, &p) in acc[2 * k * np..2 * (k + 1) * np].chunks_exact_mut(2).zip(&plan.points) {
+                let (u, good) = (self.acc[p], ok(p));
+                dst[0] = if good { u[0] * sc * w2 } else { f64::NAN };
+                dst[1] = if good { u[1] * sc * w2 } else { f64::NAN };
+            }
+            for (dst, &(a, b)) in alpha[k * nl..(k + 1) * nl].iter_mut().zip(&plan.link_points) {
+                let (d, dv) = (sub(self.pos[b], self.pos[a]), sub(self.vel[b], self.vel[a]));
+                let dw = sub(self.acc[b], self.acc[a]);
+                *dst = if ok(a) && ok(b) { angular_acceleration(d, dv, dw) * w2 } else { f64::NAN };
+            }
+        }
         let status = if all_ok {
             Status::Converged
         } else {
@@ -575,6 +614,10 @@ impl Plan {
         if let Some((v, w)) = out.velocity.as_ref() {
             check("velocity", v.len(), n * np * 2)?;
             check("angular velocity", w.len(), n * nl)?;
+        }
+        if let Some((v, w)) = out.acceleration.as_ref() {
+            check("acceleration", v.len(), n * np * 2)?;
+            check("angular acceleration", w.len(), n * nl)?;
         }
         if !self.has_group() {
             columns::sweep(self, theta, opts, &mut out, &poll)?;

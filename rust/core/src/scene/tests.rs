@@ -60,6 +60,7 @@ fn run(plan: &Plan, theta: &[f64]) -> Run {
         step_det: &mut sd,
         point_status: &mut ps,
         velocity: None,
+        acceleration: None,
     };
     plan.sweep(theta, &opts, out, &crate::interrupt::Never).unwrap();
     r
@@ -269,6 +270,7 @@ fn long_calls_stop_when_interrupted() {
         step_det: &mut sdet,
         point_status: &mut pst,
         velocity: None,
+        acceleration: None,
     };
     assert_eq!(plan.sweep(&theta, &opts, out, &yes), Err(Error::Interrupted));
     // a trace with a tiny step, and the circuits that trace

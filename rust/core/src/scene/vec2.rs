@@ -32,3 +32,11 @@ pub(crate) fn turn(cs: Xy, v: Xy) -> Xy {
 pub(crate) fn perp(v: Xy) -> Xy {
     [-v[1], v[0]]
 }
+
+/// d2/dt2 of a direction's angle atan2(d), from d, d' and d'':
+/// cross(d, d'') / |d|^2 - 2 (d . d') cross(d, d') / |d|^4.
+#[inline]
+pub(super) fn angular_acceleration(d: Xy, dv: Xy, dw: Xy) -> f64 {
+    let n = dot(d, d);
+    cross(d, dw) / n - 2.0 * dot(d, dv) * cross(d, dv) / (n * n)
+}
