@@ -348,7 +348,7 @@ class Scene:
         ms = as_float("max_step", max_step)
         w = None if omega is None else as_float("omega", omega)
         arrays = core.sweep(t, tol, max_iter, ms, w)
-        return SceneSweep.build(plan, t, *arrays)
+        return SceneSweep.build(plan, t, *arrays, omega=w)
 
     # --- every assembly, circuits, tracing ------------------------------------------------
 

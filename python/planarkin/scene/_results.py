@@ -96,15 +96,26 @@ class SceneSweep(SweepResult):
     #: (N, P, 2) velocities and (N, L) angular velocities when ``omega`` was given.
     velocity_array: np.ndarray | None = None
     angular_velocity_array: np.ndarray | None = None
+    #: (N, P, 2) accelerations and (N, L) angular accelerations at constant ``omega``
+    #: (None: not computed).
+    acceleration_array: np.ndarray | None = field(default=None, kw_only=True)
+    angular_acceleration_array: np.ndarray | None = field(default=None, kw_only=True)
+    #: The input's angular velocity (rad/s) behind the velocities (None: not given).
+    omega: float | None = field(default=None, kw_only=True)
     #: The names of the P reported points and of the L reported links, in array order.
     point_names: tuple[str, ...] = field(default=(), kw_only=True)
     link_names: tuple[str, ...] = field(default=(), kw_only=True)
 
     @classmethod
     def build(
-        cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel
-    ):  # noqa: ANN001, ANN206, E501
+        cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel,
+        acc=None, *, omega=None,
+    ):  # noqa: ANN001, ANN206, E501  # fmt: skip
+        """From the kernel's arrays; ``vel`` and ``acc`` are (points, links) pairs or None."""
         return cls(
+            acceleration_array=None if acc is None else acc[0],
+            angular_acceleration_array=None if acc is None else acc[1],
+            omega=omega,
             plan=plan,
             theta=theta,
             coords=pts,
@@ -150,8 +161,22 @@ class SceneSweep(SweepResult):
         w = self.angular_velocity_array
         return None if w is None else {n: w[:, j] for j, n in enumerate(self.link_names)}
 
+    @cached_property
+    def accelerations(self) -> dict[str, np.ndarray] | None:
+        """name -> (N, 2) accelerations (scene units per time squared) at constant
+        ``omega``, when computed."""
+        a = self.acceleration_array
+        return None if a is None else {n: a[:, j] for j, n in enumerate(self.point_names)}
+
+    @cached_property
+    def angular_accelerations(self) -> dict[str, np.ndarray] | None:
+        """link -> (N,) angular accelerations at constant ``omega``, when computed."""
+        a = self.angular_acceleration_array
+        return None if a is None else {n: a[:, j] for j, n in enumerate(self.link_names)}
+
     def _describe(self) -> str:
-        steps = "no plan (reference)" if self.plan is None else f"{len(self.plan)} steps"
+        k = 0 if self.plan is None else len(self.plan)
+        steps = "no plan (reference)" if self.plan is None else f"{k} step{'' if k == 1 else 's'}"
         names = list(self.point_names)
         return f"{steps}, points {names[:6]}{'...' if len(names) > 6 else ''}"
 
