@@ -11,7 +11,7 @@ from functools import cache
 from matplotlib import font_manager, rcParams
 from matplotlib.ft2font import FT2Font
 
-__all__ = ["FALLBACKS", "clean", "families"]
+__all__ = ["FALLBACKS", "clean", "families", "use"]
 
 #: Fonts tried, in order, after the default one for glyphs it lacks (any that is installed).
 FALLBACKS = (
@@ -68,3 +68,9 @@ def clean(text: str | None, default: str = "") -> str:
         out = " ".join(out.split(" "))
         out = "\n".join(" ".join(line.split()) for line in out.split("\n")).strip()
     return out or default
+
+
+def use() -> None:
+    """Makes the figures fall back, glyph by glyph, on every installed :data:`FALLBACKS`
+    font (the command calls it once; a notebook's own settings are its own)."""
+    rcParams["font.family"] = list(families())

@@ -9,6 +9,7 @@ import argparse
 import sys
 
 from ... import __version__
+from ..fonts import use as use_fonts
 from . import analyze, animate, circuits, scenes, synthesize, tradeoff
 from ._common import Parser
 
@@ -37,6 +38,7 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``planarkin`` console script; returns the exit code."""
     try:
         args = build_parser().parse_args(argv)
+        use_fonts()
         return int(args.func(args) or 0)
     except KeyboardInterrupt:
         print("planarkin: interrupted", file=sys.stderr)
