@@ -13,6 +13,7 @@ import numpy as np
 from matplotlib import colormaps
 from matplotlib.axes import Axes
 from matplotlib.colors import to_rgba
+from matplotlib.figure import Figure
 from matplotlib.patches import Polygon, Rectangle
 
 from ..fourbar import COUPLER_POINT, LINKS
@@ -338,8 +339,8 @@ def labels(ax: Axes, xy: Mapping[str, Any], names: list[str], *, fontsize: float
     before (checked on the drawn extents). Returns the annotations."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-    fig = ax.get_figure()
-    assert fig is not None
+    fig = ax.get_figure(root=True)
+    assert isinstance(fig, Figure)
     canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
     fig.draw_without_rendering()  # the layout settled, so extents are final
     renderer = canvas.get_renderer()
@@ -358,9 +359,9 @@ def labels(ax: Axes, xy: Mapping[str, Any], names: list[str], *, fontsize: float
         for k in (0, 1, -1, 2, -2, 3, -3, 4):
             a = a0 + k * math.pi / 4
             off = (9 * math.cos(a), 9 * math.sin(a))
-            t = ax.annotate(clean(n, "?"), v, xytext=off, textcoords="offset points",
-                            ha="center", va="center", fontsize=fontsize, zorder=8,
-                            annotation_clip=False)  # fmt: skip
+            t = ax.annotate(clean(n, "?"), (float(v[0]), float(v[1])), xytext=off,
+                            textcoords="offset points", ha="center", va="center",
+                            fontsize=fontsize, zorder=8, annotation_clip=False)  # fmt: skip
             t.set_in_layout(False)
             e = t.get_window_extent(renderer)
             hits = sum(e.overlaps(b) for b in boxes) + sum(

@@ -14,6 +14,7 @@ import numpy as np
 from .. import _kernel
 from .._angles import TAU, wrap
 from .._args import as_angles, as_float, as_i64, as_u64
+from .._svg import picture
 from ..fourbar import LINKS, POINTS, FourBar
 from ._parse import check_depth, parse
 from ._results import Assemblies, Assembly, Circuit, Plan, SceneSweep, Step, Trace
@@ -264,6 +265,13 @@ class Scene:
             f"Scene({d['name']!r}: {len(d['points'])} points, {len(d['links'])} links, "
             f"input {d['input']['link']!r} at {d['input']['pivot']!r})"
         )
+
+    def _repr_svg_(self) -> str:
+        """A notebook's picture (a few KB of SVG): the drawn pose, every point named."""
+        d = self._data
+        links = [v for k, v in d["links"].items() if k != d["ground"]]
+        title = d["name"] or "scene"
+        return picture(pose=d["points"], links=links, ground=d["links"][d["ground"]], title=title)
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Scene) and self.to_dict() == other.to_dict()

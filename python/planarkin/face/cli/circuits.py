@@ -152,7 +152,7 @@ def run(args: argparse.Namespace) -> int:
               f"there; it has assemblies for theta in (deg, {REACH_STEP_DEG:g} deg grid): "
               f"{where}")  # fmt: skip
     else:
-        n = summary["assemblies"]
+        n = sum(len(c.assemblies) for c in found)
         print(f"  {plural(n, 'real assembly', 'real assemblies')} on "
               f"{plural(len(rows), 'circuit')}"
               + (f"; complex solutions of its groups: {counts}" if counts else ""))  # fmt: skip
