@@ -13,7 +13,7 @@ from matplotlib.figure import Figure
 
 from ...scene import Circuit, Scene
 from .. import draw
-from ..degrees import wrapped
+from ..degrees import on_wrapped_axis, wrapped
 from ..fonts import clean
 from ..titles import fit_titles
 from .scene import ground_size
@@ -81,7 +81,11 @@ def circuits(
     curves = []
     for c in found:
         link, out = output_angle(scene, c.trace.points)
-        curves.append((shown_turn(c.trace.theta, theta), np.degrees(out), c))
+        if c.full_turn and c.trace.closed:  # one curve over (-180, 180]
+            x, y = on_wrapped_axis(c.trace.theta, np.degrees(out))
+            curves.append((x, y, c))
+        else:  # a continuous range, in the turn that holds theta
+            curves.append((shown_turn(c.trace.theta, theta), np.degrees(out), c))
     first = None
     for k, (x, y, c) in enumerate(curves):
         ax = fig.add_subplot(grid[k // ncol, k % ncol], sharex=first, sharey=first)
@@ -90,7 +94,7 @@ def circuits(
             if j != k:
                 ax.plot(xo, yo, "-", color="0.85", lw=1.0, zorder=1)
         ax.plot(x, y, "-", color=cmap(k % 10), lw=1.8, zorder=2)
-        if len(c.trace.turning_points):
+        if len(c.trace.turning_points):  # a rocking circuit: x is the trace's own order
             i = [int(np.argmin(np.abs(c.trace.theta - tp))) for tp in c.trace.turning_points]
             ax.plot(x[i], y[i], "o", color=cmap(k % 10), ms=5, zorder=3)
         ax.axvline(at, color="0.4", lw=0.8, ls="--")
@@ -99,7 +103,8 @@ def circuits(
         ax.grid(True, alpha=0.3)
         if k % ncol == 0:
             ax.set_ylabel(f"angle of {clean(link, '?')} [deg]")
-        ax.set_xlabel("input θ [deg]")
+        ax.set_xlabel("input θ [deg], continuous" if any(not c.full_turn for c in found)
+                      else "input θ [deg], in (-180, 180]")  # fmt: skip
     circuit_of = {id(a): k for k, c in enumerate(found) for a in c.assemblies}
     st = draw.Structure.of(scene)
     size = ground_size(scene)
@@ -115,7 +120,8 @@ def circuits(
         sub.set_title(f"circuit {k + 1}, assembly {a.label}", fontsize="small",
                       color=cmap(k % 10))  # fmt: skip
     fig.suptitle(
-        f"{name}: {len(assemblies)} assemblies at θ = {at:.1f}° on {len(found)} circuits "
+        f"{name}: {len(assemblies)} assembl{'y' if len(assemblies) == 1 else 'ies'} at "
+        f"θ = {at:.1f}° on {len(found)} circuit{'' if len(found) == 1 else 's'} "
         "(dots: turning points, where the input must reverse)"
     )
     return fit_titles(fig)
