@@ -24,7 +24,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="planarkin",
         description="Planar linkage kinematics with a Rust core: four-bars (--links), any "
         "planar linkage as a scene (a file or a built-in: 'planarkin scenes'), its circuits, "
-        "and the synthesis of double butterflies. Run 'planarkin analyze' for the seeds' "
+        "and the synthesis of double butterflies. Run 'planarkin analyze' for the textbook "
         "four-bar, 'planarkin analyze jansen' for a scene.",
     )
     parser.add_argument("--version", action="version", version=f"planarkin {__version__}")

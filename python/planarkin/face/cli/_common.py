@@ -61,7 +61,7 @@ def linkage_options(*, rpm: bool) -> Parser:
         type=float,
         metavar=("R1", "R2", "R3", "R4"),
         help="four-bar link lengths: ground, crank (input), coupler, rocker "
-        f"(default: {links}, the seeds' linkage)",
+        f"(default: {links}, the textbook linkage)",
     )
     g.add_argument("--mode", choices=MODES, help="four-bar assembly mode (default: open)")
     g.add_argument(

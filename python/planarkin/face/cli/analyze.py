@@ -117,7 +117,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "--newton-at",
         type=float,
         metavar="DEG",
-        help="crank angle of the four-bar's convergence study, solved from the seeds' cold "
+        help="crank angle of the four-bar's convergence study, solved from the textbook's cold "
         f"guess (80, 100) deg, mirrored for crossed (default: {NEWTON_THETA2_DEG:g})",
     )
     a.add_argument("--no-figures", action="store_true", help="write the CSV and JSON only")

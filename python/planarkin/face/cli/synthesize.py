@@ -46,9 +46,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     """Registers ``synthesize``."""
     y = sub.add_parser(
         "synthesize",
-        help="defect-free synthesis of a double butterfly (seed 003): ackermann",
+        help="defect-free synthesis of a double butterfly: ackermann",
         description="Synthesize a double butterfly by multistart SLSQP on the true linkage's "
-        f"error, verify it, and write {DESIGN_JSON}, {REPORT_JSON} and the seed's figures.",
+        f"error, verify it, and write {DESIGN_JSON}, {REPORT_JSON} and the study's figures.",
     )
     add_arguments(y)
     y.set_defaults(func=run)
@@ -57,7 +57,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """The options of ``synthesize``."""
-    p.add_argument("problem", choices=PROBLEMS, help="the synthesis problem (seed 003's example 2)")
+    p.add_argument("problem", choices=PROBLEMS, help="the synthesis problem (the study's example 2: Ackermann steering)")
     p.add_argument(
         "--out",
         type=Path,
