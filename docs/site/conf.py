@@ -60,7 +60,6 @@ if os.environ.get("PLANARKIN_DOCS_ONLINE") != "1":
     intersphinx_mapping = {}
 
 
-
 sphinx_gallery_conf = {
     "examples_dirs": str(ROOT / "examples" / "gallery"),
     "gallery_dirs": "gallery",

@@ -7,7 +7,6 @@ mode, its coupler curve, and the linkage at six crank angles.
 """
 
 import numpy as np
-
 import planarkin as pk
 from planarkin.face.figures import fourbar as figures
 
