@@ -133,46 +133,50 @@ class SceneSweep(SweepResult):
             link_names=plan.links,
         )
 
+    @staticmethod
+    def _columns(a: np.ndarray | None, names: tuple[str, ...]) -> dict[str, np.ndarray] | None:
+        """name -> the column of ``a`` (axis 1) for that name: views, no copies."""
+        return None if a is None else {n: a[:, j] for j, n in enumerate(names)}
+
     @cached_property
     def points(self) -> dict[str, np.ndarray]:
         """name -> (N, 2) positions, scene units."""
-        return {n: self.coords[:, j] for j, n in enumerate(self.point_names)}
+        out = self._columns(self.coords, self.point_names)
+        assert out is not None
+        return out
 
     @cached_property
     def angles(self) -> dict[str, np.ndarray]:
         """link -> (N,) angles in (-pi, pi]."""
-        return {n: self.angle_array[:, j] for j, n in enumerate(self.link_names)}
+        out = self._columns(self.angle_array, self.link_names)
+        assert out is not None
+        return out
 
     @cached_property
     def point_status(self) -> dict[str, np.ndarray] | None:
         """name -> (N,) int8 status of each reported point (None: not computed)."""
-        s = self.point_status_array
-        return None if s is None else {n: s[:, j] for j, n in enumerate(self.point_names)}
+        return self._columns(self.point_status_array, self.point_names)
 
     @cached_property
     def velocities(self) -> dict[str, np.ndarray] | None:
         """name -> (N, 2) velocities (scene units per time) when ``omega`` was given."""
-        v = self.velocity_array
-        return None if v is None else {n: v[:, j] for j, n in enumerate(self.point_names)}
+        return self._columns(self.velocity_array, self.point_names)
 
     @cached_property
     def angular_velocities(self) -> dict[str, np.ndarray] | None:
         """link -> (N,) angular velocities when ``omega`` was given."""
-        w = self.angular_velocity_array
-        return None if w is None else {n: w[:, j] for j, n in enumerate(self.link_names)}
+        return self._columns(self.angular_velocity_array, self.link_names)
 
     @cached_property
     def accelerations(self) -> dict[str, np.ndarray] | None:
         """name -> (N, 2) accelerations (scene units per time squared) at constant
         ``omega``, when computed."""
-        a = self.acceleration_array
-        return None if a is None else {n: a[:, j] for j, n in enumerate(self.point_names)}
+        return self._columns(self.acceleration_array, self.point_names)
 
     @cached_property
     def angular_accelerations(self) -> dict[str, np.ndarray] | None:
         """link -> (N,) angular accelerations at constant ``omega``, when computed."""
-        a = self.angular_acceleration_array
-        return None if a is None else {n: a[:, j] for j, n in enumerate(self.link_names)}
+        return self._columns(self.angular_acceleration_array, self.link_names)
 
     def _describe(self) -> str:
         k = 0 if self.plan is None else len(self.plan)

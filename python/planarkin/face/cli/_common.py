@@ -139,11 +139,16 @@ def figure_arguments(parser: argparse.ArgumentParser, dpi: float) -> None:
     parser.add_argument(
         "--dpi", type=float, default=dpi, help="figure resolution (default: %(default)s)"
     )
+    format_argument(parser)
+
+
+def format_argument(parser: argparse.ArgumentParser) -> None:
+    """``--format png|svg|pdf`` of a command that writes figures."""
     parser.add_argument(
         "--format",
         choices=FORMATS,
         default="png",
-        help="figure file format: png (at --dpi), svg or pdf (vector: papers, laser "
+        help="figure file format: png, svg or pdf (vector: papers, laser "
         "cutters) (default: %(default)s)",
     )
 

@@ -23,7 +23,7 @@ from ...synthesis.problem import OBJECTIVES, Problem
 from ...synthesis.verify import linear_sensitivity, tolerance_sensitivity, verify
 from ..figures import synthesis as synthesis_figures
 from ..progress import bar
-from ._common import FORMATS, figure_file, quiet_argument
+from ._common import figure_file, format_argument, quiet_argument
 
 PROBLEMS = ("ackermann",)
 #: defaults of the full run (the shipped design in examples/ackermann/ is this run's)
@@ -57,7 +57,11 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """The options of ``synthesize``."""
-    p.add_argument("problem", choices=PROBLEMS, help="the synthesis problem (the study's example 2: Ackermann steering)")
+    p.add_argument(
+        "problem",
+        choices=PROBLEMS,
+        help="the synthesis problem (the study's example 2: Ackermann steering)",
+    )
     p.add_argument(
         "--out",
         type=Path,
@@ -134,12 +138,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--no-figures", action="store_true", help="write design.json and report.json only"
     )
     p.add_argument("--json", action="store_true", help="print report.json to stdout")
-    p.add_argument(
-        "--format",
-        choices=FORMATS,
-        default="png",
-        help="figure file format: png, svg or pdf (default: %(default)s)",
-    )
+    format_argument(p)
     quiet_argument(p)
 
 
