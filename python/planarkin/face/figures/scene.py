@@ -12,7 +12,7 @@ from matplotlib.figure import Figure
 
 from ...scene import Scene, SceneSweep
 from .. import draw
-from ..degrees import AXIS_TICKS, on_wrapped_axis, wrapped
+from ..degrees import AXIS_TICKS, on_wrapped_axis, wrap_deg, wrapped
 from ..fonts import clean
 from ..titles import fit_titles
 
@@ -42,17 +42,20 @@ def _theta_label(sweep: SceneSweep) -> str:
 
 
 def _poses(sweep: SceneSweep, poses: int) -> np.ndarray:
-    """Indices of ``poses`` solved input angles, evenly spaced among the solved ones (a
-    sweep whose last pose repeats its first does not draw it twice)."""
+    """Indices of ``poses`` solved input angles, in order of the angle on the (-180, 180]
+    axis: evenly spread round a full turn, or from end to end of a motion that stops (its
+    last solved angles on either side)."""
     ok = np.flatnonzero(sweep.success)
     t = sweep.theta
-    if len(ok) > 1 and ok[-1] == len(t) - 1 and ok[0] == 0:
-        if math.isclose(abs(t[-1] - t[0]), math.tau, rel_tol=0, abs_tol=1e-9):
-            ok = ok[:-1]
+    full = sweep.success.all() and len(t) > 1
+    if full and math.isclose(abs(t[-1] - t[0]), math.tau, rel_tol=0, abs_tol=1e-9):
+        ok = ok[:-1]  # the last pose is the first again
     if not len(ok):
         return ok
+    ok = ok[np.argsort(wrap_deg(t[ok]), kind="stable")]
     k = min(poses, len(ok))
-    return ok[np.unique(np.linspace(0, len(ok), k, endpoint=False).astype(int))]
+    at = np.linspace(0, len(ok), k, endpoint=False) if full else np.linspace(0, len(ok) - 1, k)
+    return ok[np.unique(at.round().astype(int))]
 
 
 def linkage(scene: Scene, sweep: SceneSweep, *, poses: int = 4) -> Figure:
