@@ -240,7 +240,15 @@ def scene_figures(name: str) -> dict[str, Figure]:
     return figs
 
 
-@pytest.mark.parametrize("name", ["jansen", "double-butterfly-1", "stephenson3", "peaucellier"])
+# four scenes in the inner loop (the widest names and units, a group, a motion that stops,
+# many circuits); every other built-in scene with the slow cases
+FAST = {"jansen", "double-butterfly-1", "stephenson3", "peaucellier"}
+
+
+@pytest.mark.parametrize(
+    "name",
+    [n if n in FAST else pytest.param(n, marks=pytest.mark.slow) for n in pk.scenes.names()],
+)
 def test_no_text_over_text_nor_off_the_canvas(name):
     for what, fig in scene_figures(name).items():
         assert texts_outside(fig, 100) == [], what
@@ -257,6 +265,14 @@ def test_every_scene_figure_in_vector_formats(tmp_path, fmt):
     assert [f.stem for f in files] == [
         "circuits", "scene_conditioning", "scene_linkage", "scene_tracers",
     ]  # fmt: skip
+    # the four-bar's eight figures and the trade-off plot too
+    assert cli.main(["analyze", "--step", "10", *argv]) == 0
+    plot = tmp_path / "pareto.png"
+    tradeoff = ["tradeoff", "--tols", "1e-6", "--methods", "closed-form", "--random", "1",
+                "--truth-links", "1", "--points", "13", "--repeat", "1", "-q"]  # fmt: skip
+    assert cli.main([*tradeoff, "--plot", str(plot), "--format", fmt]) == 0
+    files = sorted(out.glob(f"*.{fmt}")) + [plot.with_suffix(f".{fmt}")]
+    assert len(files) == 4 + 8 + 1
     for f in files:
         if fmt == "svg":
             assert ET.parse(f).getroot().tag.endswith("svg")
