@@ -329,3 +329,22 @@ def test_axis_labels_fit_their_axes():
         if label.get_text():
             assert label.get_window_extent().height <= box.height
             assert "\n" in label.get_text()
+
+
+def test_tracer_figure_draws_accelerations_when_the_sweep_has_them():
+    """The core fills accelerations (issue 20, item 11); the figure draws |a| of each
+    tracer from them, here arrays made up for the test and read back from the line."""
+    import dataclasses
+
+    sc = pk.scenes.load("fourbar")
+    sw = sc.sweep(omega=1.0)
+    acc = np.random.default_rng(0).normal(size=sw.coords.shape)
+    sw = dataclasses.replace(sw, acceleration_array=acc)
+    fig = scene_fig.tracers(sc, sw)
+    assert fig is not None and len(fig.axes) == 3
+    (line,) = fig.axes[2].get_lines()
+    assert "acceleration of P" == line.get_label()
+    j = sw.point_names.index("P")
+    x, y = on_wrapped_axis(sw.theta, np.hypot(acc[:, j, 0], acc[:, j, 1]))
+    np.testing.assert_array_equal(line.get_ydata(), y)
+    assert fig.axes[2].get_ylabel().endswith("/s^2]")

@@ -128,32 +128,38 @@ def conditioning(scene: Scene, sweep: SceneSweep) -> Figure:
 
 
 def tracers(scene: Scene, sweep: SceneSweep) -> Figure | None:
-    """x and y of each tracer point against the input angle, and its speed when the sweep
-    has velocities; None when the scene has no tracer point (no blank figure)."""
+    """x and y of each tracer point against the input angle, its speed when the sweep has
+    velocities and the size of its acceleration when it has accelerations; None when the
+    scene has no tracer point (no blank figure)."""
     names = tracer_names(scene, sweep)
     if not names:
         return None
-    velocities = sweep.velocities
-    has_v = velocities is not None
-    fig = Figure(figsize=(8.0, 7.0 if has_v else 4.5), layout="constrained")
-    axs = fig.subplots(2 if has_v else 1, 1, sharex=True, squeeze=False)[:, 0]
     unit = scene.units or "length"
+    rates = [
+        (d, what, f"{what} [{unit}/{per}]")
+        for d, what, per in (
+            (sweep.velocities, "speed", "s"),
+            (sweep.accelerations, "acceleration", "s^2"),
+        )
+        if d is not None
+    ]
+    fig = Figure(figsize=(8.0, 4.5 + 2.8 * len(rates)), layout="constrained")
+    axs = fig.subplots(1 + len(rates), 1, sharex=True, squeeze=False)[:, 0]
     for n in names:
         label = clean(n, "?")
         t, xy = on_wrapped_axis(sweep.theta, sweep.points[n])
         axs[0].plot(t, xy[:, 0], label=f"x of {label}")
         axs[0].plot(t, xy[:, 1], "--", label=f"y of {label}")
-        if velocities is not None:
-            v = velocities[n]
-            t, speed = on_wrapped_axis(sweep.theta, np.hypot(v[:, 0], v[:, 1]))
-            axs[1].plot(t, speed, label=f"speed of {label}")
+        for ax, (d, what, _) in zip(axs[1:], rates, strict=True):
+            t, size = on_wrapped_axis(sweep.theta, np.hypot(d[n][:, 0], d[n][:, 1]))
+            ax.plot(t, size, label=f"{what} of {label}")
     axs[0].set_ylabel(f"position [{unit}]")
     axs[0].set_title(f"{_title(scene)}: tracer points")
-    if has_v:
-        axs[1].set_ylabel(f"speed [{unit}/s]")
-        if sweep.omega is not None:
-            axs[1].set_title(f"at ω = {sweep.omega:.4g} rad/s ({rpm(sweep.omega):.4g} rpm)",
-                             fontsize="medium")  # fmt: skip
+    for ax, (_, _, ylabel) in zip(axs[1:], rates, strict=True):
+        ax.set_ylabel(ylabel)
+    if rates and sweep.omega is not None:
+        axs[1].set_title(f"at ω = {sweep.omega:.4g} rad/s ({rpm(sweep.omega):.4g} rpm), "
+                         "constant", fontsize="medium")  # fmt: skip
     axs[-1].set_xticks(AXIS_TICKS)
     axs[-1].set_xlabel(_theta_label(sweep))
     for ax in axs:
