@@ -17,11 +17,17 @@ import planarkin as pk
 from planarkin.face.figures import circuits, scene
 
 docs = sys.argv[1]
-sc = pk.scenes.load("jansen")
-scene.linkage(sc, sc.sweep(outputs="all"), poses=4).savefig(f"{docs}/scene_jansen.png", dpi=80)
-sc = pk.scenes.load("double-butterfly-2")
-fig = circuits.circuits(sc, sc.circuits(), sc.input_angle)
-fig.savefig(f"{docs}/circuits_double_butterfly.png", dpi=70)
+for name, file in (("jansen", "scene_jansen"), ("double-butterfly-1", "scene_double_butterfly")):
+    sc = pk.scenes.load(name)
+    fig = scene.linkage(sc, sc.sweep(outputs="all"), poses=4)
+    fig.savefig(f"{docs}/{file}.png", dpi=70)
+for name, file in (
+    ("stephenson3", "circuits_stephenson3"),
+    ("double-butterfly-2", "circuits_double_butterfly"),
+):
+    sc = pk.scenes.load(name)
+    fig = circuits.circuits(sc, sc.circuits(), sc.input_angle)
+    fig.savefig(f"{docs}/{file}.png", dpi=60)
 PY
 python - "$docs" <<'PY'
 import sys

@@ -31,6 +31,58 @@ def out_rotation(sc: pk.Scene, phi: np.ndarray) -> np.ndarray:
     return np.angle(np.exp(1j * a))
 
 
+def drawn_texts(fig, dpi: float) -> list[tuple[str, object]]:
+    """Every non-empty, visible Text that matplotlib draws in ``fig`` at ``dpi`` (recorded
+    as it draws them: tick labels beyond the view are not drawn), with its window extent."""
+    from unittest import mock
+
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Text
+
+    fig.set_dpi(dpi)
+    canvas = FigureCanvasAgg(fig)
+    drawn: list = []
+    draw = Text.draw
+
+    def record(self, renderer):
+        drawn.append(self)
+        return draw(self, renderer)
+
+    with mock.patch.object(Text, "draw", record):
+        canvas.draw()
+    r = canvas.get_renderer()
+    return [
+        (t.get_text(), t.get_window_extent(r))
+        for t in drawn
+        if t.get_visible() and t.get_text().strip()
+    ]
+
+
+def texts_outside(fig, dpi: float) -> list[str]:
+    """Every text drawn (:func:`drawn_texts`) whose window extent leaves the figure after a
+    draw at ``dpi`` (1 px of slack for antialiasing)."""
+    box = fig.bbox
+    return [
+        text
+        for text, e in drawn_texts(fig, dpi)
+        if e.x0 < box.x0 - 1 or e.y0 < box.y0 - 1 or e.x1 > box.x1 + 1 or e.y1 > box.y1 + 1
+    ]
+
+
+def texts_overlapping(fig, dpi: float) -> list[tuple[str, str]]:
+    """Pairs of drawn texts (:func:`drawn_texts`) whose extents overlap by more than a
+    pixel each way: text written over text."""
+    texts = drawn_texts(fig, dpi)
+    out = []
+    for i, (a, ea) in enumerate(texts):
+        for b, eb in texts[i + 1 :]:
+            w = min(ea.x1, eb.x1) - max(ea.x0, eb.x0)
+            h = min(ea.y1, eb.y1) - max(ea.y0, eb.y0)
+            if w > 1 and h > 1:
+                out.append((a, b))
+    return out
+
+
 def tradeoff_rows(times, errs, tols, method="quadratic"):
     """Rows of the speed/accuracy table with the given times, errors and tolerances."""
     from planarkin.fourbar.tradeoff import Row

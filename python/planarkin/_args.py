@@ -29,8 +29,16 @@ METHODS = ("newton", "closed-form")
 
 def as_float(name: str, value: object) -> float:
     """A real scalar, or ValueError naming the parameter."""
-    if type(value) is float or type(value) is int:  # the common case, without NumPy calls
-        return float(value)
+    if type(value) is float:  # the common case, without NumPy calls
+        return value
+    if type(value) is int:
+        try:
+            return float(value)
+        except OverflowError:
+            raise ValueError(
+                f"{name} must be a real number within the float range, got an integer of "
+                f"{value.bit_length()} bits"
+            ) from None
     try:
         if isinstance(value, (str, bytes, complex, bool, np.bool_)) or np.iscomplexobj(
             cast("ArrayLike", value)  # any object at runtime; the stub wants ArrayLike

@@ -6,11 +6,12 @@ name means the same thing everywhere, and each subject adds its own names."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
 from ._status import Status
+from ._svg import picture
 
 
 @dataclass(frozen=True)
@@ -121,6 +122,23 @@ class SweepResult(StatusResult):
 
     def __len__(self) -> int:
         return len(self.theta)
+
+    #: Links (point names) and ground points a notebook picture draws (subclasses set them).
+    _svg_links: ClassVar[tuple[tuple[str, ...], ...]] = ()
+    _svg_ground: ClassVar[tuple[str, ...]] = ()
+
+    def _repr_svg_(self) -> str | None:
+        """A notebook's picture (a few KB of SVG): every reported point's path, and the
+        first solved pose; None when nothing is solved."""
+        ok = np.flatnonzero(self.success)
+        if not len(ok):
+            return None
+        pts = self.points
+        pose = {n: v[ok[0]] for n, v in pts.items()}
+        title = f"{type(self).__name__}: {len(ok)} of {len(self)} solved"
+        return picture(
+            pose=pose, links=self._svg_links, ground=self._svg_ground, paths=pts, title=title
+        )
 
     def summary(self) -> SweepSummary:
         """Totals over the sweep: points, how many converged, iterations (total and mean

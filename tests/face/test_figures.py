@@ -5,14 +5,11 @@ any figure outside the canvas at any resolution."""
 from __future__ import annotations
 
 import math
-from unittest import mock
 
 import numpy as np
 import planarkin as pk
 import pytest
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
-from matplotlib.text import Text
+from _support import texts_outside
 from planarkin.face import animate, cli
 from planarkin.face.cli import analyze
 from planarkin.face.figures import fourbar as plot
@@ -127,33 +124,6 @@ def test_convergence_line_is_the_history():
 
 
 # --- no text outside the canvas -------------------------------------------------------------
-
-
-def texts_outside(fig: Figure, dpi: float) -> list[str]:
-    """Every non-empty Text drawn (recorded as matplotlib draws it: tick labels beyond the
-    view are not drawn) whose window extent leaves the figure after a draw at ``dpi``
-    (1 px of slack for antialiasing)."""
-    fig.set_dpi(dpi)
-    canvas = FigureCanvasAgg(fig)
-    drawn: list[Text] = []
-    draw = Text.draw
-
-    def record(self, renderer):
-        drawn.append(self)
-        return draw(self, renderer)
-
-    with mock.patch.object(Text, "draw", record):
-        canvas.draw()
-    r = canvas.get_renderer()
-    box = fig.bbox
-    out = []
-    for t in drawn:
-        if not (t.get_visible() and t.get_text().strip()):
-            continue
-        e = t.get_window_extent(r)
-        if e.x0 < box.x0 - 1 or e.y0 < box.y0 - 1 or e.x1 > box.x1 + 1 or e.y1 > box.y1 + 1:
-            out.append(t.get_text())
-    return out
 
 
 def cli_figures(links, mode="open", newton_at=45.0):

@@ -23,8 +23,11 @@ def test_analyze_scene_writes_what_the_reference_computes(tmp_path, capsys):
     assert s["converged"] == s["angles"] == 73 and s["mobility"] == 1
     assert [st["kind"] for st in s["plan"]] == ["dyad"] * len(s["plan"])
     rows = list(csv.DictReader((out / "results.csv").open()))
+    u = pk.scenes.load("jansen").units
+    assert u and f"foot_vx [{u}/s]" in rows[0]
     theta = np.radians([float(r["theta [deg]"]) for r in rows])
-    foot = np.array([[float(r["foot_x"]), float(r["foot_y"])] for r in rows])
+    assert np.all((-180 < np.degrees(theta)) & (np.degrees(theta) <= 180))
+    foot = np.array([[float(r[f"foot_x [{u}]"]), float(r[f"foot_y [{u}]"])] for r in rows])
     ref = scene_sweep(pk.scenes.data("jansen"), theta)
     np.testing.assert_allclose(foot, ref.points["foot"], atol=1e-9)
     # velocities by central differences of the reference
@@ -32,7 +35,10 @@ def test_analyze_scene_writes_what_the_reference_computes(tmp_path, capsys):
     fd = (scene_sweep(pk.scenes.data("jansen"), theta + h).points["foot"]
           - scene_sweep(pk.scenes.data("jansen"), theta - h).points["foot"]) / (2 * h)  # fmt: skip
     omega = 100 * 2 * math.pi / 60  # the default --rpm
-    v = np.array([[float(r["foot_vx"]), float(r["foot_vy"])] for r in rows])
+    assert s["input_speed"]["omega_rad_s"] == pytest.approx(omega, rel=1e-15)
+    assert s["input_speed"]["rpm"] == pytest.approx(100.0, rel=1e-12)
+    assert "omega = 10.4720 rad/s (100 rpm, constant)" in text
+    v = np.array([[float(r[f"foot_vx [{u}/s]"]), float(r[f"foot_vy [{u}/s]"])] for r in rows])
     np.testing.assert_allclose(v, fd * omega, atol=1e-5 * np.abs(fd * omega).max())
 
 

@@ -8,7 +8,7 @@ import html
 import math
 import re
 import tempfile
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -20,11 +20,22 @@ from .._status import Status
 from ..fourbar import COUPLER_POINT, Sweep
 from ..scene import Scene, SceneSweep
 from . import draw
+from .degrees import wrapped
 from .figures.fourbar import pose_points
 from .figures.scene import ground_size, tracer_names
+from .fonts import clean
 from .titles import fit_titles
 
-__all__ = ["animation", "fourbar", "fourbar_frames", "html_page", "save", "scene"]
+__all__ = [
+    "animation",
+    "fourbar",
+    "fourbar_frames",
+    "html_page",
+    "motion",
+    "save",
+    "scene",
+    "scene_frames",
+]
 
 _TRACE = "tab:purple"
 
@@ -78,7 +89,7 @@ def animation(
         code = Status(int(status[i]))
         state = "" if code == Status.CONVERGED else "  " + code.name.lower().replace("_", " ")
         note = f"  {notes[i]}" if notes is not None else ""
-        label.set_text(f"{symbol} = {math.degrees(theta[i]):6.1f}°{note}{state}")
+        label.set_text(f"{symbol} = {wrapped(theta[i]):6.1f}°{note}{state}")
         return [*drawn, *traces.values(), label]
 
     return FuncAnimation(fig, draw_frame, frames=list(frames), interval=1000.0 / fps, blit=False)
@@ -152,39 +163,78 @@ def scene(
     scene: Scene, sweep: SceneSweep, *, frames: int = 72, fps: float = 12, dpi: float = 80
 ) -> FuncAnimation:
     """The scene moving through the solved input angles of the sweep (at most ``frames``,
-    evenly spaced), its tracer points' paths traced."""
+    evenly spaced), its tracer points' paths traced. A linkage whose input cannot turn
+    fully on the drawn circuit rocks between its dead points instead (:func:`motion`), as
+    a four-bar's crank rocks between its toggles: never a jump across what it cannot
+    reach."""
     if frames < 1:
         raise ValueError(f"frames must be >= 1, got {frames}")
-    ok = np.flatnonzero(sweep.success)
-    if not len(ok):
+    theta, points, status, rocks = motion(scene, sweep)
+    if not len(theta):
         raise ValueError("the sweep solved no input angle: nothing to animate")
-    idx = ok[np.unique(np.linspace(0, len(ok) - 1, min(frames, len(ok))).round().astype(int))]
     st = draw.Structure.of(scene)
     drawn = scene.points
+    name = clean(scene.name, "scene")
     return animation(
         st,
-        sweep.points,
-        sweep.theta,
-        sweep.status,
-        idx.tolist(),
+        points,
+        theta,
+        status,
+        scene_frames(points, frames),
         ground={p: drawn[p] for p in st.links[st.ground]},
         ground_size=ground_size(scene),
-        title=scene.name or "scene",
-        tracers=tracer_names(scene, sweep),
+        title=f"{name}, rocking between its dead points" if rocks else name,
+        tracers=[p for p in tracer_names(scene, sweep) if p in points],
         fps=fps,
         dpi=dpi,
         figsize=(6.0, 5.2),
     )
 
 
+def scene_frames(points: Mapping[str, np.ndarray], frames: int) -> list[int]:
+    """Indices of at most ``frames`` poses of a motion (name -> (M, 2)), evenly spaced; a
+    motion whose last pose is its first does not show it twice."""
+    n = len(next(iter(points.values()))) if points else 0
+    closes = n > 1 and all(np.allclose(v[0], v[-1], equal_nan=True) for v in points.values())
+    idx = np.unique(np.linspace(0, n - 1 if closes else n, frames, endpoint=False).astype(int))
+    return idx[idx < n].tolist()
+
+
+def motion(
+    scene: Scene, sweep: SceneSweep
+) -> tuple[np.ndarray, dict[str, np.ndarray], np.ndarray, bool]:
+    """The motion an animation plays: the sweep's solved poses in order when the input
+    turns fully on the drawn circuit (every angle solved); else the drawn circuit traced
+    through its dead points (``Scene.trace``), so the input rocks between them and the
+    linkage moves continuously. Returns (input angles, name -> (M, 2) points, statuses,
+    whether it rocks)."""
+    ok = sweep.success
+    if ok.all() or not ok.any():
+        keep = np.flatnonzero(ok)
+        pts = {k: v[keep] for k, v in sweep.points.items()}
+        return sweep.theta[keep], pts, sweep.status[keep], False
+    tr = scene.trace()
+    status = np.full(len(tr), int(Status.CONVERGED), dtype=np.int8)
+    return tr.theta, dict(tr.points), status, len(tr.turning_points) > 0
+
+
 # --- saving: the GIF and the self-contained page -----------------------------------------
 
 
-def save(anim: FuncAnimation, gif: Path, page: Path, *, fps: float, title: str) -> None:
-    """Writes the animation as a GIF and as a self-contained HTML page (:func:`html_page`)."""
+def save(
+    anim: FuncAnimation,
+    gif: Path,
+    page: Path,
+    *,
+    fps: float,
+    title: str,
+    progress: Callable[[int, int], object] | None = None,
+) -> None:
+    """Writes the animation as a GIF and as a self-contained HTML page (:func:`html_page`);
+    ``progress(frame, frames)`` is called after each frame drawn (twice over: GIF, page)."""
     # matplotlib's stub types fps as int; the writers take any positive number
-    anim.save(str(gif), writer=PillowWriter(fps=fps))  # type: ignore[arg-type]
-    page.write_text(html_page(anim, fps=fps, title=title), encoding="utf-8")
+    anim.save(str(gif), writer=PillowWriter(fps=fps), progress_callback=progress)  # type: ignore[arg-type]
+    page.write_text(html_page(anim, fps=fps, title=title, progress=progress), encoding="utf-8")
 
 
 def _svg(*shapes: str) -> str:
@@ -213,7 +263,13 @@ _ICONS = {  # matplotlib's Font Awesome classes -> inline SVG
 }  # fmt: skip
 
 
-def html_page(anim: FuncAnimation, *, fps: float = 12, title: str = "planarkin") -> str:
+def html_page(
+    anim: FuncAnimation,
+    *,
+    fps: float = 12,
+    title: str = "planarkin",
+    progress: Callable[[int, int], object] | None = None,
+) -> str:
     """A self-contained HTML page (frames embedded as base64 PNG, play controls in plain
     JavaScript) for an animation, playing (looped) as soon as it loads. matplotlib's player
     loads its button icons from a web font; they are drawn as inline SVG instead, so the
@@ -228,7 +284,7 @@ def html_page(anim: FuncAnimation, *, fps: float = 12, title: str = "planarkin")
             default_mode="loop",
             embed_limit=1e6,
         )
-        anim.save(str(path), writer=writer)
+        anim.save(str(path), writer=writer, progress_callback=progress)
         body = path.read_text(encoding="utf-8")
     body = re.sub(r"<link\b[^>]*\bhref=[\"']https?://[^>]*>", "", body)
     body = re.sub(

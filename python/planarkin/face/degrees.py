@@ -1,11 +1,17 @@
-"""Angles as people read them: radians to degrees, unwrapped so a curve through a full
-turn stays continuous (the API keeps radians wrapped to (-pi, pi])."""
+"""Angles as people read them: radians to degrees, in (-180, 180] wherever a user reads an
+angle (tables, JSON, CSV, axes), or unwrapped so a curve through a full turn stays
+continuous (the API keeps radians wrapped to (-pi, pi])."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["unwrap_deg"]
+__all__ = ["AXIS_TICKS", "on_wrapped_axis", "unwrap_deg", "wrap_deg", "wrapped"]
+
+#: Ticks of an input-angle axis in (-180, 180].
+AXIS_TICKS = np.arange(-180, 181, 60)
 
 
 def unwrap_deg(angles: object) -> np.ndarray:
@@ -16,3 +22,49 @@ def unwrap_deg(angles: object) -> np.ndarray:
     ok = np.isfinite(a)
     out[ok] = np.degrees(np.unwrap(a[ok]))
     return out
+
+
+def wrap_deg(angles: object) -> np.ndarray:
+    """Angles (radians, any turn) to degrees in (-180, 180]; NaN stays NaN."""
+    d = np.degrees(np.asarray(angles, dtype=np.float64))
+    w = 180.0 - np.remainder(180.0 - d, 360.0)
+    # remainder of an exact multiple is 0: 180 stays 180, -180 becomes 180
+    return np.where(np.isfinite(w), w, np.nan)
+
+
+def wrapped(angle: float) -> float:
+    """One angle (radians) in degrees in (-180, 180]."""
+    return float(wrap_deg(angle)) if math.isfinite(angle) else math.nan
+
+
+def on_wrapped_axis(theta: object, *ys: object) -> tuple[np.ndarray, ...]:
+    """A sweep's input angles ``theta`` (radians, a continuous run) and its values ``ys``
+    ((N,) or (N, k) each) reordered for a (-180, 180] axis: sorted by the wrapped angle,
+    with a NaN row wherever two neighbours on the axis are not neighbours in the sweep (the
+    seam where the sweep's turn crosses 180), so no line joins them. A sweep of one full
+    turn whose last pose repeats its first plots as one curve from -180 to 180. Returns
+    (x in degrees, *ys)."""
+    t = np.asarray(theta, dtype=np.float64)
+    n = len(t)
+    x = wrap_deg(t)
+    order = np.argsort(x, kind="stable")
+    cols = [np.asarray(y, dtype=np.float64) for y in ys]
+    if n == 0:
+        return (x, *cols)
+    # neighbours on the axis that are not neighbours in the sweep get a NaN row between
+    step = np.abs(np.diff(order))
+    full = n > 1 and math.isclose(abs(t[-1] - t[0]), math.tau, rel_tol=0, abs_tol=1e-9)
+    breaks = step != 1
+    if full:
+        # the first and last poses are one pose: next to each other on the axis are fine
+        breaks &= ~(np.isin(order[:-1], (0, n - 1)) & np.isin(order[1:], (0, n - 1)))
+        breaks &= ~((order[:-1] == n - 2) & (order[1:] == 0))
+        breaks &= ~((order[:-1] == n - 1) & (order[1:] == 1))
+    cut = np.flatnonzero(breaks) + 1
+
+    def place(a: np.ndarray) -> np.ndarray:
+        a = a[order]
+        fill = np.full((len(cut), *a.shape[1:]), np.nan)
+        return np.insert(a, cut, fill, axis=0)
+
+    return (place(x), *(place(c) for c in cols))

@@ -4,6 +4,7 @@ halves call it; nothing else in planarkin draws links."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -11,11 +12,14 @@ from typing import Any
 import numpy as np
 from matplotlib import colormaps
 from matplotlib.axes import Axes
-from matplotlib.patches import Polygon
+from matplotlib.colors import to_rgba
+from matplotlib.figure import Figure
+from matplotlib.patches import Polygon, Rectangle
 
 from ..fourbar import COUPLER_POINT, LINKS
+from .fonts import clean
 
-__all__ = ["Structure", "fourbar", "frame", "ground", "pose"]
+__all__ = ["Structure", "fourbar", "frame", "ground", "hull", "labels", "pose"]
 
 
 @dataclass(frozen=True)
@@ -26,6 +30,10 @@ class Structure:
     links: Mapping[str, tuple[str, ...]]
     ground: str
     input: str
+    #: Pins in slots: name -> (point, guide link, (line point, line point)).
+    slots: Mapping[str, tuple[str, str, tuple[str, str]]] = field(default_factory=dict)
+    #: Prismatic joints: name -> (translating link, guide link, (line point, line point)).
+    prismatic: Mapping[str, tuple[str, str, tuple[str, str]]] = field(default_factory=dict)
     #: Points on two or more links (the joints); the others are tracers.
     joints: frozenset[str] = field(init=False)
 
@@ -39,7 +47,28 @@ class Structure:
     @classmethod
     def of(cls, scene: Any) -> Structure:
         """The structure of a :class:`planarkin.Scene`."""
-        return cls(scene.links, scene.ground, scene.input[0])
+        return cls.from_dict(scene.to_dict())
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any]) -> Structure:
+        """The structure of a scene in the file format (``Scene.to_dict()``), slots and
+        prismatic joints included when it has them."""
+        inp = d["input"]
+        link = inp.get("link")
+        if link is None:  # a linear input: the slot's point's link or the translating link
+            if "slot" in inp:
+                point = d["slots"][inp["slot"]]["point"]
+                link = next(k for k, v in d["links"].items() if point in v and k != d["ground"])
+            else:
+                link = d["prismatic"][inp["prismatic"]]["link"]
+        slots = {
+            k: (v["point"], v["guide"], tuple(v["line"])) for k, v in d.get("slots", {}).items()
+        }
+        pris = {
+            k: (v["link"], v["guide"], tuple(v["line"])) for k, v in d.get("prismatic", {}).items()
+        }
+        links = {k: tuple(v) for k, v in d["links"].items()}
+        return cls(links, d["ground"], link, slots, pris)  # type: ignore[arg-type]
 
     def moving(self) -> list[tuple[str, tuple[str, ...]]]:
         """The links other than ground, in order."""
@@ -149,31 +178,35 @@ def pose(
     bars = []
     for name, names in st.moving():
         c = own[name] if color is None else color
-        if len(names) > 2:
-            poly = np.array([pts.get(p, nan) for p in names])
-            if np.isfinite(poly).all():
-                patch = Polygon(poly, closed=True, fc=c, ec=c, alpha=fill_alpha * alpha,
-                                zorder=zorder - 1)  # fmt: skip
-                artists.append(ax.add_patch(patch))
+        corners = np.array([pts.get(p, nan) for p in names]).reshape(-1, 2)
+        around = hull(corners)
+        outline = corners[around]
+        if len(around) > 2:
+            # a plate: its outline (the convex hull of its points) never crosses itself
+            edge = input_color if name == apart else c
+            patch = Polygon(outline, closed=True, fc=to_rgba(c, fill_alpha * alpha),
+                            ec=to_rgba(edge, alpha), lw=0.6 * lw, zorder=zorder - 1)  # fmt: skip
+            artists.append(ax.add_patch(patch))
         j = _joints_of(st, names)
-        if name == apart:
-            stroke(j, input_color)
-        elif len(j) > 2:
-            stroke(j, c, closed=True)
+        if name == apart and len(around) <= 2:
+            stroke(j if len(j) >= 2 else list(names), input_color)
         elif len(j) == 2 and color is None:
             stroke(j, c)
         elif len(j) == 2:
-            bars.append((j[0], j[1]))
+            bars.append((j[0], j[1]))  # a chain through the joints (the plate round it)
+        elif len(around) == 2:  # its points in line: a bar between the outermost two
+            stroke([names[k] for k in around], c)
     for chain in _chains(bars):
         stroke(chain, color, lab=label)
         label = None
+    artists += _sliders(ax, st, pts, color, alpha, zorder)
     if color is None:
         fixed = set(st.links[st.ground])
         at = np.array([pts[p] for p in pts if p in st.joints and p not in fixed]).reshape(-1, 2)
         at = at[np.isfinite(at).all(axis=1)]
         if len(at):
             artists.append(ax.plot(at[:, 0], at[:, 1], "o", mfc="white", mec="k", ms=ms,
-                                   alpha=alpha, zorder=zorder + 1)[0])  # fmt: skip
+                                   mew=1.2, alpha=alpha, zorder=zorder + 1)[0])  # fmt: skip
     for p in st.tracers():
         v = pts.get(p, nan)
         if np.isfinite(v).all():
@@ -183,17 +216,169 @@ def pose(
     return artists
 
 
-def ground(ax: Axes, st: Structure, xy: Mapping[str, Any], size: float) -> list:
-    """Draws the ground link once: a dashed line through its points, a hatched-style
-    triangle (of height 1.6 ``size``) under each and a dot on each. Returns the artists."""
-    g = np.array([xy[p] for p in st.links[st.ground]], dtype=np.float64)
-    artists: list = [ax.plot(*g.T, color="0.35", ls="--", lw=1.2, zorder=1)[0]]
-    for gx, gy in g:
-        tri = np.array([[gx, gy], [gx - size, gy - 1.6 * size], [gx + size, gy - 1.6 * size]])
-        artists.append(ax.add_patch(Polygon(tri, closed=True, fc="0.75", ec="0.2", lw=1.0,
-                                            zorder=2)))  # fmt: skip
-    artists.append(ax.plot(*g.T, "o", color="k", ms=5, zorder=5)[0])
+def hull(points: np.ndarray) -> list[int]:
+    """Indices of the convex hull of the finite rows of ``points`` ((n, 2)), counter-
+    clockwise (Andrew's monotone chain): a link's outline, which never crosses itself
+    whatever order its points are listed in. Two indices when they are all in line."""
+    ok = [i for i in range(len(points)) if np.isfinite(points[i]).all()]
+    if len(ok) < len(points):
+        return []  # a link with an unsolved point is left out
+    order = sorted(ok, key=lambda i: (points[i][0], points[i][1]))
+    uniq: list[int] = []
+    for i in order:
+        if not uniq or not np.array_equal(points[uniq[-1]], points[i]):
+            uniq.append(i)
+    if len(uniq) <= 2:
+        return uniq
+
+    def cross(o: int, a: int, b: int) -> float:
+        (ox, oy), (ax_, ay), (bx, by) = points[o], points[a], points[b]
+        return float((ax_ - ox) * (by - oy) - (ay - oy) * (bx - ox))
+
+    def half(seq: list[int]) -> list[int]:
+        out: list[int] = []
+        for i in seq:
+            while len(out) >= 2 and cross(out[-2], out[-1], i) <= 0:
+                out.pop()
+            out.append(i)
+        return out
+
+    lower, upper = half(uniq), half(uniq[::-1])
+    return lower[:-1] + upper[:-1]
+
+
+def _box(centre: np.ndarray, u: np.ndarray, length: float, width: float) -> np.ndarray:
+    """Corners of a rectangle centred at ``centre``, ``length`` along unit ``u``."""
+    n = np.array([-u[1], u[0]])
+    a, b = 0.5 * length * u, 0.5 * width * n
+    return np.array([centre - a - b, centre + a - b, centre + a + b, centre - a + b])
+
+
+def _sliders(
+    ax: Axes, st: Structure, pts: Mapping[str, np.ndarray], color: Any, alpha: float, zorder: float
+) -> list:
+    """Slots as a guide rail (two lines along the guide's line, long enough to cover the
+    points on it) with a slider block on the pin; prismatic joints as a sleeve (an open
+    rectangle on the guide's line) round the translating link's points."""
+    artists: list = []
+    size = _scale(pts)
+    ink = "0.25" if color is None else color
+
+    def line(p: str, q: str) -> tuple[np.ndarray, np.ndarray] | None:
+        a, b = pts.get(p), pts.get(q)
+        if a is None or b is None or not (np.isfinite(a).all() and np.isfinite(b).all()):
+            return None
+        d = b - a
+        n = float(np.hypot(*d))
+        return (a, d / n) if n > 0 else None
+
+    for point, _guide, (p, q) in st.slots.values():
+        at, on = pts.get(point), line(p, q)
+        if on is None or at is None or not np.isfinite(at).all():
+            continue
+        a, u = on
+        s = [float(np.dot(v - a, u)) for v in (pts[p], pts[q], at)]
+        lo, hi = min(s) - 3 * size, max(s) + 3 * size
+        nrm = np.array([-u[1], u[0]])
+        foot = a + nrm * float(np.dot(at - a, nrm))  # the rail passes through the pin
+        for side in (-0.9, 0.9):
+            ends = np.array([foot + lo * u, foot + hi * u]) + side * size * nrm
+            artists.append(ax.plot(*ends.T, "-", color=ink, lw=1.0, alpha=alpha,
+                                   zorder=zorder - 1.5)[0])  # fmt: skip
+        block = _box(at, u, 2.6 * size, 1.5 * size)
+        artists.append(ax.add_patch(Polygon(block, closed=True, fc="white", ec=ink, lw=1.2,
+                                            alpha=alpha, zorder=zorder + 0.5)))  # fmt: skip
+    for link, _guide, (p, q) in st.prismatic.values():
+        on = line(p, q)
+        carried = np.array([pts.get(k, np.full(2, np.nan)) for k in st.links.get(link, ())])
+        if on is None or not len(carried) or not np.isfinite(carried).all():
+            continue
+        a, u = on
+        c = carried.mean(axis=0)
+        s = (carried - c) @ u
+        length = max(float(np.ptp(s)) * 0.6, 4 * size)
+        corners = _box(c, u, length, 2.2 * size)
+        sleeve = corners[[3, 0, 1, 2]]  # open at the end the link leaves through
+        artists.append(ax.plot(*sleeve.T, "-", color=ink, lw=1.6, alpha=alpha,
+                               zorder=zorder - 0.5)[0])  # fmt: skip
     return artists
+
+
+def _scale(pts: Mapping[str, np.ndarray]) -> float:
+    """3% of the extent of the finite points: the size of the symbols."""
+    xy = np.array([v for v in pts.values() if np.isfinite(v).all()]).reshape(-1, 2)
+    return 0.03 * float(np.ptp(xy, axis=0).max()) if len(xy) > 1 else 1.0
+
+
+def ground(ax: Axes, st: Structure, xy: Mapping[str, Any], size: float) -> list:
+    """Draws the ground link once, as an engineer does: a thin line through its points
+    and, under each, a pivot on a support triangle (of height 1.6 ``size``) standing on a
+    hatched base. Returns the artists."""
+    g = np.array([xy[p] for p in st.links[st.ground]], dtype=np.float64)
+    g = g[np.isfinite(g).all(axis=1)]
+    around = hull(g)
+    ring = g[around + around[:1]] if len(around) > 2 else g[around]
+    artists: list = [ax.plot(*ring.T, color="0.45", ls="-.", lw=1.0, zorder=1)[0]]
+    for gx, gy in g:
+        base = gy - 1.6 * size
+        tri = np.array([[gx, gy], [gx - size, base], [gx + size, base]])
+        artists.append(ax.add_patch(Polygon(tri, closed=True, fc="0.85", ec="0.2", lw=1.0,
+                                            zorder=2)))  # fmt: skip
+        artists.append(ax.plot([gx - 1.6 * size, gx + 1.6 * size], [base, base], color="0.2",
+                               lw=1.2, zorder=2)[0])  # fmt: skip
+        artists.append(ax.add_patch(Rectangle((gx - 1.6 * size, base - 0.7 * size),
+                                              3.2 * size, 0.7 * size, fill=False, lw=0,
+                                              hatch="////", ec="0.35", zorder=2)))  # fmt: skip
+    artists.append(ax.plot(*g.T, "o", mfc="white", mec="k", mew=1.2, ms=6, zorder=6)[0])
+    return artists
+
+
+def labels(ax: Axes, xy: Mapping[str, Any], names: list[str], *, fontsize: float = 8) -> list:
+    """Names the points ``names`` of a pose, each label set off from its point away from
+    the pose's centre, in the first of eight directions where it overlaps no label placed
+    before (checked on the drawn extents). Returns the annotations."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = ax.get_figure(root=True)
+    assert isinstance(fig, Figure)
+    canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
+    fig.draw_without_rendering()  # the layout settled, so extents are final
+    renderer = canvas.get_renderer()
+    pts = {n: np.asarray(xy[n], dtype=np.float64) for n in names if n in xy}
+    pts = {n: v for n, v in pts.items() if np.isfinite(v).all()}
+    if not pts:
+        return []
+    centre = np.mean(list(pts.values()), axis=0)
+    placed: list = []
+    boxes: list = []
+    marks = [ax.transData.transform(v) for v in pts.values()]
+    for n, v in pts.items():
+        d = v - centre
+        a0 = math.atan2(d[1], d[0]) if np.hypot(*d) > 0 else math.pi / 4
+        best, best_hits = None, None
+        for k in (0, 1, -1, 2, -2, 3, -3, 4):
+            a = a0 + k * math.pi / 4
+            off = (9 * math.cos(a), 9 * math.sin(a))
+            t = ax.annotate(clean(n, "?"), (float(v[0]), float(v[1])), xytext=off,
+                            textcoords="offset points", ha="center", va="center",
+                            fontsize=fontsize, zorder=8, annotation_clip=False)  # fmt: skip
+            t.set_in_layout(False)
+            e = t.get_window_extent(renderer)
+            hits = sum(e.overlaps(b) for b in boxes) + sum(
+                e.x0 - 2 < m[0] < e.x1 + 2 and e.y0 - 2 < m[1] < e.y1 + 2 for m in marks
+            )
+            if best_hits is None or hits < best_hits:
+                if best is not None:
+                    best.remove()
+                best, best_hits = t, hits
+            else:
+                t.remove()
+            if hits == 0:
+                break
+        assert best is not None
+        boxes.append(best.get_window_extent(renderer))
+        placed.append(best)
+    return placed
 
 
 def frame(ax: Axes, *arrays: Any, pad: float = 0.08) -> None:

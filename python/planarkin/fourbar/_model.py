@@ -246,6 +246,14 @@ class FourBar:
         shape, (t3, t4) = _broadcast(theta3=theta3, theta4=theta4)
         return _shaped(shape, _kernel.transmission(t3, t4)[1])[0]
 
+    def _repr_svg_(self) -> str | None:
+        """A notebook's picture: the linkage as :meth:`to_scene` draws it (None when it
+        cannot assemble)."""
+        try:
+            return self.to_scene()._repr_svg_()
+        except ValueError:
+            return None
+
     def to_scene(
         self,
         theta2: float | None = None,

@@ -107,6 +107,9 @@ class Sweep(SweepResult):
         """The input coordinate: the crank angles theta2."""
         return self.theta2
 
+    _svg_links = tuple(v for k, v in LINKS.items() if k != "ground")
+    _svg_ground = LINKS["ground"]
+
     def _describe(self) -> str:
         return f"{self.lengths}, {self.mode} mode, {self.method}"
 

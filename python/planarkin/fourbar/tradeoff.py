@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
@@ -268,6 +269,12 @@ def _median(a: np.ndarray) -> float:
     return float(np.median(a)) if a.size else math.nan
 
 
+def row_count(tols: tuple[float, ...], methods: tuple[str, ...]) -> int:
+    """Rows :func:`tradeoff` measures: one per closed-form method, one per tolerance of
+    each Newton method."""
+    return sum(1 if METHODS[m][1] is None else len(tols) for m in methods if m in METHODS)
+
+
 def tradeoff(
     tols: tuple[float, ...] = DEFAULT_TOLS,
     methods: tuple[str, ...] = tuple(METHODS),
@@ -280,11 +287,14 @@ def tradeoff(
     max_iter: int = 100,
     repeat: int = 5,
     links: np.ndarray | None = None,
+    progress: Callable[[], object] | None = None,
 ) -> TradeoffResult:
     """Measures every (method, tol): mean iterations per point and time per point over
     the seed linkage plus ``n_random`` random crank-rockers (or ``links``, an (M, 4)
     array), and the max angle error against the mpmath truth on the first
     ``truth_links`` of them. Times are the best of ``repeat`` single-thread batch calls.
+    ``progress()`` is called once per row measured (a progress bar's update): one row per
+    closed-form method, one per tolerance of each Newton method (:func:`row_count`).
     """
     t_start = time.perf_counter()
     for name in methods:
@@ -328,6 +338,8 @@ def tradeoff(
                     failed,
                 )
             )
+            if progress is not None:
+                progress()
             continue
         for tol in tols:
 
@@ -354,6 +366,8 @@ def tradeoff(
                     failed,
                 )
             )
+            if progress is not None:
+                progress()
     rows = _mark_pareto(rows)
     return TradeoffResult(rows, mode, m, n, k, max_iter, repeat, time.perf_counter() - t_start)
 

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import json
 import math
-import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any, NamedTuple, NoReturn
@@ -15,7 +14,9 @@ import numpy as np
 from .. import _kernel
 from .._angles import TAU, wrap
 from .._args import as_angles, as_float, as_i64, as_u64
+from .._svg import picture
 from ..fourbar import LINKS, POINTS, FourBar
+from ._parse import check_depth, parse
 from ._results import Assemblies, Assembly, Circuit, Plan, SceneSweep, Step, Trace
 from ._toml import dumps as toml_dumps
 
@@ -102,6 +103,7 @@ class Scene:
 
     def __init__(self, data: Mapping[str, Any]) -> None:
         _entry(isinstance(data, Mapping), "scene", f"must be a mapping, got {type(data).__name__}")
+        check_depth(data)
         unknown = [k for k in data if k not in KEYS]
         _entry(not unknown, "scene", f"unknown keys {unknown}; known keys: {', '.join(KEYS)}")
         for k in REQUIRED:
@@ -153,17 +155,17 @@ class Scene:
 
     @classmethod
     def load(cls, path: str | Path) -> Scene:
-        """Reads a ``.json`` or ``.toml`` scene file."""
+        """Reads a ``.json`` or ``.toml`` scene file; every error names the file."""
         p = Path(path)
-        if p.suffix == ".json":
-            data = json.loads(p.read_text(encoding="utf-8"))
-        elif p.suffix == ".toml":
-            data = tomllib.loads(p.read_text(encoding="utf-8"))
-        else:
+        if p.suffix not in (".json", ".toml"):
             raise ValueError(f"path must end in .json or .toml, got {str(path)!r}")
+        data = parse(p.read_text(encoding="utf-8"), p.suffix, str(p))
         if isinstance(data, dict) and data.get("name") is None:
             data["name"] = p.stem
-        return cls(data)
+        try:
+            return cls(data)
+        except ValueError as e:
+            raise ValueError(f"{p}: {e}") from None
 
     def to_dict(self) -> dict[str, Any]:
         """The scene in the file format (plain lists and dicts; absent keys left out)."""
@@ -264,6 +266,13 @@ class Scene:
             f"input {d['input']['link']!r} at {d['input']['pivot']!r})"
         )
 
+    def _repr_svg_(self) -> str:
+        """A notebook's picture (a few KB of SVG): the drawn pose, every point named."""
+        d = self._data
+        links = [v for k, v in d["links"].items() if k != d["ground"]]
+        title = d["name"] or "scene"
+        return picture(pose=d["points"], links=links, ground=d["links"][d["ground"]], title=title)
+
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Scene) and self.to_dict() == other.to_dict()
 
@@ -346,8 +355,9 @@ class Scene:
         tol, max_iter = as_float("tol", tol), as_i64("max_iter", max_iter)
         ms = as_float("max_step", max_step)
         w = None if omega is None else as_float("omega", omega)
-        arrays = core.sweep(t, tol, max_iter, ms, w)
-        return SceneSweep.build(plan, t, *arrays)
+        *arrays, kin = core.sweep(t, tol, max_iter, ms, w)
+        vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
+        return SceneSweep.build(plan, t, *arrays, vel, acc, omega=w)
 
     # --- every assembly, circuits, tracing ------------------------------------------------
 

@@ -96,18 +96,26 @@ class SceneSweep(SweepResult):
     #: (N, P, 2) velocities and (N, L) angular velocities when ``omega`` was given.
     velocity_array: np.ndarray | None = None
     angular_velocity_array: np.ndarray | None = None
-    #: (N, P, 2) accelerations and (N, L) angular accelerations at constant ``omega``.
-    acceleration_array: np.ndarray | None = None
-    angular_acceleration_array: np.ndarray | None = None
+    #: (N, P, 2) accelerations and (N, L) angular accelerations at constant ``omega``
+    #: (None: not computed).
+    acceleration_array: np.ndarray | None = field(default=None, kw_only=True)
+    angular_acceleration_array: np.ndarray | None = field(default=None, kw_only=True)
+    #: The input's angular velocity (rad/s) behind the velocities (None: not given).
+    omega: float | None = field(default=None, kw_only=True)
     #: The names of the P reported points and of the L reported links, in array order.
     point_names: tuple[str, ...] = field(default=(), kw_only=True)
     link_names: tuple[str, ...] = field(default=(), kw_only=True)
 
     @classmethod
     def build(
-        cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel
-    ):  # noqa: ANN001, ANN206, E501
+        cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel,
+        acc=None, *, omega=None,
+    ):  # noqa: ANN001, ANN206, E501  # fmt: skip
+        """From the kernel's arrays; ``vel`` and ``acc`` are (points, links) pairs or None."""
         return cls(
+            acceleration_array=None if acc is None else acc[0],
+            angular_acceleration_array=None if acc is None else acc[1],
+            omega=omega,
             plan=plan,
             theta=theta,
             coords=pts,
@@ -121,54 +129,58 @@ class SceneSweep(SweepResult):
             point_status_array=pstat,
             velocity_array=None if vel is None else vel[0],
             angular_velocity_array=None if vel is None else vel[1],
-            acceleration_array=None if vel is None else vel[2],
-            angular_acceleration_array=None if vel is None else vel[3],
             point_names=plan.points,
             link_names=plan.links,
         )
 
+    @staticmethod
+    def _columns(a: np.ndarray | None, names: tuple[str, ...]) -> dict[str, np.ndarray] | None:
+        """name -> the column of ``a`` (axis 1) for that name: views, no copies."""
+        return None if a is None else {n: a[:, j] for j, n in enumerate(names)}
+
     @cached_property
     def points(self) -> dict[str, np.ndarray]:
         """name -> (N, 2) positions, scene units."""
-        return {n: self.coords[:, j] for j, n in enumerate(self.point_names)}
+        out = self._columns(self.coords, self.point_names)
+        assert out is not None
+        return out
 
     @cached_property
     def angles(self) -> dict[str, np.ndarray]:
         """link -> (N,) angles in (-pi, pi]."""
-        return {n: self.angle_array[:, j] for j, n in enumerate(self.link_names)}
+        out = self._columns(self.angle_array, self.link_names)
+        assert out is not None
+        return out
 
     @cached_property
     def point_status(self) -> dict[str, np.ndarray] | None:
         """name -> (N,) int8 status of each reported point (None: not computed)."""
-        s = self.point_status_array
-        return None if s is None else {n: s[:, j] for j, n in enumerate(self.point_names)}
+        return self._columns(self.point_status_array, self.point_names)
 
     @cached_property
     def velocities(self) -> dict[str, np.ndarray] | None:
         """name -> (N, 2) velocities (scene units per time) when ``omega`` was given."""
-        v = self.velocity_array
-        return None if v is None else {n: v[:, j] for j, n in enumerate(self.point_names)}
+        return self._columns(self.velocity_array, self.point_names)
 
     @cached_property
     def angular_velocities(self) -> dict[str, np.ndarray] | None:
         """link -> (N,) angular velocities when ``omega`` was given."""
-        w = self.angular_velocity_array
-        return None if w is None else {n: w[:, j] for j, n in enumerate(self.link_names)}
+        return self._columns(self.angular_velocity_array, self.link_names)
 
     @cached_property
     def accelerations(self) -> dict[str, np.ndarray] | None:
-        """name -> (N, 2) accelerations (scene units per time squared) at constant ``omega``."""
-        a = self.acceleration_array
-        return None if a is None else {n: a[:, j] for j, n in enumerate(self.point_names)}
+        """name -> (N, 2) accelerations (scene units per time squared) at constant
+        ``omega``, when computed."""
+        return self._columns(self.acceleration_array, self.point_names)
 
     @cached_property
     def angular_accelerations(self) -> dict[str, np.ndarray] | None:
-        """link -> (N,) angular accelerations at constant ``omega``."""
-        a = self.angular_acceleration_array
-        return None if a is None else {n: a[:, j] for j, n in enumerate(self.link_names)}
+        """link -> (N,) angular accelerations at constant ``omega``, when computed."""
+        return self._columns(self.angular_acceleration_array, self.link_names)
 
     def _describe(self) -> str:
-        steps = "no plan (reference)" if self.plan is None else f"{len(self.plan)} steps"
+        k = 0 if self.plan is None else len(self.plan)
+        steps = "no plan (reference)" if self.plan is None else f"{k} step{'' if k == 1 else 's'}"
         names = list(self.point_names)
         return f"{steps}, points {names[:6]}{'...' if len(names) > 6 else ''}"
 

@@ -318,6 +318,7 @@ def synthesize(
     maxiter: int = 200,
     minimax: bool = True,
     sign_combinations: Sequence[tuple[int, int, int]] = (),
+    progress: Callable[[], object] | None = None,
 ) -> SynthesisResult:
     """Multistart SLSQP. ``starts`` runs: the given ``x0`` first, then the best of
     ``samples`` random candidates (``seed``); on ``executor`` (default
@@ -325,7 +326,8 @@ def synthesize(
     works the same). On Ctrl-C the starts not yet run are cancelled and the default pool
     is stopped at once (a caller's executor is the caller's to stop: :func:`stop_pool`).
     ``sign_combinations`` (objectives on the seed's closed form): start i uses combination
-    i modulo their number, so the starts cover the branch combinations."""
+    i modulo their number, so the starts cover the branch combinations. ``progress()`` is
+    called once per start finished (a progress bar's update)."""
     if starts < 1:
         raise ValueError(f"starts must be >= 1, got {starts}")
     if samples < 0:
@@ -354,7 +356,11 @@ def synthesize(
         ]
         for p, x in zip(probs, xs, strict=True):
             futs.append(ex.submit(run_start, p, x, maxiter=maxiter, minimax=minimax))
-        runs = [f.result() for f in futs]
+        runs = []
+        for f in futs:
+            runs.append(f.result())
+            if progress is not None:
+                progress()
     except BaseException:
         # Ctrl-C or a failed start: what has not run is not run; an own pool is stopped at
         # once, a caller's executor is left to the caller

@@ -9,6 +9,7 @@ import argparse
 import sys
 
 from ... import __version__
+from ..fonts import use as use_fonts
 from . import analyze, animate, circuits, scenes, synthesize, tradeoff
 from ._common import Parser
 
@@ -23,7 +24,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="planarkin",
         description="Planar linkage kinematics with a Rust core: four-bars (--links), any "
         "planar linkage as a scene (a file or a built-in: 'planarkin scenes'), its circuits, "
-        "and the synthesis of double butterflies. Run 'planarkin analyze' for the seeds' "
+        "and the synthesis of double butterflies. Run 'planarkin analyze' for the textbook "
         "four-bar, 'planarkin analyze jansen' for a scene.",
     )
     parser.add_argument("--version", action="version", version=f"planarkin {__version__}")
@@ -37,6 +38,7 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``planarkin`` console script; returns the exit code."""
     try:
         args = build_parser().parse_args(argv)
+        use_fonts()
         return int(args.func(args) or 0)
     except KeyboardInterrupt:
         print("planarkin: interrupted", file=sys.stderr)

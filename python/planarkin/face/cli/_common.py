@@ -20,6 +20,10 @@ from ...fourbar import FourBar
 from ...scene import Scene
 from ...scene import builtin as scenes
 
+#: The file formats every figure can be written in (``--format``): SVG and PDF are vector
+#: (papers, laser cutters), PNG at ``--dpi``.
+FORMATS = ("png", "svg", "pdf")
+
 #: Most input angles a command sweeps: every one becomes a CSV row and plotted points.
 MAX_POINTS = 10_000_000
 
@@ -57,7 +61,7 @@ def linkage_options(*, rpm: bool) -> Parser:
         type=float,
         metavar=("R1", "R2", "R3", "R4"),
         help="four-bar link lengths: ground, crank (input), coupler, rocker "
-        f"(default: {links}, the seeds' linkage)",
+        f"(default: {links}, the textbook linkage)",
     )
     g.add_argument("--mode", choices=MODES, help="four-bar assembly mode (default: open)")
     g.add_argument(
@@ -128,6 +132,46 @@ def out_argument(parser: argparse.ArgumentParser, default: str = "figures") -> N
         metavar="DIR",
         help="output folder (default: %(default)s)",
     )
+
+
+def figure_arguments(parser: argparse.ArgumentParser, dpi: float) -> None:
+    """``--dpi`` and ``--format`` of a command that writes figures."""
+    parser.add_argument(
+        "--dpi", type=float, default=dpi, help="figure resolution (default: %(default)s)"
+    )
+    format_argument(parser)
+
+
+def format_argument(parser: argparse.ArgumentParser) -> None:
+    """``--format png|svg|pdf`` of a command that writes figures."""
+    parser.add_argument(
+        "--format",
+        choices=FORMATS,
+        default="png",
+        help="figure file format: png, svg or pdf (vector: papers, laser "
+        "cutters) (default: %(default)s)",
+    )
+
+
+def quiet_argument(parser: argparse.ArgumentParser) -> None:
+    """``--quiet``: no progress bar (one is drawn only when stderr is a terminal)."""
+    parser.add_argument(
+        "-q",
+        "--quiet",
+        action="store_true",
+        help="no progress bar (one is shown on stderr only when it is a terminal; "
+        "PLANARKIN_PROGRESS=1 shows it anyway)",
+    )
+
+
+def figure_file(name: str, fmt: str) -> str:
+    """A figure's file name (listed with .png) in the format ``fmt``."""
+    return str(Path(name).with_suffix(f".{fmt}"))
+
+
+def plural(n: int, noun: str, nouns: str | None = None) -> str:
+    """ "1 step", "2 steps" (``nouns``: an irregular plural)."""
+    return f"{n} {noun if n == 1 else (nouns or noun + 's')}"
 
 
 def refuse_fourbar_options(args: argparse.Namespace, extra: Iterable[tuple[str, str]] = ()) -> None:

@@ -19,16 +19,20 @@ from ..._status import Status
 from ...fourbar import FourBar, Limits, Solution, Sweep
 from ...fourbar.analysis import convergence_order, unreachable_spans
 from ...scene import Scene, SceneSweep
-from ..degrees import unwrap_deg
+from ..degrees import unwrap_deg, wrap_deg, wrapped
 from ..figures import fourbar as fig
 from ..figures import scene as scene_fig
+from ..progress import bar
 from ._common import (
+    figure_arguments,
+    figure_file,
     finite,
     fourbar_setup,
     json_text,
     linkage_options,
     load_scene,
     out_argument,
+    quiet_argument,
     refuse_fourbar_options,
     scene_angles,
     scene_argument,
@@ -56,9 +60,9 @@ FIGURES = {
 }
 #: The figures of ``planarkin analyze SCENE``.
 SCENE_FIGURES = {
-    "scene_linkage.png": "the linkage drawn at several input angles over its tracer paths",
+    "scene_linkage.png": "the linkage as drawn, every point named, beside several poses",
     "scene_conditioning.png": "signed conditioning of each step and of the whole solve",
-    "scene_tracers.png": "tracer point coordinates and speeds against the input angle",
+    "scene_tracers.png": "tracer point coordinates and speeds (only if it has tracers)",
 }
 #: CSV header, units in brackets; one row per crank angle. Angles in degrees as computed
 #: (wrapped to (-180, 180]), NaN where the status is not CONVERGED.
@@ -95,26 +99,25 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         parents=[linkage_options(rpm=True)],
         help="sweep, summary table, figures, CSV and JSON",
         description="Solve the sweep of a four-bar (--links) or of a SCENE, print a summary\n"
-        f"table and write figures (PNG), {RESULTS_CSV} and {SUMMARY_JSON} into the output "
-        "folder.",
+        f"table and write figures (--format: png, svg or pdf), {RESULTS_CSV} and "
+        f"{SUMMARY_JSON} into the output folder.",
         epilog="files written (four-bar):\n"
         + "".join(f"  {k:34}{v}\n" for k, v in _FILES.items())
         + "files written (SCENE): the CSV and JSON as above, and\n"
         + "".join(f"  {k:34}{v}\n" for k, v in SCENE_FIGURES.items())
-        + "\nAngles are in degrees; omega in rad/s, alpha in rad/s^2; lengths in the unit of "
-        "--links (or of the scene).",
+        + "\nAngles are in degrees, in (-180, 180]; omega in rad/s, alpha in rad/s^2; lengths "
+        "in the unit of --links (or the scene's 'units'); the input turns at --rpm.",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     scene_argument(a, "analyze", "--newton-at")
     out_argument(a)
-    a.add_argument(
-        "--dpi", type=float, default=300.0, help="figure resolution (default: %(default)s)"
-    )
+    figure_arguments(a, 300.0)
+    quiet_argument(a)
     a.add_argument(
         "--newton-at",
         type=float,
         metavar="DEG",
-        help="crank angle of the four-bar's convergence study, solved from the seeds' cold "
+        help="crank angle of the four-bar's convergence study, solved from the textbook's cold "
         f"guess (80, 100) deg, mirrored for crossed (default: {NEWTON_THETA2_DEG:g})",
     )
     a.add_argument("--no-figures", action="store_true", help="write the CSV and JSON only")
@@ -458,9 +461,10 @@ def format_table(summary: dict) -> str:
             f"total {w['total']:.2f} s",
         )
     if "files" in summary:
-        figs = [f for f in summary["files"] if f.endswith(".png")]
-        data = [f for f in summary["files"] if not f.endswith(".png")]
-        what = ", ".join(data) + (f" and {len(figs)} figures (PNG)" if figs else "")
+        figs = [f for f in summary["files"] if f.startswith("figure_")]
+        data = [f for f in summary["files"] if not f.startswith("figure_")]
+        kind = figs[0].rsplit(".", 1)[-1].upper() if figs else ""
+        what = ", ".join(data) + (f" and {len(figs)} figures ({kind})" if figs else "")
         add("written", f"{summary['out']}{os.sep}: {what}")
     head = f"planarkin analyze: four-bar ({L['r1']:g}, {L['r2']:g}, {L['r3']:g}, {L['r4']:g})"
     return head + "\n" + table(rows)
@@ -491,9 +495,13 @@ def _run_fourbar(args: argparse.Namespace) -> int:
     write_csv(out / RESULTS_CSV, res.columns, zip(*res.columns.values(), strict=True))
     files = [RESULTS_CSV, SUMMARY_JSON]
     if not args.no_figures:
-        for name, draw in _figures(res, args).items():
-            draw().savefig(out / name, dpi=args.dpi)
-            files.append(name)
+        builders = _figures(res, args)
+        with bar(len(builders), "analyze: figures", quiet=args.quiet, unit="figure") as b:
+            for name, draw in builders.items():
+                name = figure_file(name, args.format)
+                draw().savefig(out / name, dpi=args.dpi)
+                files.append(name)
+                b.update()
     summary = res.summary
     summary["wall_time_s"] = {
         "sweep": t_sweep,
@@ -516,11 +524,11 @@ def _none(x: float) -> float | None:
 
 
 def scene_summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
-    """The summary table as data."""
+    """The summary table as data (angles in degrees, in (-180, 180])."""
     plan, limit = sw.plan, sw.limit
     assert plan is not None and limit is not None  # a kernel sweep has both
     ok = sw.success
-    deg = np.degrees(sw.theta)
+    deg = wrap_deg(sw.theta)
     absdet = np.abs(sw.det[ok])
     # where the motion stops: the edges of the solved spans (to the sweep's resolution)
     edges = []
@@ -529,15 +537,28 @@ def scene_summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
             edges.append({"deg": float(deg[a]), "det": float(sw.det[a]), "side": "start"})
         if b < len(ok):
             edges.append({"deg": float(deg[b - 1]), "det": float(sw.det[b - 1]), "side": "end"})
+    dead = sorted({round(wrapped(float(v)), 9) for v in limit if math.isfinite(v)})
+    omega = sw.omega
+    unit = scene.units or "length"
     return {
         "scene": scene.name,
         "description": scene.description,
+        "units": scene.units,
         "links": len(scene.links),
         "joints": sum(len(v) - 1 for v in scene.joints.values()),
         "points": len(scene.points),
         "mobility": scene.mobility,
         "input": {"link": scene.input[0], "pivot": scene.input[1]},
-        "drawn_input_deg": math.degrees(scene.input_angle),
+        "drawn_input_deg": wrapped(scene.input_angle),
+        "input_speed": None
+        if omega is None
+        else {
+            "omega_rad_s": omega,
+            "rpm": scene_fig.rpm(omega),
+            "constant": True,
+            "velocity_unit": f"{unit}/s",
+            "acceleration_unit": f"{unit}/s^2",
+        },
         "outputs": list(plan.outputs) if plan.outputs is not None else "all",
         "plan": [
             {"kind": s.kind, "points": list(s.points), "unknowns": list(s.unknowns)} for s in plan
@@ -551,7 +572,7 @@ def scene_summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
         "conditioning_min": float(absdet.min()) if ok.any() else None,
         "conditioning_max": float(absdet.max()) if ok.any() else None,
         "motion_stops_deg": edges,
-        "dead_points_deg": sorted({round(math.degrees(v), 9) for v in limit if math.isfinite(v)}),
+        "dead_points_deg": dead,
         "wall_time_s": wall,
     }
 
@@ -566,8 +587,15 @@ def scene_table(s: dict) -> str:
             f"{s['input']['link']} at {s['input']['pivot']}, drawn at "
             f"{s['drawn_input_deg']:.3f} deg",
         ),  # fmt: skip
-        ("outputs", ", ".join(s["outputs"]) if isinstance(s["outputs"], list) else "all"),
     ]
+    speed = s["input_speed"]
+    if speed is not None:
+        rows.append((
+            "input speed",
+            f"omega = {speed['omega_rad_s']:.4f} rad/s ({speed['rpm']:g} rpm, constant); "
+            f"velocities in {speed['velocity_unit']}",
+        ))  # fmt: skip
+    rows.append(("outputs", ", ".join(s["outputs"]) if isinstance(s["outputs"], list) else "all"))
     for i, st in enumerate(s["plan"]):
         rows.append((f"plan step {i + 1}", f"{st['kind']}: {', '.join(st['points'])} "
                      f"(angles of {', '.join(st['unknowns'])})"))  # fmt: skip
@@ -597,29 +625,48 @@ def scene_table(s: dict) -> str:
     return table(rows)
 
 
-def _write_scene_csv(path: Path, sw: SceneSweep) -> None:
-    names = list(sw.points)
-    velocities = sw.velocities
+def scene_columns(sw: SceneSweep, units: str | None) -> list[str]:
+    """The CSV header of ``analyze SCENE``, units in brackets: the input angle, statuses,
+    each point's position (and velocity, acceleration when computed), each link's angle
+    (and angular velocity, acceleration)."""
+    u = units or "length"
     cols = ["theta [deg]", "status [code]", "status_name", "nit [-]", "det [-]"]
-    for n in names:
-        cols += [f"{n}_x", f"{n}_y"]
-        if velocities is not None:
-            cols += [f"{n}_vx", f"{n}_vy"]
+    for n in sw.points:
+        cols += [f"{n}_x [{u}]", f"{n}_y [{u}]"]
+        if sw.velocities is not None:
+            cols += [f"{n}_vx [{u}/s]", f"{n}_vy [{u}/s]"]
+        if sw.accelerations is not None:
+            cols += [f"{n}_ax [{u}/s^2]", f"{n}_ay [{u}/s^2]"]
     for n in sw.angles:
         cols += [f"{n}_angle [deg]"]
+        if sw.angular_velocities is not None:
+            cols += [f"{n}_omega [rad/s]"]
+        if sw.angular_accelerations is not None:
+            cols += [f"{n}_alpha [rad/s^2]"]
+    return cols
+
+
+def _write_scene_csv(path: Path, sw: SceneSweep, units: str | None) -> None:
+    cols = scene_columns(sw, units)
+    per_point = [a for a in (sw.coords, sw.velocity_array, sw.acceleration_array) if a is not None]
+    per_link = [
+        a for a in (sw.angular_velocity_array, sw.angular_acceleration_array) if a is not None
+    ]
+    theta = wrap_deg(sw.theta)
+    link_deg = wrap_deg(sw.angle_array)
 
     def rows() -> Iterator[list[object]]:
         for i in range(len(sw)):
             code = int(sw.status[i])
             row: list[object] = [
-                math.degrees(sw.theta[i]), code, Status(code).name, int(sw.nit[i]),
-                float(sw.det[i]),
+                float(theta[i]), code, Status(code).name, int(sw.nit[i]), float(sw.det[i]),
             ]  # fmt: skip
-            for n in names:
-                row += [float(v) for v in sw.points[n][i]]
-                if velocities is not None:
-                    row += [float(v) for v in velocities[n][i]]
-            row += [math.degrees(sw.angles[n][i]) for n in sw.angles]
+            for j in range(len(sw.point_names)):
+                for a in per_point:
+                    row += [float(a[i, j, 0]), float(a[i, j, 1])]
+            for j in range(len(sw.link_names)):
+                row.append(float(link_deg[i, j]))
+                row += [float(a[i, j]) for a in per_link]
             yield row
 
     write_csv(path, cols, rows())
@@ -634,28 +681,43 @@ def _run_scene(args: argparse.Namespace) -> int:
     finite("--rpm", args.rpm)
     finite("--dpi", args.dpi, positive=True)
     omega = args.rpm * math.tau / 60
-    sw = sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, omega=omega)
-    # timed warm, as the four-bar's sweep is (the first call also compiled the plan)
-    t_sweep, n_runs = warm_median(
-        lambda: sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, omega=omega), runs=5
-    )
-    out: Path = args.out
-    out.mkdir(parents=True, exist_ok=True)
-    _write_scene_csv(out / RESULTS_CSV, sw)
-    files = [RESULTS_CSV, SUMMARY_JSON]
-    if not args.no_figures:
-        # the figures draw every link: sweep the whole scene for them
-        whole = sc.sweep(theta, outputs="all", tol=args.tol, max_iter=args.max_iter, omega=omega)
-        for name, draw, data in (
-            ("scene_linkage.png", scene_fig.linkage, whole),
-            ("scene_conditioning.png", scene_fig.conditioning, sw),
-            ("scene_tracers.png", scene_fig.tracers, sw),
-        ):
-            draw(sc, data).savefig(out / name, dpi=args.dpi)
-            files.append(name)
+    figures = {} if args.no_figures else SCENE_FIGURES
+    with bar(3 + len(figures), "analyze", quiet=args.quiet) as b:
+        sw = sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, omega=omega)
+        b.update()
+        # timed warm, as the four-bar's sweep is (the first call also compiled the plan)
+        t_sweep, n_runs = warm_median(
+            lambda: sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, omega=omega), runs=5
+        )
+        b.update()
+        out: Path = args.out
+        out.mkdir(parents=True, exist_ok=True)
+        _write_scene_csv(out / RESULTS_CSV, sw, sc.units)
+        b.update()
+        files = [RESULTS_CSV, SUMMARY_JSON]
+        skipped = []
+        if figures:
+            # the figures draw every link: sweep the whole scene for them
+            whole = sc.sweep(
+                theta, outputs="all", tol=args.tol, max_iter=args.max_iter, omega=omega
+            )
+            for name, draw, data in (
+                ("scene_linkage.png", scene_fig.linkage, whole),
+                ("scene_conditioning.png", scene_fig.conditioning, sw),
+                ("scene_tracers.png", scene_fig.tracers, sw),
+            ):
+                drawn = draw(sc, data)
+                if drawn is None:
+                    skipped.append(name)
+                else:
+                    name = figure_file(name, args.format)
+                    drawn.savefig(out / name, dpi=args.dpi)
+                    files.append(name)
+                b.update()
     summary = scene_summary(
         sc, sw, {"sweep_median": t_sweep, "total": time.perf_counter() - t_start}
     )
+    summary["files"] = files
     (out / SUMMARY_JSON).write_text(json_text(summary) + "\n", encoding="utf-8")
     if args.json:
         print(json_text(summary))
@@ -665,4 +727,6 @@ def _run_scene(args: argparse.Namespace) -> int:
         ms = 1e3 * summary["wall_time_s"]["sweep_median"]
         print(f"  sweep {ms:.3f} ms (median of {n_runs} warm runs)")
         print(f"  wrote {', '.join(str(out / f) for f in files)}")
+        if skipped:
+            print("  no tracer figure: the scene has no tracer point (a point on one link only)")
     return 0

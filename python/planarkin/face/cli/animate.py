@@ -10,12 +10,14 @@ from pathlib import Path
 
 from ...fourbar.analysis import rocking
 from .. import animate
+from ..progress import bar
 from ._common import (
     finite,
     fourbar_setup,
     linkage_options,
     load_scene,
     out_argument,
+    quiet_argument,
     refuse_fourbar_options,
     scene_angles,
     scene_argument,
@@ -44,6 +46,7 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     m.add_argument(
         "--dpi", type=float, default=80.0, help="frame resolution (default: %(default)s)"
     )
+    quiet_argument(m)
     m.set_defaults(func=run)
     return m
 
@@ -59,11 +62,14 @@ def run(args: argparse.Namespace) -> int:
     return _run_scene(args) if args.scene is not None else _run_fourbar(args)
 
 
-def _save(anim: object, args: argparse.Namespace, title: str) -> tuple[Path, Path]:
+def _save(anim: object, args: argparse.Namespace, title: str, frames: int) -> tuple[Path, Path]:
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)
     gif, page = out / ANIMATION_GIF, out / ANIMATION_HTML
-    animate.save(anim, gif, page, fps=args.fps, title=title)  # type: ignore[arg-type]
+    # each frame is drawn twice: once for the GIF, once for the page
+    with bar(2 * frames, "animate", quiet=args.quiet, unit="frame") as b:
+        animate.save(anim, gif, page, fps=args.fps, title=title,  # type: ignore[arg-type]
+                     progress=lambda i, n: b.update())  # fmt: skip
     return gif, page
 
 
@@ -78,8 +84,8 @@ def _run_fourbar(args: argparse.Namespace) -> int:
     path = rocking(fb, fb.limits(args.mode), sweep, points=len(theta2) // 2 + 1)
     anim = animate.fourbar(path, p, delta, frames=args.frames, fps=args.fps, dpi=args.dpi)
     r = ", ".join(f"{x:g}" for x in fb.lengths)
-    gif, page = _save(anim, args, f"planarkin four-bar ({r}), {args.mode} mode")
     n = len(animate.fourbar_frames(path, args.frames))
+    gif, page = _save(anim, args, f"planarkin four-bar ({r}), {args.mode} mode", n)
     how = "" if len(path) == 1 else ", the crank rocking between its toggles"
     print(f"planarkin animate: four-bar ({r}), {args.mode} mode{how}, {n} frames")
     print(f"  wrote {gif} and {page}")
@@ -93,7 +99,11 @@ def _run_scene(args: argparse.Namespace) -> int:
     finite("--dpi", args.dpi, positive=True)
     sw = sc.sweep(scene_angles(sc, args.step), tol=args.tol, max_iter=args.max_iter)
     anim = animate.scene(sc, sw, frames=args.frames, fps=args.fps, dpi=args.dpi)
-    gif, page = _save(anim, args, f"planarkin: {sc.name or args.scene}")
-    print(f"planarkin animate: {sc.name or args.scene}, {int(sw.success.sum())} solved angles")
+    _, points, _, rocks = animate.motion(sc, sw)
+    n = len(animate.scene_frames(points, args.frames))
+    gif, page = _save(anim, args, f"planarkin: {sc.name or args.scene}", n)
+    how = ", rocking between its dead points (the input cannot turn fully)" if rocks else ""
+    print(f"planarkin animate: {sc.name or args.scene}, {int(sw.success.sum())} of {len(sw)} "
+          f"input angles solved{how}")  # fmt: skip
     print(f"  wrote {gif} and {page}")
     return 0

@@ -22,6 +22,8 @@ from ...synthesis import driver
 from ...synthesis.problem import OBJECTIVES, Problem
 from ...synthesis.verify import linear_sensitivity, tolerance_sensitivity, verify
 from ..figures import synthesis as synthesis_figures
+from ..progress import bar
+from ._common import figure_file, format_argument, quiet_argument
 
 PROBLEMS = ("ackermann",)
 #: defaults of the full run (the shipped design in examples/ackermann/ is this run's)
@@ -44,9 +46,9 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     """Registers ``synthesize``."""
     y = sub.add_parser(
         "synthesize",
-        help="defect-free synthesis of a double butterfly (seed 003): ackermann",
+        help="defect-free synthesis of a double butterfly: ackermann",
         description="Synthesize a double butterfly by multistart SLSQP on the true linkage's "
-        f"error, verify it, and write {DESIGN_JSON}, {REPORT_JSON} and the seed's figures.",
+        f"error, verify it, and write {DESIGN_JSON}, {REPORT_JSON} and the study's figures.",
     )
     add_arguments(y)
     y.set_defaults(func=run)
@@ -55,7 +57,11 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """The options of ``synthesize``."""
-    p.add_argument("problem", choices=PROBLEMS, help="the synthesis problem (seed 003's example 2)")
+    p.add_argument(
+        "problem",
+        choices=PROBLEMS,
+        help="the synthesis problem (the study's example 2: Ackermann steering)",
+    )
     p.add_argument(
         "--out",
         type=Path,
@@ -132,6 +138,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--no-figures", action="store_true", help="write design.json and report.json only"
     )
     p.add_argument("--json", action="store_true", help="print report.json to stdout")
+    format_argument(p)
+    quiet_argument(p)
 
 
 def _check(args: argparse.Namespace) -> None:
@@ -159,15 +167,17 @@ def run(args: argparse.Namespace) -> int:
     # at once instead of waiting for the starts they run and have queued
     executor = driver.process_pool(args.workers)
     try:
-        res = driver.synthesize(
-            problem,
-            starts=args.starts,
-            samples=args.samples,
-            seed=args.seed,
-            sampler=ak.mirror_sampler(problem.space),
-            executor=executor,
-            maxiter=args.maxiter,
-        )
+        with bar(args.starts, "synthesize: starts", quiet=args.quiet, unit="start") as b:
+            res = driver.synthesize(
+                problem,
+                starts=args.starts,
+                samples=args.samples,
+                seed=args.seed,
+                sampler=ak.mirror_sampler(problem.space),
+                executor=executor,
+                maxiter=args.maxiter,
+                progress=b.update,
+            )
     except BaseException:
         driver.stop_pool(executor)
         raise
@@ -176,10 +186,12 @@ def run(args: argparse.Namespace) -> int:
     truth = replace(problem, objective="true")
     grid = np.linspace(problem.target.dense_in[0], problem.target.dense_in[-1], 201)
     rows: list[tuple[driver.StartResult, dict[str, Any], float]] = []
-    for r in res.runs:
-        v = verify(truth, r.x)
-        s = linear_sensitivity(truth.space.scene(r.x), grid, ak.right_steer(grid))
-        rows.append((r, v, s))
+    with bar(len(res.runs), "synthesize: verify", quiet=args.quiet, unit="design") as b:
+        for r in res.runs:
+            v = verify(truth, r.x)
+            s = linear_sensitivity(truth.space.scene(r.x), grid, ak.right_steer(grid))
+            rows.append((r, v, s))
+            b.update()
     good = [
         row
         for row in rows
@@ -253,7 +265,7 @@ def run(args: argparse.Namespace) -> int:
         g1001 = np.linspace(problem.target.dense_in[0], problem.target.dense_in[-1], 1001)
         report["tolerance_sensitivity"] = tolerance_sensitivity(sc, g1001, ak.right_steer(g1001))
     report["wall_s"] = time.perf_counter() - t0
-    paths = write(args.out, truth, best.x, report, sc, figures=not args.no_figures)
+    paths = write(args.out, truth, best.x, report, sc, figures=not args.no_figures, fmt=args.format)
     if args.json:
         print(json.dumps(report, indent=2))
     else:
@@ -275,8 +287,10 @@ def write(
     report: dict[str, Any],
     scene: Scene,
     figures: bool = True,
+    fmt: str = "png",
 ) -> list[Path]:
-    """design.json, report.json and (``figures``) the three PNGs into ``out``."""
+    """design.json, report.json and (``figures``) the three figures (``fmt``: png, svg,
+    pdf) into ``out``."""
     out.mkdir(parents=True, exist_ok=True)
     paths = [scene.save(out / DESIGN_JSON)]
     p = out / REPORT_JSON
@@ -284,8 +298,9 @@ def write(
     paths.append(p)
     if figures:
         for name, make in FIGURES.items():
-            make(problem, x).savefig(out / name, dpi=120)
-            paths.append(out / name)
+            path = out / figure_file(name, fmt)
+            make(problem, x).savefig(path, dpi=120)
+            paths.append(path)
     return paths
 
 

@@ -7,12 +7,15 @@ import argparse
 import json
 import math
 import sys
+from pathlib import Path
 
 import numpy as np
 
 from ..._angles import TAU
-from ...fourbar.tradeoff import DEFAULT_TOLS, METHODS, tradeoff
+from ...fourbar.tradeoff import DEFAULT_TOLS, METHODS, row_count, tradeoff
 from ..figures.tradeoff import save
+from ..progress import bar
+from ._common import FORMATS, quiet_argument
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -112,7 +115,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="PATH",
         help="where to save the Pareto plot (default tradeoff.png)",
     )
+    parser.add_argument(
+        "--format",
+        choices=FORMATS,
+        help="the plot's file format (png, svg or pdf); default: the suffix of --plot",
+    )
     parser.add_argument("--no-plot", action="store_true", help="do not save the plot")
+    quiet_argument(parser)
     parser.add_argument("--json", metavar="PATH", help="also write the results as JSON")
     parser.add_argument("--markdown", action="store_true", help="print the table as Markdown")
 
@@ -120,18 +129,26 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Runs the ``tradeoff`` subcommand; returns the exit code."""
     theta2 = np.linspace(0.0, TAU, args.points) if args.points != 361 else None
+    plot = Path(args.plot)
+    if args.format is not None:
+        plot = plot.with_suffix(f".{args.format}")
+    elif not args.no_plot and plot.suffix.lstrip(".") not in FORMATS:
+        raise ValueError(f"--plot must end in .png, .svg or .pdf, got {args.plot!r}")
+    total = row_count(args.tols, args.methods)
     try:
-        res = tradeoff(
-            args.tols,
-            args.methods,
-            n_random=args.random,
-            truth_links=args.truth_links,
-            seed=args.seed,
-            theta2=theta2,
-            mode=args.mode,
-            max_iter=args.max_iter,
-            repeat=args.repeat,
-        )
+        with bar(total, "tradeoff", quiet=args.quiet, unit="row") as b:
+            res = tradeoff(
+                args.tols,
+                args.methods,
+                n_random=args.random,
+                truth_links=args.truth_links,
+                seed=args.seed,
+                theta2=theta2,
+                mode=args.mode,
+                max_iter=args.max_iter,
+                repeat=args.repeat,
+                progress=b.update,
+            )
     except ImportError as e:
         print(f"planarkin tradeoff: {e}", file=sys.stderr)
         return 2
@@ -139,8 +156,8 @@ def run(args: argparse.Namespace) -> int:
     print()
     print(res.markdown() if args.markdown else res.table())
     if not args.no_plot:
-        save(res, args.plot)
-        print(f"\nPareto plot saved to {args.plot}")
+        save(res, str(plot))
+        print(f"\nPareto plot saved to {plot}")
     if args.json:
         with open(args.json, "w", encoding="utf-8") as f:
             json.dump(res.to_dict(), f, indent=1)

@@ -4,14 +4,19 @@ a Scene and its SceneSweep and returns a matplotlib Figure (object API, no pyplo
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from matplotlib import colormaps
 from matplotlib.figure import Figure
 
 from ...scene import Scene, SceneSweep
 from .. import draw
+from ..degrees import AXIS_TICKS, on_wrapped_axis, wrap_deg, wrapped
+from ..fonts import clean
 from ..titles import fit_titles
 
-__all__ = ["conditioning", "ground_size", "linkage", "tracer_names", "tracers"]
+__all__ = ["conditioning", "ground_size", "linkage", "rpm", "tracer_names", "tracers"]
 
 
 def tracer_names(scene: Scene, sweep: SceneSweep) -> list[str]:
@@ -29,32 +34,69 @@ def ground_size(scene: Scene) -> float:
 
 
 def _title(scene: Scene) -> str:
-    return scene.name or "scene"
+    return clean(scene.name, "scene")
 
 
-def linkage(scene: Scene, sweep: SceneSweep, *, poses: int = 6) -> Figure:
-    """The linkage drawn at ``poses`` input angles (evenly spaced among the solved ones)
-    over the paths of its tracer points."""
-    fig = Figure(figsize=(7.0, 6.0), layout="constrained")
-    ax = fig.subplots()
+def _theta_label(sweep: SceneSweep) -> str:
+    return "input angle θ [deg], in (-180, 180]"
+
+
+def _poses(sweep: SceneSweep, poses: int) -> np.ndarray:
+    """Indices of ``poses`` solved input angles, in order of the angle on the (-180, 180]
+    axis: evenly spread round a full turn, or from end to end of a motion that stops (its
+    last solved angles on either side)."""
     ok = np.flatnonzero(sweep.success)
-    for p in tracer_names(scene, sweep):
-        ax.plot(*sweep.points[p].T, "-", lw=1.5, label=f"path of {p}", zorder=1)
+    t = sweep.theta
+    full = sweep.success.all() and len(t) > 1
+    if full and math.isclose(abs(t[-1] - t[0]), math.tau, rel_tol=0, abs_tol=1e-9):
+        ok = ok[:-1]  # the last pose is the first again
+    if not len(ok):
+        return ok
+    ok = ok[np.argsort(wrap_deg(t[ok]), kind="stable")]
+    k = min(poses, len(ok))
+    at = np.linspace(0, len(ok), k, endpoint=False) if full else np.linspace(0, len(ok) - 1, k)
+    return ok[np.unique(at.round().astype(int))]
+
+
+def linkage(scene: Scene, sweep: SceneSweep, *, poses: int = 4) -> Figure:
+    """The linkage as an engineer draws it, twice: on the left the drawn pose alone,
+    every point named, over the paths of its tracer points; on the right ``poses`` solved
+    poses overlaid, each in its own colour and labelled with its input angle. Ground is
+    hatched at its pivots, links are their outlines (the convex hull of a plate's points,
+    never crossing itself), joints circles, slots and sliders drawn where the scene has
+    them."""
+    fig = Figure(figsize=(12.0, 5.6), layout="constrained")
+    one, many = fig.subplots(1, 2)
     st = draw.Structure.of(scene)
-    if len(ok):
-        idx = ok[np.linspace(0, len(ok) - 1, min(poses, len(ok))).round().astype(int)]
-        for k, i in enumerate(idx):
-            xy = {n: v[i] for n, v in sweep.points.items()}
-            draw.pose(ax, st, xy, alpha=0.25 + 0.75 * (k + 1) / len(idx))
-    draw.ground(ax, st, scene.points, ground_size(scene))
-    draw.frame(ax, sweep.coords, list(scene.points.values()))
-    ax.grid(True, alpha=0.3)
-    ax.set_xlabel(f"x [{scene.units or 'length'}]")
-    ax.set_ylabel(f"y [{scene.units or 'length'}]")
-    ax.set_title(f"{_title(scene)}: {len(ok)} of {len(sweep)} input angles solved")
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(loc="best", fontsize="small")
-    return fit_titles(fig)
+    size = ground_size(scene)
+    names = tracer_names(scene, sweep)
+    for ax in (one, many):
+        for p in names:
+            ax.plot(*sweep.points[p].T, "-", color="0.6", lw=1.2, zorder=1,
+                    label=f"path of {clean(p, '?')}" if ax is many else None)  # fmt: skip
+        draw.ground(ax, st, scene.points, size)
+        draw.frame(ax, sweep.coords, list(scene.points.values()))
+        ax.grid(True, alpha=0.25)
+        ax.set_xlabel(f"x [{scene.units or 'length'}]")
+    one.set_ylabel(f"y [{scene.units or 'length'}]")
+    draw.pose(one, st, scene.points)
+    one.set_title(f"as drawn, θ = {wrapped(scene.input_angle):.1f}°")
+    idx = _poses(sweep, poses)
+    cmap = colormaps["viridis"]
+    for k, i in enumerate(idx):
+        xy = {n: v[i] for n, v in sweep.points.items()}
+        c = cmap(0.85 * k / max(1, len(idx) - 1))
+        draw.pose(many, st, xy, color=c, lw=2.0, ms=4, fill_alpha=0.15,
+                  label=f"θ = {wrapped(sweep.theta[i]):.1f}°")  # fmt: skip
+    solved = int(sweep.success.sum())
+    many.set_title(f"{len(idx)} poses ({solved} of {len(sweep)} input angles solved)")
+    if many.get_legend_handles_labels()[0]:
+        many.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small",
+                    borderaxespad=0.0)  # fmt: skip
+    fig.suptitle(_title(scene))
+    fit_titles(fig)
+    draw.labels(one, scene.points, list(scene.points))
+    return fig
 
 
 def conditioning(scene: Scene, sweep: SceneSweep) -> Figure:
@@ -62,21 +104,22 @@ def conditioning(scene: Scene, sweep: SceneSweep) -> Figure:
     size is the distance from a dead point, its sign the branch followed."""
     fig = Figure(figsize=(8.0, 4.5), layout="constrained")
     ax = fig.subplots()
-    t = np.degrees(sweep.theta)
+    t, det, steps, bad = on_wrapped_axis(
+        sweep.theta,
+        sweep.det,
+        sweep.step_det if sweep.step_det is not None else np.zeros((len(sweep), 0)),
+        np.where(sweep.success, np.nan, 0.0),
+    )
     if sweep.plan is not None and sweep.step_det is not None:
         for s, step in enumerate(sweep.plan):
-            ax.plot(
-                t,
-                sweep.step_det[:, s],
-                lw=1.2,
-                label=f"step {s + 1} ({step.kind}: {', '.join(step.points[:2])})",
-            )
-    ax.plot(t, sweep.det, "k-", lw=2, label="whole solve (product)")
+            pts = ", ".join(clean(p, "?") for p in step.points[:2])
+            ax.plot(t, steps[:, s], lw=1.2, label=f"step {s + 1} ({step.kind}: {pts})")
+    ax.plot(t, det, "k-", lw=2, label="whole solve (product)")
     ax.axhline(0, color="0.5", lw=0.8)
-    bad = ~sweep.success
-    if bad.any():
-        ax.plot(t[bad], np.zeros(bad.sum()), "x", color="tab:red", label="not solved")
-    ax.set_xlabel("input angle θ [deg]")
+    if np.isfinite(bad).any():
+        ax.plot(t, bad, "x", color="tab:red", label="not solved")
+    ax.set_xticks(AXIS_TICKS)
+    ax.set_xlabel(_theta_label(sweep))
     ax.set_ylabel("signed conditioning [-]")
     ax.set_title(f"{_title(scene)}: conditioning along the sweep")
     ax.grid(True, alpha=0.3)
@@ -84,29 +127,48 @@ def conditioning(scene: Scene, sweep: SceneSweep) -> Figure:
     return fit_titles(fig)
 
 
-def tracers(scene: Scene, sweep: SceneSweep) -> Figure:
-    """x and y of each tracer point against the input angle, and its speed when the sweep
-    has velocities."""
+def tracers(scene: Scene, sweep: SceneSweep) -> Figure | None:
+    """x and y of each tracer point against the input angle, its speed when the sweep has
+    velocities and the size of its acceleration when it has accelerations; None when the
+    scene has no tracer point (no blank figure)."""
     names = tracer_names(scene, sweep)
-    velocities = sweep.velocities
-    has_v = velocities is not None
-    fig = Figure(figsize=(8.0, 7.0 if has_v else 4.5), layout="constrained")
-    axs = fig.subplots(2 if has_v else 1, 1, sharex=True, squeeze=False)[:, 0]
-    t = np.degrees(sweep.theta)
+    if not names:
+        return None
     unit = scene.units or "length"
+    rates = [
+        (d, what, f"{what} [{unit}/{per}]")
+        for d, what, per in (
+            (sweep.velocities, "speed", "s"),
+            (sweep.accelerations, "acceleration", "s^2"),
+        )
+        if d is not None
+    ]
+    fig = Figure(figsize=(8.0, 4.5 + 2.8 * len(rates)), layout="constrained")
+    axs = fig.subplots(1 + len(rates), 1, sharex=True, squeeze=False)[:, 0]
     for n in names:
-        axs[0].plot(t, sweep.points[n][:, 0], label=f"x of {n}")
-        axs[0].plot(t, sweep.points[n][:, 1], "--", label=f"y of {n}")
-        if velocities is not None:
-            v = velocities[n]
-            axs[1].plot(t, np.hypot(v[:, 0], v[:, 1]), label=f"speed of {n}")
+        label = clean(n, "?")
+        t, xy = on_wrapped_axis(sweep.theta, sweep.points[n])
+        axs[0].plot(t, xy[:, 0], label=f"x of {label}")
+        axs[0].plot(t, xy[:, 1], "--", label=f"y of {label}")
+        for ax, (d, what, _) in zip(axs[1:], rates, strict=True):
+            t, size = on_wrapped_axis(sweep.theta, np.hypot(d[n][:, 0], d[n][:, 1]))
+            ax.plot(t, size, label=f"{what} of {label}")
     axs[0].set_ylabel(f"position [{unit}]")
     axs[0].set_title(f"{_title(scene)}: tracer points")
-    if has_v:
-        axs[1].set_ylabel(f"speed [{unit}/s]")
-    axs[-1].set_xlabel("input angle θ [deg]")
+    for ax, (_, _, ylabel) in zip(axs[1:], rates, strict=True):
+        ax.set_ylabel(ylabel)
+    if rates and sweep.omega is not None:
+        axs[1].set_title(f"at ω = {sweep.omega:.4g} rad/s ({rpm(sweep.omega):.4g} rpm), "
+                         "constant", fontsize="medium")  # fmt: skip
+    axs[-1].set_xticks(AXIS_TICKS)
+    axs[-1].set_xlabel(_theta_label(sweep))
     for ax in axs:
         ax.grid(True, alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(loc="best", fontsize="small")
     return fit_titles(fig)
+
+
+def rpm(omega: float) -> float:
+    """rad/s to rev/min."""
+    return omega * 60.0 / math.tau

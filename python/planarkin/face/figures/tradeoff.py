@@ -74,7 +74,8 @@ def figure(result: TradeoffResult) -> Figure:
 
 
 def save(result: TradeoffResult, path: str) -> None:
-    """Saves the Pareto plot (time per point vs max error, log-log) as a PNG."""
+    """Saves the Pareto plot (time per point vs max error, log-log); the suffix of
+    ``path`` (.png, .svg, .pdf) chooses the format."""
     figure(result).savefig(path, dpi=120)
 
 
