@@ -5,7 +5,6 @@ from."""
 
 from __future__ import annotations
 
-import dataclasses
 import json
 
 import numpy as np
