@@ -64,6 +64,7 @@ def main() -> None:
         "wasm_bytes": len(wasm),
         "wasm_gzip_bytes": len(gzip.compress(wasm, compresslevel=9)),
         "machine": platform.processor() or platform.machine(),
+        "load_before": Path("/proc/loadavg").read_text().split()[:3],
     }
     d = _driver(1280, 800)
     try:
@@ -78,7 +79,8 @@ def main() -> None:
             d.execute_script(bench, req, n, 3)  # warm up
             res[key] = d.execute_script(bench, req, n, 9)
         _open(d, page, "?fourbar=6,2,5,5&theta=30")
-        req = {"op": "fourbar", "r": [6, 2, 5, 5], "theta2": 0.5, "mode": "open", "p": 3, "delta": 0.5}
+        req = {"op": "fourbar", "r": [6, 2, 5, 5], "theta2": 0.5, "mode": "open"}
+        req.update(p=3, delta=0.5)
         d.execute_script(bench, req, 200, 3)
         res["fourbar_frame"] = d.execute_script(bench, req, 200, 9)
         # the frame rate while auto-rotating (the page's own requestAnimationFrame count)
@@ -99,9 +101,12 @@ def main() -> None:
                 _open(d, page, query)
                 if "grid=1" in query:
                     d.find_element("id", "grid").click()
+                if "jansen" in query:  # its circuits at this input angle, drawn and listed
+                    d.find_element("id", "circuits-btn").click()
                 d.save_screenshot(str(args.screenshots / name))
     finally:
         d.quit()
+    res["load_after"] = Path("/proc/loadavg").read_text().split()[:3]
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(res, indent=1) + "\n", encoding="utf-8")
     print(json.dumps(res, indent=1))

@@ -24,6 +24,10 @@ rustc_bin="${PK_WASM_RUSTC:-/usr/bin/rustc}"
 jobs="${PK_WASM_JOBS:-1}"
 mkdir -p "$out"
 cd "$root"
+# paths in the module (panic locations) name neither this checkout nor the cargo home, so
+# the same sources and toolchain give the same bytes anywhere
+cargo_home="${CARGO_HOME:-$HOME/.cargo}"
+export RUSTFLAGS="${RUSTFLAGS:-} --remap-path-prefix=$root=planarkin --remap-path-prefix=$cargo_home=cargo"
 RUSTC_WRAPPER="$root/tools/wasm_rustc.sh" RUSTC="$rustc_bin" RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR="$target" \
   CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_LINKER=wasm-ld \
   CARGO_PROFILE_RELEASE_LTO=fat CARGO_PROFILE_RELEASE_OPT_LEVEL=3 CARGO_PROFILE_RELEASE_PANIC=abort \

@@ -147,6 +147,7 @@
     } else {
       for (const v of Object.values(S.sceneData.points)) pts.push(v.map(Number));
       if (S.path) for (let i = 0; i < S.path.pts.length; i += 2) pts.push([S.path.pts[i], S.path.pts[i + 1]]);
+      if (S.overlay) for (const o of S.overlay) for (let i = 0; i < o.pts.length; i += 2) pts.push([o.pts[i], o.pts[i + 1]]);
     }
     fit(pts);
   }
@@ -162,6 +163,7 @@
   // --- drawing --------------------------------------------------------------------------------
   const COLORS = ["#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"];
   const PATH_COLOR = "#ff7f0e";
+  const LIMIT = -8; // planarkin.Status.LIMIT
 
   function grid() {
     const w = canvas.clientWidth, h = canvas.clientHeight;
@@ -181,14 +183,15 @@
     }
   }
 
-  function polyline(xy, stride, offset, n, color, width) {
+  // a path of n points (x, y at i * stride + offset), broken at NaN and where mask[i] != 0
+  function polyline(xy, stride, offset, n, color, width, mask = null) {
     ctx.strokeStyle = color;
     ctx.lineWidth = width;
     ctx.beginPath();
     let pen = false;
     for (let i = 0; i < n; i++) {
       const x = xy[i * stride + offset], y = xy[i * stride + offset + 1];
-      if (!isFinite(x) || !isFinite(y)) { pen = false; continue; }
+      if (!isFinite(x) || !isFinite(y) || (mask && mask[i] !== 0)) { pen = false; continue; }
       if (pen) ctx.lineTo(sx(x), sy(y)); else ctx.moveTo(sx(x), sy(y));
       pen = true;
     }
@@ -279,8 +282,25 @@
     for (const [, pl] of links) for (const n of pl) if (n in idx) perPoint[idx[n]]++;
     if (S.overlay) for (const o of S.overlay) for (let j = 0; j < np; j++) if (perPoint[j] === 1) polyline(o.pts, 2 * np, 2 * j, o.m, o.color, 1.5);
     if (S.path && $("paths").checked) {
-      for (let j = 0; j < np; j++) {
-        if (perPoint[j] === 1 && !groundPts.includes(names[j])) polyline(S.path.pts, 2 * np, 2 * j, S.path.n, PATH_COLOR, 2);
+      // tracers (points on one link) and the scene's requested outputs
+      const outs = Array.isArray(data.outputs) ? data.outputs : [];
+      const tracers = names.map((n, j) => j).filter((j) => !groundPts.includes(names[j]) &&
+        (perPoint[j] === 1 || outs.includes(names[j])));
+      for (const j of tracers) polyline(S.path.pts, 2 * np, 2 * j, S.path.n, PATH_COLOR, 2);
+      // the input's reach: the path of the input link's tip (where it stops, marked below)
+      const tip = info ? info.input.tip : -1;
+      if (tip >= 0) polyline(S.path.pts, 2 * np, 2 * tip, S.path.n, "#bbb", 3, S.path.status);
+      const marked = tip >= 0 ? [...tracers, tip] : tracers;
+      // where the motion stops: the last input reached before a LIMIT (a dead point)
+      const st = S.path.status, n = S.path.n;
+      for (let i = 0; i < n; i++) {
+        const edge = st[i] === 0 && ((i + 1 < n && st[i + 1] !== 0) || (i > 0 && st[i - 1] !== 0));
+        if (!edge) continue;
+        for (const j of marked) {
+          const x = S.path.pts[(i * np + j) * 2], y = S.path.pts[(i * np + j) * 2 + 1];
+          ctx.fillStyle = "#e74c3c"; ctx.beginPath(); ctx.arc(sx(x), sy(y), 4, 0, 2 * Math.PI); ctx.fill();
+          if ($("labels").checked) label("dead point", x, y, 6, 14, "#e74c3c");
+        }
       }
     }
     let c = 0;
@@ -349,7 +369,12 @@
     if (p && p.status === "LIMIT") t += `past the dead point at ${fmtDeg(p.limit)}: the motion stops there\n`;
     t += `steps: ${S.info.steps.join(", ")}\n`;
     t += fails ? `over one turn from the drawn pose: ${fails} of ${S.path.n} inputs not reached\n` : "the input turns fully on the drawn circuit\n";
-    if (lim.length) t += `dead points (LIMIT): ${lim.map(fmtDeg).join(", ")}\n`;
+    if (lim.length) t += `dead points (LIMIT past them): ${lim.map(fmtDeg).join(", ")}\n`;
+    const st = S.path.status, ends = [];
+    for (let i = 0; i < S.path.n; i++) {
+      if (st[i] === 0 && ((i + 1 < S.path.n && st[i + 1] !== 0) || (i > 0 && st[i - 1] !== 0))) ends.push(S.path.theta[i]);
+    }
+    if (ends.length) t += `motion stops near: ${ends.map(fmtDeg).join(", ")} (last inputs reached, 1\u00b0 apart)\n`;
     return t;
   }
 
@@ -544,7 +569,9 @@
         b.addEventListener("click", () => switchTo(c.assemblies[ci.assemblies[0]].points));
         list.appendChild(b);
       });
+      fitNow();
       draw();
+      exposeState();
     });
 
     // dragging the drawn points
