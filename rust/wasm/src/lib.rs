@@ -125,3 +125,86 @@ fn request(s: &mut State, text: &str) -> Result<Value, String> {
         other => Err(format!("unknown op {other:?}")),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const FOURBAR: &str = r#"{"points": {"O2": [0, 0], "O4": [6, 0], "A": [2, 0], "B": [4.0, 4.58257569495584]},
+        "links": {"ground": ["O2", "O4"], "crank": ["O2", "A"], "coupler": ["A", "B"], "rocker": ["O4", "B"]},
+        "ground": "ground", "input": {"link": "crank", "pivot": "O2"}}"#;
+
+    fn ask(s: &mut State, req: &str) -> Value {
+        request(s, req).unwrap_or_else(|e| json!({ "error": e }))
+    }
+
+    #[test]
+    fn the_c_interface_round_trips_a_request() {
+        let req = br#"{"op": "nope"}"#;
+        let p = pk_alloc(req.len());
+        let reply = unsafe {
+            std::ptr::copy_nonoverlapping(req.as_ptr(), p, req.len());
+            let n = pk_call(p, req.len());
+            pk_free(p, req.len());
+            std::slice::from_raw_parts(pk_out(), n).to_vec()
+        };
+        assert_eq!(String::from_utf8(reply).unwrap(), r#"{"error":"unknown op \"nope\""}"#);
+        assert_eq!(pk_nums_len(), 0);
+    }
+
+    #[test]
+    fn a_scene_is_kept_and_solved() {
+        let mut s = State::default();
+        assert_eq!(ask(&mut s, r#"{"op": "pose", "theta": 0}"#)["error"], "no scene: send a \"scene\" request first");
+        let info = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {FOURBAR}}}"#));
+        assert_eq!(info["names"], json!(["O2", "O4", "A", "B"]));
+        assert_eq!(info["input_angle"], 0.0);
+        let pose = ask(&mut s, r#"{"op": "pose", "theta": 0}"#);
+        assert_eq!(pose["status"], "CONVERGED");
+        let b = pose["points"][3].as_array().unwrap();
+        assert!((b[0].as_f64().unwrap() - 4.0).abs() < 1e-12 && (b[1].as_f64().unwrap() - 21f64.sqrt()).abs() < 1e-12);
+        let path = ask(&mut s, r#"{"op": "path"}"#);
+        assert_eq!((path["n"].as_u64(), path["offset"].as_u64()), (Some(361), Some(0)));
+        assert_eq!(s.nums.len(), 361 * 4 * 2);
+    }
+
+    #[test]
+    fn bad_scenes_name_the_entry_as_python_does() {
+        let mut s = State::default();
+        let cases = [
+            (r#"[1]"#, "scene: must be a mapping, got list"),
+            (r#"{"points": {}, "links": {}, "ground": "g"}"#, "input: is required"),
+            (r#"{"points": {"A": [1]}, "links": {}, "ground": "g", "input": {}}"#, "points.A: must be a pair [x, y], got [1]"),
+            (
+                r#"{"points": {"A": [1, "x"]}, "links": {}, "ground": "g", "input": {}}"#,
+                "points.A[1] must be a real number, got 'x'",
+            ),
+            (r#"{"colour": 1.5}"#, "scene: unknown keys ['colour']; known keys: name, description, units, points, links, ground, input, output, outputs"),
+            (
+                r#"{"points": {"A": [0, 0]}, "links": {"l": ["A", 2]}, "ground": "l", "input": {"link": "l", "pivot": "A"}}"#,
+                "links.l: must be a list of point names, got ['A', 2]",
+            ),
+        ];
+        for (scene, message) in cases {
+            let reply = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {scene}}}"#));
+            assert_eq!(reply["error"], message, "{scene}");
+        }
+        // past the structural checks, the core's own validation and words
+        let bad = FOURBAR.replace(r#""rocker": ["O4", "B"]"#, r#""rocker": ["O4", "Q"]"#);
+        let reply = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {bad}}}"#));
+        assert_eq!(reply["error"], "links.rocker: unknown point \"Q\"");
+    }
+
+    #[test]
+    fn the_fourbar_reports_its_class_and_limits() {
+        let mut s = State::default();
+        let r =
+            ask(&mut s, r#"{"op": "fourbar", "r": [4, 3, 2, 1.5], "theta2": 2.0, "mode": "open", "p": 1, "delta": 0}"#);
+        assert_eq!(r["status"], "NOT_ASSEMBLABLE");
+        assert_eq!(r["grashof"]["barker"], "RRR1");
+        assert_eq!(r["limits"]["full_rotation"], false);
+        assert_eq!(r["limits"]["dead_points"].as_array().unwrap().len(), 2);
+        let bad = ask(&mut s, r#"{"op": "fourbar", "r": [4, 3, -2, 1.5], "theta2": 0, "p": 1, "delta": 0}"#);
+        assert_eq!(bad["error"], "r3 must be finite and > 0, got -2.0");
+    }
+}
