@@ -167,6 +167,10 @@ def compact_pytest_json() -> None:
         json.dump(data, f, indent=1)
 
 
+#: The web page's measurement (needs selenium, chromium, chromedriver).
+WEB_CMD = ["python", "benches/web_frame.py"]
+
+
 def run_all(quick: bool = False) -> None:
     """``quick``: a smoke run (criterion --quick, one round each, a 10 000-row memory
     batch, a small tradeoff) to debug the pipeline; its numbers are not for publishing."""
@@ -198,6 +202,12 @@ def run_all(quick: bool = False) -> None:
     save(res, os.path.join(RESULTS, "tradeoff.png"))
     with open(os.path.join(RESULTS, "tradeoff.json"), "w") as f:
         json.dump(res.to_dict(), f, indent=1)
+    print("== web page:", " ".join(WEB_CMD), flush=True)
+    try:
+        subprocess.run([sys.executable, *WEB_CMD[1:]], check=True, cwd=ROOT)
+    except (subprocess.CalledProcessError, OSError) as e:
+        # it needs selenium, chromium and chromedriver: keep the last web.json without them
+        print(f"warning: web page not measured ({e}); keeping the last web.json", file=sys.stderr)
     info["load_after"] = _loadavg()
     with open(os.path.join(RESULTS, "machine.json"), "w") as f:
         json.dump(info, f, indent=1)
@@ -578,6 +588,9 @@ def render() -> None:
             "",
         ]
 
+    if os.path.exists(os.path.join(RESULTS, "web.json")):
+        L += _web_md(_load("web.json"))
+
     for name in ("analysis.md", "analysis_scenes.md"):
         analysis = os.path.join(HERE, name)
         if os.path.exists(analysis):
@@ -586,6 +599,45 @@ def render() -> None:
     with open(OUT, "w", encoding="utf-8") as f:
         f.write("\n".join(L))
     print(f"wrote {OUT}")
+
+
+def _web_md(web: dict) -> list[str]:
+    """The web page (issue 18): frame times, frame rate and size, measured in headless
+    Chromium by ``benches/web_frame.py`` (its own run: see the command below)."""
+
+    def ms(k: str) -> str:
+        return f"{web[k]['median_ms'] * 1000:.0f} µs (best {web[k]['min_ms'] * 1000:.0f} µs)"
+
+    samples = sorted(web["fps_jansen"]["samples"] + web["fps_fourbar"]["samples"])
+    fps, low = samples[len(samples) // 2], samples[0]
+    return [
+        "## Web page: the core compiled to WebAssembly, in headless Chromium",
+        "",
+        f"Measured by `{' '.join(WEB_CMD)}` in Chromium {web['browser']} (headless, this "
+        "machine), on the page's own calls: a JSON request in, the reply and its numbers "
+        "out, through the module's C interface. Times per call: the median (and the best) "
+        "of 9 blocks of calls, each block timed as a whole.",
+        "",
+        "| what | target | measured | verdict |",
+        "|---|---|---|---|",
+        f"| one frame of Jansen's leg: the pose and the full tracer path (361 inputs) | "
+        f"<= 1 ms | {ms('jansen_frame')} | {_verdict(web['jansen_frame']['median_ms'] <= 1)} |",
+        f"| (its parts: the pose alone; the 361-input path alone) | - | "
+        f"{ms('jansen_pose')}; {ms('jansen_path')} | - |",
+        f"| one four-bar frame: pose, coupler path (361), class, limits | - | "
+        f"{ms('fourbar_frame')} | - |",
+        f"| frame rate while auto-rotating (requestAnimationFrame count per second, five "
+        f"1-s samples each of Jansen and the four-bar: median, lowest) | 60 fps | "
+        f"{fps:.1f} fps (lowest {low:.1f}) | {_verdict(fps >= 59)} |",
+        f"| planarkin.wasm, gzip -9 (raw {web['wasm_bytes'] / 1000:.0f} kB) | < 500 kB | "
+        f"{web['wasm_gzip_bytes'] / 1000:.0f} kB | {_verdict(web['wasm_gzip_bytes'] < 500_000)} |",
+        "",
+        "requestAnimationFrame fires at 60 Hz in headless Chromium here, so 60 fps is the "
+        "ceiling; a frame's solve takes a few percent of its 16.7 ms. Load average "
+        f"{' '.join(web['load_before'])} before and {' '.join(web['load_after'])} after "
+        "(the machine was shared while this ran).",
+        "",
+    ]
 
 
 def _layers_note(bench: Bench, crit: dict) -> list[str]:

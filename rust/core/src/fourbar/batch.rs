@@ -4,7 +4,7 @@
 
 use std::sync::atomic::AtomicBool;
 
-use rayon::prelude::*;
+use crate::parallel::prelude::*;
 
 use super::model::{FourBar, Mode};
 use super::options::{check_len, BatchOut, Method, SweepOptions, SweepOut};
@@ -103,7 +103,8 @@ pub fn closed_form_batch(
             closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, Some(st));
             Ok(())
         }),
-        None => rows.try_for_each(|((t3, t4), fb)| {
+        // `{ rows }`: a temporary, so the sequential stand-in's `try_for_each(&mut self)` works too
+        None => { rows }.try_for_each(|((t3, t4), fb)| {
             go(stop)?;
             closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, None);
             Ok(())

@@ -5,8 +5,8 @@
 //! position) is solved by the scalar `sweep_point` from the same start, so every status
 //! is the scalar path's; angles differ from it only by the rounding of the polynomials.
 
+use crate::parallel::prelude::*;
 use nalgebra::Vector2;
-use rayon::prelude::*;
 
 use super::lane::{eval_lanes, lanes, rates, wrap, Eval, M, V, W};
 use crate::error::Error;

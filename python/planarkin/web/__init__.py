@@ -1,0 +1,16 @@
+"""The interactive web page, as package data: ``index.html`` and ``app.js`` (drawing and
+input only), ``planarkin.wasm`` (planarkin's Rust core compiled to WebAssembly, which
+computes everything the page shows; ``wasm.js`` holds the same bytes for ``file://``)
+and ``scenes.js`` (the built-in scenes). ``planarkin web`` serves this folder;
+``tools/build_web.sh`` rebuilds the generated files."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+__all__ = ["FOLDER", "FILES"]
+
+#: The folder holding the page (what ``planarkin web --path`` prints).
+FOLDER = Path(__file__).resolve().parent
+#: The files the page needs, all in ``FOLDER``.
+FILES = ("index.html", "app.js", "wasm.js", "scenes.js", "planarkin.wasm")

@@ -1,0 +1,210 @@
+//! planarkin-core for the web page, compiled to WebAssembly: what `rust/python` is for
+//! Python. Convert and map errors; nothing numeric.
+//!
+//! The interface is a plain C ABI over the module's linear memory, so the page needs no
+//! generated glue: the page writes a JSON request (UTF-8) into memory from [`pk_alloc`],
+//! calls [`pk_call`], and reads the JSON reply at [`pk_out`] (its length is what
+//! `pk_call` returned) and, for long arrays (paths, traces), the `f64` values at
+//! [`pk_nums`] ([`pk_nums_len`] of them), which the reply indexes. A request is
+//! `{"op": ..., ...}`; a refused one answers `{"error": message}` with the message that
+//! Python's `ValueError` carries. Requests (see `request`):
+//!
+//! - `scene`: validate a scene (the file format) and keep it; the reply describes it;
+//! - `pose`, `path`, `frame`: the kept scene solved at one input angle, over the default
+//!   361 angles, or both (one animation frame);
+//! - `assemblies`, `circuits`: every assembly at an input angle, and their circuits;
+//! - `fourbar`: a four-bar by its lengths: pose, coupler path, Grashof and Barker class,
+//!   limit positions.
+//!
+//! Inside: `scene` and `fourbar` convert one subject each; `json` holds the shared
+//! conversions (status names, numbers).
+
+mod fourbar;
+mod json;
+mod scene;
+
+use std::cell::RefCell;
+
+use serde_json::{json, Value};
+
+/// What the module keeps between calls: the current scene and the last reply.
+#[derive(Default)]
+struct State {
+    scene: Option<scene::Kept>,
+    out: Vec<u8>,
+    nums: Vec<f64>,
+}
+
+thread_local! {
+    static STATE: RefCell<State> = RefCell::new(State::default());
+}
+
+/// Allocates `len` bytes for a request; the page frees them with [`pk_free`].
+#[no_mangle]
+pub extern "C" fn pk_alloc(len: usize) -> *mut u8 {
+    let mut v = Vec::<u8>::with_capacity(len.max(1));
+    let p = v.as_mut_ptr();
+    std::mem::forget(v);
+    p
+}
+
+/// Frees what [`pk_alloc`] gave.
+///
+/// # Safety
+/// `ptr` and `len` must be exactly what one call of [`pk_alloc`] got and returned.
+#[no_mangle]
+pub unsafe extern "C" fn pk_free(ptr: *mut u8, len: usize) {
+    drop(Vec::from_raw_parts(ptr, 0, len.max(1)));
+}
+
+/// Answers the JSON request of `len` bytes at `ptr`; returns the reply's length in bytes
+/// (the reply is at [`pk_out`]).
+///
+/// # Safety
+/// `ptr` must point to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn pk_call(ptr: *const u8, len: usize) -> usize {
+    let bytes = std::slice::from_raw_parts(ptr, len);
+    STATE.with(|s| {
+        let mut s = s.borrow_mut();
+        s.nums.clear();
+        let reply = match std::str::from_utf8(bytes) {
+            Ok(text) => request(&mut s, text),
+            Err(e) => Err(format!("request is not UTF-8: {e}")),
+        };
+        let reply = reply.unwrap_or_else(|message| json!({ "error": message }));
+        s.out = serde_json::to_vec(&reply).expect("a Value always serialises");
+        s.out.len()
+    })
+}
+
+/// The last reply (UTF-8 JSON).
+#[no_mangle]
+pub extern "C" fn pk_out() -> *const u8 {
+    STATE.with(|s| s.borrow().out.as_ptr())
+}
+
+/// The last reply's numbers (the arrays it indexes).
+#[no_mangle]
+pub extern "C" fn pk_nums() -> *const f64 {
+    STATE.with(|s| s.borrow().nums.as_ptr())
+}
+
+/// How many numbers [`pk_nums`] holds.
+#[no_mangle]
+pub extern "C" fn pk_nums_len() -> usize {
+    STATE.with(|s| s.borrow().nums.len())
+}
+
+/// One request: `{"op": ..., ...}`.
+fn request(s: &mut State, text: &str) -> Result<Value, String> {
+    let req: Value = serde_json::from_str(text).map_err(|e| format!("request is not JSON: {e}"))?;
+    let op = req.get("op").and_then(Value::as_str).ok_or("request has no \"op\"")?;
+    let State { scene: kept, nums, .. } = s;
+    match op {
+        "scene" => {
+            let sc = scene::Kept::new(req.get("scene").ok_or("request has no \"scene\"")?)?;
+            let info = sc.describe();
+            *kept = Some(sc);
+            Ok(info)
+        }
+        "fourbar" => fourbar::solve(&req, nums),
+        "pose" | "path" | "frame" | "assemblies" | "circuits" => {
+            let sc = kept.as_ref().ok_or("no scene: send a \"scene\" request first")?;
+            match op {
+                "pose" => sc.pose(json::number(&req, "theta")?),
+                "path" => sc.path(nums),
+                "frame" => {
+                    let pose = sc.pose(json::number(&req, "theta")?)?;
+                    Ok(json!({ "pose": pose, "path": sc.path(nums)? }))
+                }
+                "assemblies" => sc.assemblies(json::number(&req, "theta")?),
+                _ => sc.circuits(json::number(&req, "theta")?, nums),
+            }
+        }
+        other => Err(format!("unknown op {other:?}")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const FOURBAR: &str = r#"{"points": {"O2": [0, 0], "O4": [6, 0], "A": [2, 0], "B": [4.0, 4.58257569495584]},
+        "links": {"ground": ["O2", "O4"], "crank": ["O2", "A"], "coupler": ["A", "B"], "rocker": ["O4", "B"]},
+        "ground": "ground", "input": {"link": "crank", "pivot": "O2"}}"#;
+
+    fn ask(s: &mut State, req: &str) -> Value {
+        request(s, req).unwrap_or_else(|e| json!({ "error": e }))
+    }
+
+    #[test]
+    fn the_c_interface_round_trips_a_request() {
+        let req = br#"{"op": "nope"}"#;
+        let p = pk_alloc(req.len());
+        let reply = unsafe {
+            std::ptr::copy_nonoverlapping(req.as_ptr(), p, req.len());
+            let n = pk_call(p, req.len());
+            pk_free(p, req.len());
+            std::slice::from_raw_parts(pk_out(), n).to_vec()
+        };
+        assert_eq!(String::from_utf8(reply).unwrap(), r#"{"error":"unknown op \"nope\""}"#);
+        assert_eq!(pk_nums_len(), 0);
+    }
+
+    #[test]
+    fn a_scene_is_kept_and_solved() {
+        let mut s = State::default();
+        assert_eq!(ask(&mut s, r#"{"op": "pose", "theta": 0}"#)["error"], "no scene: send a \"scene\" request first");
+        let info = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {FOURBAR}}}"#));
+        assert_eq!(info["names"], json!(["O2", "O4", "A", "B"]));
+        assert_eq!(info["input_angle"], 0.0);
+        let pose = ask(&mut s, r#"{"op": "pose", "theta": 0}"#);
+        assert_eq!(pose["status"], "CONVERGED");
+        let b = pose["points"][3].as_array().unwrap();
+        assert!((b[0].as_f64().unwrap() - 4.0).abs() < 1e-12 && (b[1].as_f64().unwrap() - 21f64.sqrt()).abs() < 1e-12);
+        let path = ask(&mut s, r#"{"op": "path"}"#);
+        assert_eq!((path["n"].as_u64(), path["offset"].as_u64()), (Some(361), Some(0)));
+        assert_eq!(s.nums.len(), 361 * 4 * 2);
+    }
+
+    #[test]
+    fn bad_scenes_name_the_entry_as_python_does() {
+        let mut s = State::default();
+        let cases = [
+            (r#"[1]"#, "scene: must be a mapping, got list"),
+            (r#"{"points": {}, "links": {}, "ground": "g"}"#, "input: is required"),
+            (r#"{"points": {"A": [1]}, "links": {}, "ground": "g", "input": {}}"#, "points.A: must be a pair [x, y], got [1]"),
+            (
+                r#"{"points": {"A": [1, "x"]}, "links": {}, "ground": "g", "input": {}}"#,
+                "points.A[1] must be a real number, got 'x'",
+            ),
+            (r#"{"colour": 1.5}"#, "scene: unknown keys ['colour']; known keys: name, description, units, points, links, ground, input, output, outputs"),
+            (
+                r#"{"points": {"A": [0, 0]}, "links": {"l": ["A", 2]}, "ground": "l", "input": {"link": "l", "pivot": "A"}}"#,
+                "links.l: must be a list of point names, got ['A', 2]",
+            ),
+        ];
+        for (scene, message) in cases {
+            let reply = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {scene}}}"#));
+            assert_eq!(reply["error"], message, "{scene}");
+        }
+        // past the structural checks, the core's own validation and words
+        let bad = FOURBAR.replace(r#""rocker": ["O4", "B"]"#, r#""rocker": ["O4", "Q"]"#);
+        let reply = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {bad}}}"#));
+        assert_eq!(reply["error"], "links.rocker: unknown point \"Q\"");
+    }
+
+    #[test]
+    fn the_fourbar_reports_its_class_and_limits() {
+        let mut s = State::default();
+        let r =
+            ask(&mut s, r#"{"op": "fourbar", "r": [4, 3, 2, 1.5], "theta2": 2.0, "mode": "open", "p": 1, "delta": 0}"#);
+        assert_eq!(r["status"], "NOT_ASSEMBLABLE");
+        assert_eq!(r["grashof"]["barker"], "RRR1");
+        assert_eq!(r["limits"]["full_rotation"], false);
+        assert_eq!(r["limits"]["dead_points"].as_array().unwrap().len(), 2);
+        let bad = ask(&mut s, r#"{"op": "fourbar", "r": [4, 3, -2, 1.5], "theta2": 0, "p": 1, "delta": 0}"#);
+        assert_eq!(bad["error"], "r3 must be finite and > 0, got -2.0");
+    }
+}

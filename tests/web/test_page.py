@@ -1,0 +1,273 @@
+"""The web page in a real browser (headless Chromium): what it computes with the core
+compiled to WebAssembly equals what the Python API computes (to 1e-12), its inputs
+(sliders, dragging points, files) change what it draws, and bad files give Python's
+validation message. Truth here is always the Python API, never the page itself."""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+
+import numpy as np
+import planarkin as pk
+import pytest
+
+TOL = 1e-12
+
+
+def _python_pose(sc: pk.Scene, theta: float) -> tuple[dict[str, np.ndarray], str]:
+    sw = sc.sweep(np.array([theta]), outputs="all")
+    return {n: sw.points[n][0] for n in sc.points}, pk.Status(int(sw.status[0])).name
+
+
+def _as_xy(v: list | None) -> np.ndarray:
+    return np.array([np.nan if c is None else c for c in v], dtype=np.float64)
+
+
+def _assert_scene_state(state: dict, sc: pk.Scene, theta: float) -> None:
+    # an angle the page derives (the drawn input angle, from atan2) may differ in its last
+    # bit: the browser's module has its own libm (Rust's, from musl), not the system's
+    assert state["theta"] == pytest.approx(theta, rel=0, abs=TOL)
+    points, status = _python_pose(sc, theta)
+    assert state["status"] == status
+    assert list(state["points"]) == list(points)
+    for name, xy in points.items():
+        np.testing.assert_allclose(
+            _as_xy(state["points"][name]), xy, rtol=0, atol=TOL, err_msg=name
+        )
+
+
+def test_loads_with_no_console_error(page):
+    state = page.open()
+    assert state["scene"] == "four-bar" and state["status"] == "CONVERGED"
+    page.open("?scene=jansen")
+    logs = page.logs()
+    assert not [e for e in logs if e["level"] in ("SEVERE", "WARNING")], logs
+    assert page.message() == ""
+
+
+@pytest.mark.parametrize("name", pk.scenes.names())
+def test_builtin_scene_state_equals_python(page, name):
+    state = page.open(f"?scene={name}&theta=30")
+    assert state["scene"] == name
+    _assert_scene_state(state, pk.scenes.load(name), math.radians(30))
+    assert not [e for e in page.logs() if e["level"] == "SEVERE"]
+
+
+def test_jansen_at_the_drawn_angle_by_default(page):
+    sc = pk.scenes.load("jansen")
+    state = page.open("?scene=jansen")
+    _assert_scene_state(state, sc, sc.input_angle)
+
+
+@pytest.mark.parametrize(
+    ("r", "theta", "mode"),
+    [
+        ((6, 2, 5, 5), 45, "open"),
+        ((6, 2, 5, 5), 45, "crossed"),
+        ((6, 2, 5, 5), -170.5, "open"),
+        ((2, 6, 5, 5), 120, "crossed"),  # double crank
+        ((4, 3, 2, 1.5), 120, "open"),  # non-Grashof: a crank angle it cannot reach
+        ((4, 3, 2, 1.5), 80, "open"),
+    ],
+)
+def test_fourbar_state_equals_python(page, r, theta, mode):
+    p, delta = 2.5, -40.0
+    state = page.open(
+        f"?fourbar={','.join(map(str, r))}&theta={theta}&mode={mode}&p={p}&delta={delta}"
+    )
+    t2 = math.radians(theta)
+    assert state["theta"] == t2 and state["mode"] == mode
+    fb = pk.FourBar(*r)
+    t3, t4 = fb.closed_form(t2, mode)
+    status = pk.Status(int(fb.closed_form_status(t2, mode))).name
+    assert state["status"] == status
+    truth = {
+        "O2": (0.0, 0.0),
+        "O4": (r[0], 0.0),
+        "A": fb.coupler_point(t2, 0.0, 0.0, 0.0),
+        "B": fb.coupler_point(t2, t3, r[2], 0.0),
+        "P": fb.coupler_point(t2, t3, p, math.radians(delta)),
+    }
+    for k, xy in truth.items():
+        np.testing.assert_allclose(_as_xy(state["points"][k]), xy, rtol=0, atol=TOL, err_msg=k)
+    g = fb.grashof()
+    assert (state["grashof"], state["barker"]) == (g.condition, g.barker)
+    info = page.el("info").text
+    assert g.barker in info and g.kind in info and status in info
+
+
+def test_unreachable_fourbar_shows_its_dead_points(page):
+    page.open("?fourbar=4,3,2,1.5&theta=120")
+    info = page.el("info").text
+    lim = pk.FourBar(4, 3, 2, 1.5).limits("open")
+    assert not lim.full_rotation
+    assert "NOT_ASSEMBLABLE" in info and "dead points:" in info
+    for t in lim.dead_points:
+        assert f"{math.degrees(t):.2f}" in info
+
+
+def test_moving_the_input_slider_changes_the_pose(page):
+    from selenium.webdriver.common.keys import Keys
+
+    state0 = page.open("?scene=jansen&theta=30")
+    shot0 = page.d.get_screenshot_as_png()
+    slider = page.el("theta")
+    slider.send_keys(Keys.ARROW_RIGHT * 50)  # a real input event per key: 0.1 deg each
+    state = page.state()
+    assert state["theta"] != state0["theta"]
+    assert state["points"]["foot"] != state0["points"]["foot"]
+    _assert_scene_state(state, pk.scenes.load("jansen"), state["theta"])
+    assert page.d.get_screenshot_as_png() != shot0
+
+
+def test_a_length_slider_changes_the_fourbar(page):
+    from selenium.webdriver.common.keys import Keys
+
+    state0 = page.open("?fourbar=6,2,5,5&theta=45")
+    page.el("r3").send_keys(Keys.ARROW_RIGHT * 20)  # 0.01 each
+    state = page.state()
+    assert state["r"][2] == pytest.approx(5.2) and state["r"][:2] == [6, 2]
+    fb = pk.FourBar(*state["r"])
+    t3, _ = fb.closed_form(state["theta"], "open")
+    b = fb.coupler_point(state["theta"], t3, state["r"][2], 0.0)
+    np.testing.assert_allclose(state["points"]["B"], b, rtol=0, atol=TOL)
+    assert state["points"]["B"] != state0["points"]["B"]
+
+
+def test_dragging_a_point_edits_the_linkage(page):
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    state0 = page.open("?scene=jansen&theta=30")
+    shot0 = page.d.get_screenshot_as_png()
+    canvas = page.el("canvas")
+    x, y = state0["screen"]["B"]
+    w, h = canvas.size["width"], canvas.size["height"]
+    # selenium's offsets are from the element's centre
+    chain = ActionChains(page.d).move_to_element_with_offset(
+        canvas, round(x - w / 2), round(y - h / 2)
+    )
+    chain.click_and_hold().move_by_offset(12, -9).move_by_offset(6, -4).release().perform()
+    state = page.state()
+    assert state["error"] is None
+    moved = state["drawn"]["B"]
+    assert moved != state0["points"]["B"]
+    # the page's new drawing is the pose it showed, with B where it was dropped: the
+    # lengths are re-derived from it, and Python solves the same edited scene
+    data = pk.scenes.data("jansen")
+    data["points"] = state["drawn"]
+    sc = pk.Scene.from_dict(data)
+    assert state["theta"] == sc.input_angle
+    _assert_scene_state(state, sc, state["theta"])
+    for n in ("O", "Z", "M", "C", "D", "E", "foot"):
+        np.testing.assert_allclose(state["drawn"][n], state0["points"][n], rtol=0, atol=TOL)
+    assert page.d.get_screenshot_as_png() != shot0
+
+
+def test_the_edited_scene_saves_as_json_that_python_loads(page, downloads):
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    state0 = page.open("?scene=jansen&theta=30")
+    canvas = page.el("canvas")
+    x, y = state0["screen"]["D"]
+    w, h = canvas.size["width"], canvas.size["height"]
+    ActionChains(page.d).move_to_element_with_offset(canvas, round(x - w / 2), round(y - h / 2)) \
+        .click_and_hold().move_by_offset(-10, 8).release().perform()  # fmt: skip
+    state = page.state()
+    target = downloads / "jansen-edited.json"
+    target.unlink(missing_ok=True)
+    page.el("save").click()
+    for _ in range(100):
+        if target.exists() and target.stat().st_size > 0:
+            break
+        time.sleep(0.05)
+    sc = pk.Scene.load(target)
+    assert sc.points == {k: tuple(v) for k, v in state["drawn"].items()}
+    assert sc.links == pk.scenes.load("jansen").links
+    _assert_scene_state(state, sc, state["theta"])
+
+
+BAD = {
+    "missing-ground": lambda d: d.pop("ground"),
+    "unknown-point": lambda d: d["links"]["j"].append("Q"),
+    "mobility": lambda d: d["links"].update({"brace": ["M", "Z"]}),
+    "not-a-pair": lambda d: d["points"].update({"M": [15.0]}),
+    "unknown-key": lambda d: d.update({"colour": "red"}),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(BAD))
+def test_a_bad_scene_file_gives_pythons_message(page, tmp_path, kind):
+    data = pk.scenes.data("jansen")
+    BAD[kind](data)
+    path = tmp_path / f"{kind}.json"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    with pytest.raises(ValueError) as e:
+        pk.Scene.load(path)
+    page.open()
+    page.el("file").send_keys(str(path))
+    for _ in range(100):
+        if page.message():
+            break
+        time.sleep(0.05)
+    # Python names the file it read; the page shows the validation message itself
+    said = str(e.value).removeprefix(f"{path}: ")
+    assert page.message() == said
+    assert page.state()["error"] == said
+
+
+def test_a_good_scene_file_opens(page, tmp_path):
+    path = tmp_path / "klann.json"
+    path.write_text(json.dumps(pk.scenes.data("klann")), encoding="utf-8")
+    page.open()
+    page.el("file").send_keys(str(path))
+    for _ in range(100):
+        if page.state()["scene"] == "klann.json":
+            break
+        time.sleep(0.05)
+    sc = pk.scenes.load("klann")
+    _assert_scene_state(page.state(), sc, sc.input_angle)
+
+
+def test_assemblies_and_circuits_match_python(page):
+    theta = math.radians(30)
+    page.open("?scene=jansen&theta=30")
+    sc = pk.scenes.load("jansen")
+    page.el("assemblies-btn").click()
+    buttons = page.el("list").find_elements("tag name", "button")
+    found = sc.assemblies(theta)
+    assert len(buttons) == len(found) > 1
+    assert [b.text.split()[1] for b in buttons] == [a.label for a in found]
+    page.el("circuits-btn").click()
+    circuits = sc.circuits(theta)
+    buttons = page.el("list").find_elements("tag name", "button")
+    assert len(buttons) == len(circuits)
+    for b, c in zip(buttons, circuits, strict=True):
+        assert ("full turn" in b.text) == c.full_turn
+    # switch to another assembly: the page is then drawn in it, and solves from it
+    page.el("assemblies-btn").click()
+    page.el("list").find_elements("tag name", "button")[-1].click()
+    state = page.state()
+    data = pk.scenes.data("jansen")
+    data["points"] = {n: list(found[-1][n]) for n in sc.points}
+    np.testing.assert_allclose(
+        np.array(list(state["drawn"].values())),
+        np.array(list(data["points"].values())),
+        rtol=0,
+        atol=TOL,
+    )
+    _assert_scene_state(state, pk.Scene.from_dict(data), state["theta"])
+
+
+def test_auto_rotate_moves_and_rocks_at_limits(page):
+    # a non-Grashof four-bar: the crank rocks between its dead points, never leaving them
+    page.open("?fourbar=4,3,2,1.5&theta=30&auto=1&speed=10")
+    seen = set()
+    for _ in range(40):
+        s = page.state()
+        seen.add(round(s["theta"], 6))
+        assert s["status"] != "NOT_ASSEMBLABLE"
+        time.sleep(0.02)
+    assert len(seen) > 5
+    page.el("auto").click()
