@@ -3,6 +3,7 @@ assemblies, circuits and traces; ``as_fourbar`` recognises a four-bar scene."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from collections.abc import Iterable, Mapping
@@ -21,7 +22,19 @@ from ._results import Assemblies, Assembly, Circuit, Plan, SceneSweep, Step, Tra
 from ._toml import dumps as toml_dumps
 
 #: Keys a scene may have; the first five are required (``output`` is optional).
-KEYS = ("name", "description", "units", "points", "links", "ground", "input", "output", "outputs")
+KEYS = (
+    "name",
+    "description",
+    "units",
+    "points",
+    "links",
+    "ground",
+    "input",
+    "output",
+    "outputs",
+    "slots",
+    "prismatic",
+)
 REQUIRED = ("points", "links", "ground", "input")
 #: Default largest continuation step of a group (3 degrees).
 MAX_STEP = math.radians(3.0)
@@ -37,15 +50,51 @@ def _entry(cond: bool, entry: str, message: str) -> None:
 
 
 def _pivoted(d: Mapping[str, Any], key: str) -> tuple[str, str]:
+    """An input or output: ("link", pivot) for an angle, ("slot" | "prismatic", name) for a
+    displacement along a slot or prismatic pair."""
     v = d[key]
+    linear = isinstance(v, Mapping) and len(v) == 1 and next(iter(v)) in ("slot", "prismatic")
+    if linear:
+        (kind, name), = v.items()
+        _entry(isinstance(name, str), f"{key}.{kind}", f"must be a {kind} name, got {name!r}")
+        return kind, name
     _entry(
         isinstance(v, Mapping) and set(v) == {"link", "pivot"},
         key,
-        f"must be a table with keys 'link' and 'pivot', got {v!r}",
+        "must be a table with keys 'link' and 'pivot' (an angle), or with one key 'slot' or "
+        f"'prismatic' (a displacement), got {v!r}",
     )
     _entry(isinstance(v["link"], str), f"{key}.link", f"must be a link name, got {v['link']!r}")
     _entry(isinstance(v["pivot"], str), f"{key}.pivot", f"must be a point name, got {v['pivot']!r}")
     return v["link"], v["pivot"]
+
+
+def _drive_dict(v: tuple[str, str], linear: bool) -> dict[str, str]:
+    return {v[0]: v[1]} if linear else {"link": v[0], "pivot": v[1]}
+
+
+def _joints(data: Mapping[str, Any], key: str, first: str) -> dict[str, tuple[str, str, tuple[str, str]]]:
+    """Slots (``first`` = "point") or prismatic pairs (``first`` = "link"): name -> (point
+    or link, guide, (line point, line point))."""
+    table = data.get(key)
+    if table is None:
+        return {}
+    _entry(isinstance(table, Mapping), key, f"must be a table name -> {{{first}, guide, line}}")
+    out = {}
+    for n, v in table.items():
+        entry = f"{key}.{n}"
+        _entry(
+            isinstance(v, Mapping) and set(v) == {first, "guide", "line"},
+            entry,
+            f"must be a table with keys '{first}', 'guide' and 'line', got {v!r}",
+        )
+        for k in (first, "guide"):
+            _entry(isinstance(v[k], str), f"{entry}.{k}", f"must be a name, got {v[k]!r}")
+        line = v["line"]
+        ok = isinstance(line, (list, tuple)) and len(line) == 2 and all(isinstance(q, str) for q in line)
+        _entry(ok, f"{entry}.line", f"must be a pair of point names, got {line!r}")
+        out[str(n)] = (v[first], v["guide"], (line[0], line[1]))
+    return out
 
 
 def _xy(name: str, v: object) -> tuple[float, float]:
@@ -120,6 +169,12 @@ class Scene:
         _entry(isinstance(data["ground"], str), "ground", "must be a link name")
         inp = _pivoted(data, "input")
         out = _pivoted(data, "output") if data.get("output") is not None else None
+        slots, prism = _joints(data, "slots", "point"), _joints(data, "prismatic", "link")
+        linear_in = inp[0] in ("slot", "prismatic") and isinstance(data["input"], Mapping) and "link" not in data["input"]
+        linear_out = out is not None and "link" not in data["output"]
+        if linear_out:
+            assert out is not None
+            _entry(out[1] in (slots if out[0] == "slot" else prism), f"output.{out[0]}", f"{out[1]!r} is not a {out[0]}")
         outputs = data.get("outputs")
         if outputs is not None:
             ok = isinstance(outputs, (list, tuple)) and all(isinstance(o, str) for o in outputs)
@@ -128,7 +183,14 @@ class Scene:
             v = data.get(k)
             _entry(v is None or isinstance(v, str), k, f"must be a string, got {v!r}")
         self._core = _kernel.Scene(
-            list(points.items()), [(n, list(v)) for n, v in lk.items()], data["ground"], inp, out
+            list(points.items()),
+            [(n, list(v)) for n, v in lk.items()],
+            data["ground"],
+            ("", "") if linear_in else inp,
+            None if linear_out else out,
+            list(slots.items()),
+            list(prism.items()),
+            inp if linear_in else None,
         )
         self._data: dict[str, Any] = {
             "name": data.get("name"),
@@ -137,9 +199,11 @@ class Scene:
             "points": points,
             "links": lk,
             "ground": data["ground"],
-            "input": {"link": inp[0], "pivot": inp[1]},
-            "output": None if out is None else {"link": out[0], "pivot": out[1]},
+            "input": _drive_dict(inp, linear_in),
+            "output": None if out is None else _drive_dict(out, linear_out),
             "outputs": None if outputs is None else tuple(outputs),
+            "slots": slots,
+            "prismatic": prism,
         }
         self._plans: dict[tuple[str, ...] | None, tuple[Plan, Any]] = {}
         self._theta: np.ndarray | None = None
@@ -182,6 +246,11 @@ class Scene:
             out["output"] = dict(d["output"])
         if d["outputs"] is not None:
             out["outputs"] = list(d["outputs"])
+        for key, first in (("slots", "point"), ("prismatic", "link")):
+            if d[key]:
+                out[key] = {
+                    n: {first: a, "guide": g, "line": list(line)} for n, (a, g, line) in d[key].items()
+                }
         return out
 
     def save(self, path: str | Path) -> Path:
@@ -225,15 +294,34 @@ class Scene:
 
     @property
     def input(self) -> tuple[str, str]:
-        """(input link, its ground pivot)."""
+        """(input link, its ground pivot) for an angle input; ("slot" | "prismatic", its
+        name) for a linear one."""
         d = self._data["input"]
-        return d["link"], d["pivot"]
+        return (d["link"], d["pivot"]) if "link" in d else next(iter(d.items()))
+
+    @property
+    def input_kind(self) -> str:
+        """"angle" (a crank's absolute direction, radians) or "displacement" (along a slot
+        or prismatic pair from the drawn pose, scene units)."""
+        return "angle" if "link" in self._data["input"] else "displacement"
 
     @property
     def output(self) -> tuple[str, str] | None:
-        """(output link, its ground pivot), or None."""
+        """(output link, its ground pivot), ("slot" | "prismatic", name), or None."""
         d = self._data["output"]
-        return None if d is None else (d["link"], d["pivot"])
+        if d is None:
+            return None
+        return (d["link"], d["pivot"]) if "link" in d else next(iter(d.items()))
+
+    @property
+    def slots(self) -> dict[str, tuple[str, str, tuple[str, str]]]:
+        """Slot name -> (point, guide link, (line point, line point))."""
+        return dict(self._data["slots"])
+
+    @property
+    def prismatic(self) -> dict[str, tuple[str, str, tuple[str, str]]]:
+        """Prismatic pair name -> (sliding link, guide link, (line point, line point))."""
+        return dict(self._data["prismatic"])
 
     @property
     def outputs(self) -> tuple[str, ...] | None:
@@ -309,12 +397,44 @@ class Scene:
         return hit
 
     def _default_theta(self) -> np.ndarray:
-        """361 input angles from the drawn one through one full turn (read-only, cached)."""
+        """361 input angles from the drawn one through one full turn; for a linear input,
+        361 displacements across the stroke reachable from the drawn pose (read-only,
+        cached)."""
         if self._theta is None:
-            t = self.input_angle + np.arange(361) * (TAU / 360)
+            if self.input_kind == "angle":
+                t = self.input_angle + np.arange(361) * (TAU / 360)
+            else:
+                lo, hi = self.stroke()
+                t = np.linspace(lo, hi, 361)
             t.setflags(write=False)
             self._theta = t
         return self._theta
+
+    def _size(self) -> float:
+        """The drawing's extent (its bounding box's larger side), scene units."""
+        xy = np.array(list(self._data["points"].values()))
+        return float(np.ptp(xy, axis=0).max())
+
+    def stroke(self) -> tuple[float, float]:
+        """A linear input's reachable interval (lo <= 0 <= hi) from the drawn pose: its ends
+        are the dead points where the motion stops (found by following the motion out from
+        the drawn pose both ways, refined by the sweep's step halving)."""
+        _entry(self.input_kind == "displacement", "input", "stroke() is for a linear input")
+        reach = 4.0 * self._size()
+        s = np.linspace(-reach, reach, 801)
+        sw = self.sweep(s, max_step=MAX_STEP * self._size())
+        ok = sw.success
+        ends = []
+        for side in (s < 0, s > 0):
+            beyond = side & ~ok
+            lim = sw.limit[beyond] if sw.limit is not None else np.array([])
+            lim = lim[np.isfinite(lim)]
+            if lim.size:
+                ends.append(float(lim.min() if side[0] else lim.max()))
+            else:
+                solved = s[side & ok]
+                ends.append(float(solved.min() if side[0] else solved.max()) if solved.size else 0.0)
+        return ends[0], ends[1]
 
     def plan(self, outputs: Iterable[str] | str | None = None) -> Plan:
         """The steps that solve ``outputs`` (point or link names; None: the scene's
@@ -330,7 +450,7 @@ class Scene:
         tol: float = 1e-9,
         max_iter: int = 100,
         omega: float | None = None,
-        max_step: float = MAX_STEP,
+        max_step: float | None = None,
     ) -> SceneSweep:
         """Solves the plan of ``outputs`` at every input angle ``theta`` (radians; default
         361 angles from the drawn angle through one full turn), following the drawn
@@ -346,6 +466,8 @@ class Scene:
         angular velocity) adds point velocities and link angular velocities.
         """
         plan, core = self._compiled(outputs)
+        if max_step is None:
+            max_step = MAX_STEP if self.input_kind == "angle" else MAX_STEP * self._size()
         if theta is None:
             t = self._default_theta()
         else:
@@ -357,7 +479,34 @@ class Scene:
         w = None if omega is None else as_float("omega", omega)
         *arrays, kin = core.sweep(t, tol, max_iter, ms, w)
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
-        return SceneSweep.build(plan, t, *arrays, vel, acc, omega=w)
+        sw = SceneSweep.build(plan, t, *arrays, vel, acc, omega=w, input=self.input_kind)
+        out = self._output_of(sw)
+        return sw if out is None else dataclasses.replace(sw, output=out)
+
+    def _output_of(self, sw: SceneSweep) -> np.ndarray | None:
+        """The output coordinate along a sweep, from its reported points (None: no output, or
+        its points are not among those reported)."""
+        o = self.output
+        if o is None:
+            return None
+        pts, d = sw.points, self._data
+        if "link" in d["output"]:
+            link, pivot = o
+            tip = next(q for q in d["links"][link] if q != pivot)
+            if pivot not in pts or tip not in pts:
+                return None
+            v = pts[tip] - pts[pivot]
+            return np.arctan2(v[:, 1], v[:, 0])
+        kind, name = o
+        moving, _, (a, b) = (d["slots"] if kind == "slot" else d["prismatic"])[name]
+        q = moving if kind == "slot" else d["links"][moving][0]
+        if not {q, a, b} <= set(pts):
+            return None
+        drawn = {n: np.asarray(d["points"][n]) for n in (q, a, b)}
+        u0 = drawn[b] - drawn[a]
+        s0 = float(np.dot(drawn[q] - drawn[a], u0) / np.linalg.norm(u0))
+        u = pts[b] - pts[a]
+        return np.einsum("ij,ij->i", pts[q] - pts[a], u) / np.linalg.norm(u, axis=1) - s0
 
     # --- every assembly, circuits, tracing ------------------------------------------------
 

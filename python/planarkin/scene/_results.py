@@ -100,8 +100,15 @@ class SceneSweep(SweepResult):
     #: (None: not computed).
     acceleration_array: np.ndarray | None = field(default=None, kw_only=True)
     angular_acceleration_array: np.ndarray | None = field(default=None, kw_only=True)
-    #: The input's angular velocity (rad/s) behind the velocities (None: not given).
+    #: The input's angular velocity (rad/s) behind the velocities (None: not given); for a
+    #: linear input, its speed (scene units per second).
     omega: float | None = field(default=None, kw_only=True)
+    #: "angle": ``theta`` holds input angles (radians); "displacement": a linear input's
+    #: displacements from the drawn pose (scene units).
+    input: str = field(default="angle", kw_only=True)
+    #: (N,) the scene's output coordinate (an angle, or a displacement along a slot or
+    #: prismatic pair) at every input value; None when the scene names no output.
+    output: np.ndarray | None = field(default=None, kw_only=True)
     #: The names of the P reported points and of the L reported links, in array order.
     point_names: tuple[str, ...] = field(default=(), kw_only=True)
     link_names: tuple[str, ...] = field(default=(), kw_only=True)
@@ -109,13 +116,15 @@ class SceneSweep(SweepResult):
     @classmethod
     def build(
         cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel,
-        acc=None, *, omega=None,
+        acc=None, *, omega=None, input="angle", output=None,
     ):  # noqa: ANN001, ANN206, E501  # fmt: skip
         """From the kernel's arrays; ``vel`` and ``acc`` are (points, links) pairs or None."""
         return cls(
             acceleration_array=None if acc is None else acc[0],
             angular_acceleration_array=None if acc is None else acc[1],
             omega=omega,
+            input=input,
+            output=output,
             plan=plan,
             theta=theta,
             coords=pts,

@@ -64,7 +64,14 @@ fn scene(rng: &mut Rng, spread: f64, inv: &Inversion) -> Option<Scene> {
         })
         .collect();
     let links = LINKS.iter().map(|(n, js)| (n.to_string(), js.chars().map(String::from).collect())).collect();
-    let spec = SceneSpec { points, links, ground: inv.1.into(), input: (inv.2.into(), inv.3.into()), output: None };
+    let spec = SceneSpec {
+        points,
+        links,
+        ground: inv.1.into(),
+        input: (inv.2.into(), inv.3.into()),
+        output: None,
+        ..Default::default()
+    };
     // a random drawing can be degenerate (the rank check refuses it): skipped, counted
     Scene::new(spec).ok()
 }

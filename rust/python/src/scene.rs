@@ -3,7 +3,8 @@
 
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use planarkin_core::scene::{
-    Assemblies, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace, TraceOptions,
+    Assemblies, LinearKind, Plan, PrismaticSpec, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, SlotSpec, Trace,
+    TraceOptions,
 };
 use planarkin_core::solve::homotopy::HomotopyOptions;
 use planarkin_core::NewtonOptions;
@@ -20,24 +21,47 @@ pub(crate) struct PyScene {
 }
 
 type Named = (String, String);
+/// A slot (point, guide, line) or a prismatic pair (link, guide, line).
+type Joint = (String, String, (String, String));
 
 #[pymethods]
 impl PyScene {
     #[new]
-    #[pyo3(signature = (points, links, ground, input, output=None))]
+    #[pyo3(signature = (points, links, ground, input, output=None, slots=Vec::new(), prismatic=Vec::new(), linear_input=None))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         points: Vec<(String, (f64, f64))>,
         links: Vec<(String, Vec<String>)>,
         ground: String,
         input: Named,
         output: Option<Named>,
+        slots: Vec<(String, Joint)>,
+        prismatic: Vec<(String, Joint)>,
+        linear_input: Option<Named>,
     ) -> PyResult<Self> {
+        let linear_input = match linear_input {
+            None => None,
+            Some((kind, name)) => Some((
+                match kind.as_str() {
+                    "slot" => LinearKind::Slot,
+                    "prismatic" => LinearKind::Prismatic,
+                    other => return Err(PyValueError::new_err(format!("input: unknown linear input kind {other:?}"))),
+                },
+                name,
+            )),
+        };
         let spec = SceneSpec {
             points: points.into_iter().map(|(n, (x, y))| (n, [x, y])).collect(),
             links,
             ground,
             input,
             output,
+            slots: slots.into_iter().map(|(n, (point, guide, line))| (n, SlotSpec { point, guide, line })).collect(),
+            prismatic: prismatic
+                .into_iter()
+                .map(|(n, (link, guide, line))| (n, PrismaticSpec { link, guide, line }))
+                .collect(),
+            linear_input,
         };
         Ok(Self { inner: Scene::new(spec).map_err(err)? })
     }

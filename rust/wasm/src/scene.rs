@@ -144,7 +144,7 @@ fn spec(data: &Value) -> Result<(SceneSpec, Option<Vec<String>>), String> {
             Some(v) => return Err(entry(k, format!("must be a string, got {}", repr(v)))),
         }
     }
-    Ok((SceneSpec { points, links: lk, ground, input, output }, outputs))
+    Ok((SceneSpec { points, links: lk, ground, input, output, ..Default::default() }, outputs))
 }
 
 impl Kept {
@@ -179,7 +179,7 @@ impl Kept {
             "drawn": sc.drawn().iter().map(|&p| pair(p)).collect::<Vec<_>>(),
             "links": sc.links().iter().map(|l| json!({"name": l.name, "points": l.points})).collect::<Vec<_>>(),
             "ground": sc.ground(),
-            "input": pivoted(sc.input()),
+            "input": sc.input().map(pivoted),
             "output": sc.output().map(pivoted),
             "input_angle": sc.input_angle(),
             "links_per_point": on,
@@ -210,6 +210,7 @@ impl Kept {
             step_det: &mut step_det,
             point_status: &mut s.point_status,
             velocity: None,
+            acceleration: None,
         };
         self.plan.sweep(theta, &self.opts, out, &Never).map_err(|e| e.to_string())?;
         // in scene order: the plan reports its points in its own order

@@ -44,6 +44,8 @@ struct Walk<'p> {
     opts: HomotopyOptions,
     poll: Poll<'p>,
     u: Xy,
+    /// The input value (a displacement for a linear input; the fused guide reads it).
+    s: f64,
     out: Assemblies,
     /// group op index -> position in `out.complex_counts`
     group_slot: Vec<usize>,
@@ -73,6 +75,7 @@ impl Plan {
             opts: *opts,
             poll: Poll::new(interrupt),
             u: [c, s],
+            s: if self.linear { theta / self.scale } else { theta },
             out: Assemblies { complex_counts: vec![Vec::new(); groups], ..Default::default() },
             group_slot,
         };
@@ -124,7 +127,44 @@ impl Walk<'_> {
                 }
                 Ok(())
             }
-            Op::Group(g) => {
+            Op::Group(g) => self.group(i, g, pos, dets, labels),
+            op => {
+                // sliders: two sides where there are two, one solution otherwise
+                let sides: &[f64] = if op.sided() { &[1.0, -1.0] } else { &[1.0] };
+                let zero = vec![[0.0; 2]; pos.len()];
+                for &side in sides {
+                    let Some(out) = op.solve_slider(self.s, [&*pos, &zero, &zero], side, false) else { continue };
+                    if out.det == 0.0 && side < 0.0 {
+                        continue; // a double root: one assembly, not two
+                    }
+                    for p in op.outputs() {
+                        pos[p] = out.x[0];
+                    }
+                    if op.sided() {
+                        dets.push(out.det);
+                        labels.push(if side > 0.0 { "+".into() } else { "-".into() });
+                    }
+                    self.walk(i + 1, pos, dets, labels)?;
+                    if op.sided() {
+                        dets.pop();
+                        labels.pop();
+                    }
+                }
+                Ok(())
+            }
+        }
+    }
+
+    fn group(
+        &mut self,
+        i: usize,
+        g: &super::group::Group,
+        pos: &mut [Xy],
+        dets: &mut Vec<f64>,
+        labels: &mut Vec<String>,
+    ) -> Result<(), Error> {
+        {
+            {
                 let nc = g.closures.len();
                 let delta = g.deltas(|p| pos[p]);
                 let (a, b) = g.linear_form(&delta[..nc]);

@@ -143,7 +143,7 @@ pub(super) fn sweep(
                         }
                     }
                 }
-                Op::Group(_) => unreachable!("the column sweep runs plans with no group"),
+                _ => unreachable!("the column sweep runs plans of dyads, carries and the input angle"),
             }
         }
         write_block(plan, &c, &sdet, &sst, &first_bad, k0, m, opts, out);

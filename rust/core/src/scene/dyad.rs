@@ -46,7 +46,13 @@ impl Dyad {
     /// [`Dyad::solve`] on a given side (+1 / -1) instead of the drawn one.
     #[inline]
     pub(super) fn solve_side(&self, a: Xy, b: Xy, side: f64) -> DyadOut {
-        let (r1, r2) = (self.r1, self.r2);
+        self.solve_radii(a, b, side, self.r1, self.r2)
+    }
+
+    /// [`Dyad::solve_side`] with the arms' lengths given (they change with a linear input
+    /// on a fused guide).
+    #[inline]
+    pub(super) fn solve_radii(&self, a: Xy, b: Xy, side: f64, r1: f64, r2: f64) -> DyadOut {
         let u = sub(b, a);
         let d2 = dot(u, u);
         let d = d2.sqrt();

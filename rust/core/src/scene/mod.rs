@@ -12,9 +12,11 @@
 mod assemble;
 mod columns;
 mod dyad;
+mod eval;
 mod group;
 mod options;
 mod plan;
+mod slide;
 mod sweep;
 mod trace;
 mod validate;
@@ -25,6 +27,7 @@ use std::collections::HashMap;
 pub use assemble::{Assemblies, Assembly};
 pub use options::{SceneSweepOptions, SceneSweepOut};
 pub use plan::{Plan, StepInfo, StepKind};
+pub use slide::{Prismatic, Slot};
 pub use trace::{Circuit, Trace, TraceOptions, Tracer};
 pub use vec2::Xy;
 
@@ -53,6 +56,50 @@ pub struct Pivoted {
     pub tip: usize,
 }
 
+/// A slot as given: a point kept on the line through two points of a guide link.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SlotSpec {
+    /// The point (of one or more moving links).
+    pub point: String,
+    /// The link carrying the line.
+    pub guide: String,
+    /// Two points of the guide: the line, directed from the first to the second.
+    pub line: (String, String),
+}
+
+/// A prismatic pair as given: a link translating along a line of its guide.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PrismaticSpec {
+    /// The translating link.
+    pub link: String,
+    /// The link it slides in.
+    pub guide: String,
+    /// Two points of the guide: the direction of travel.
+    pub line: (String, String),
+}
+
+/// Which kind of prismatic joint drives a linear input.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LinearKind {
+    /// A slot: the displacement of its point along the line.
+    Slot,
+    /// A prismatic pair: the displacement of its link along the line.
+    Prismatic,
+}
+
+/// A linear input, validated: the joint and its direction of travel as drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Linear {
+    /// Slot or prismatic pair.
+    pub kind: LinearKind,
+    /// Its index among the scene's slots or prismatic pairs.
+    pub index: usize,
+    /// The guide link.
+    pub guide: usize,
+    /// Unit direction of travel as drawn (line.0 -> line.1).
+    pub dir: Xy,
+}
+
 /// The scene as given, before validation: names and drawn coordinates.
 #[derive(Clone, Debug, Default)]
 pub struct SceneSpec {
@@ -62,10 +109,17 @@ pub struct SceneSpec {
     pub links: Vec<(String, Vec<String>)>,
     /// The fixed link.
     pub ground: String,
-    /// The driven link and its ground pivot.
+    /// The driven link and its ground pivot (an angle input; ignored when `linear_input`
+    /// names a joint).
     pub input: (String, String),
     /// Optional output link and its ground pivot.
     pub output: Option<(String, String)>,
+    /// Slots by name.
+    pub slots: Vec<(String, SlotSpec)>,
+    /// Prismatic pairs by name.
+    pub prismatic: Vec<(String, PrismaticSpec)>,
+    /// A linear input instead of the angle one: a slot or prismatic pair by name.
+    pub linear_input: Option<(LinearKind, String)>,
 }
 
 /// A validated scene. Coordinates are kept as drawn and, for solving, shifted to the input
@@ -83,8 +137,14 @@ pub struct Scene {
     /// Links carrying each point.
     point_links: Vec<Vec<usize>>,
     ground: usize,
-    input: Pivoted,
+    /// The angle input (None for a linear one).
+    input: Option<Pivoted>,
     output: Option<Pivoted>,
+    slots: Vec<Slot>,
+    prismatic: Vec<Prismatic>,
+    linear: Option<Linear>,
+    /// The drawn input: its angle, or 0 for a linear input (displacements are measured
+    /// from the drawn pose).
     theta0: f64,
 }
 
@@ -116,9 +176,24 @@ impl Scene {
         self.ground
     }
 
-    /// The input link, its pivot and the point that sets its angle.
-    pub fn input(&self) -> Pivoted {
+    /// The input link, its pivot and the point that sets its angle (None: a linear input).
+    pub fn input(&self) -> Option<Pivoted> {
         self.input
+    }
+
+    /// The linear input, if the scene is driven by a slot or prismatic pair.
+    pub fn linear_input(&self) -> Option<Linear> {
+        self.linear
+    }
+
+    /// The slots, in the order given.
+    pub fn slots(&self) -> &[Slot] {
+        &self.slots
+    }
+
+    /// The prismatic pairs, in the order given.
+    pub fn prismatic(&self) -> &[Prismatic] {
+        &self.prismatic
     }
 
     /// The output link, if any.
@@ -126,7 +201,7 @@ impl Scene {
         self.output
     }
 
-    /// The input angle as drawn (radians, atan2 of pivot -> tip).
+    /// The input angle as drawn (radians, atan2 of pivot -> tip); 0 for a linear input.
     pub fn input_angle(&self) -> f64 {
         self.theta0
     }
@@ -137,10 +212,12 @@ impl Scene {
         self.scale
     }
 
-    /// Gruebler's count M = 3 (links - 1) - 2 joints, where a point on m links is m - 1
-    /// joints. A valid scene has M = 1.
+    /// Gruebler's count M = 3 (links - 1) - 2 joints - slots - 2 prismatic pairs, where a
+    /// point on m links is m - 1 joints. A valid scene has M = 1.
     pub fn gruebler(&self) -> i64 {
         validate::gruebler(self.links.len(), &self.point_links)
+            - self.slots.len() as i64
+            - 2 * self.prismatic.len() as i64
     }
 
     /// Number of joints (a point on m >= 2 links counts m - 1).
@@ -156,7 +233,7 @@ impl Scene {
     /// The points that define a link's angle: (pivot, tip) for the input and output links,
     /// else its first two listed points.
     pub fn angle_points(&self, link: usize) -> (usize, usize) {
-        for p in [Some(self.input), self.output].into_iter().flatten() {
+        for p in [self.input, self.output].into_iter().flatten() {
             if p.link == link {
                 return (p.pivot, p.tip);
             }

@@ -40,8 +40,9 @@ pub struct SceneSweepOut<'a> {
     pub nit: &'a mut [u32],
     /// (N,) product of the steps' signed conditioning.
     pub det: &'a mut [f64],
-    /// (N,) for LIMIT angles, the input angle of the dead point that stops the motion
-    /// (where continuation last converged, within about max_step / 2^16 of it); else NaN.
+    /// (N,) for LIMIT angles (and NOT_ASSEMBLABLE ones the motion reached through a dead
+    /// point), the input of the dead point that stops the motion (where continuation last
+    /// converged, within about max_step / 2^16 of it); else NaN.
     pub limit: &'a mut [f64],
     /// (N, S) each step's status.
     pub step_status: &'a mut [i8],

@@ -7,8 +7,9 @@
 
 use super::dyad::Dyad;
 use super::group::{Group, MAX};
+use super::slide::{cdiv, cmul, Line, LineLine, Rpr, Rrp};
 use super::vec2::{cross, dot, sub, Xy};
-use super::Scene;
+use super::{LinearKind, Scene};
 use crate::error::Error;
 
 /// Kind of a plan step.
@@ -16,15 +17,25 @@ use crate::error::Error;
 pub enum StepKind {
     /// A point reached by two links from two known points (circle intersection).
     Dyad,
+    /// A point reached by a link from a known point and kept on a known line
+    /// (circle-line: a slider's block, a prismatic pair's point).
+    Rrp,
+    /// A guide turning about a known point whose line passes through a known point.
+    Rpr,
+    /// A point on two known lines.
+    Pp,
     /// Links solved together by Newton-Raphson (no dyad reaches them).
     Group,
 }
 
 impl StepKind {
-    /// "dyad" or "group".
+    /// "dyad", "rrp", "rpr", "pp" or "group".
     pub fn name(self) -> &'static str {
         match self {
             StepKind::Dyad => "dyad",
+            StepKind::Rrp => "rrp",
+            StepKind::Rpr => "rpr",
+            StepKind::Pp => "pp",
             StepKind::Group => "group",
         }
     }
@@ -61,22 +72,53 @@ pub(super) enum Op {
         m: Xy,
     },
     Group(Box<Group>),
+    /// q = a + m(s) (b - a) on a linear input's guide fused with what slides in it, m(s) =
+    /// (num0 + s num1) / (den0 + s den1) (complex): the body shape changes with the input s.
+    StrokeCarry {
+        q: usize,
+        a: usize,
+        b: usize,
+        num: [Xy; 2],
+        den: [Xy; 2],
+    },
+    /// An RRR dyad on the fused guide: arm i has length |arm_i.0 + s arm_i.1|.
+    StrokeDyad(Dyad, [[Xy; 2]; 2]),
+    Rrp(Rrp),
+    Pp(LineLine),
+    Rpr(Rpr),
+    /// q = base + m (b - a): a link whose rotation is known (that of the link carrying a
+    /// and b, its prismatic partner) and one of whose points is known.
+    Offset {
+        q: usize,
+        base: usize,
+        a: usize,
+        b: usize,
+        m: Xy,
+    },
 }
 
 impl Op {
-    fn inputs(&self) -> Vec<usize> {
+    pub(super) fn inputs(&self) -> Vec<usize> {
         match self {
             Op::Input { .. } => Vec::new(),
             Op::Dyad(d) => vec![d.k1, d.k2],
-            Op::Carry { a, b, .. } => vec![*a, *b],
+            Op::Carry { a, b, .. } | Op::StrokeCarry { a, b, .. } => vec![*a, *b],
             Op::Group(g) => g.anchors.clone(),
+            Op::StrokeDyad(d, _) => vec![d.k1, d.k2],
+            Op::Rrp(r) => [vec![r.k], r.line.inputs().to_vec()].concat(),
+            Op::Pp(l) => [l.lines[0].inputs(), l.lines[1].inputs()].concat(),
+            Op::Rpr(r) => vec![r.k, r.q],
+            Op::Offset { base, a, b, .. } => vec![*base, *a, *b],
         }
     }
 
-    fn outputs(&self) -> Vec<usize> {
+    pub(super) fn outputs(&self) -> Vec<usize> {
         match self {
-            Op::Input { q, .. } | Op::Carry { q, .. } => vec![*q],
-            Op::Dyad(d) => vec![d.p],
+            Op::Input { q, .. } | Op::Carry { q, .. } | Op::StrokeCarry { q, .. } | Op::Offset { q, .. } => vec![*q],
+            Op::Dyad(d) | Op::StrokeDyad(d, _) => vec![d.p],
+            Op::Rrp(r) => vec![r.p],
+            Op::Pp(l) => vec![l.p],
+            Op::Rpr(r) => vec![r.t],
             Op::Group(g) => g.nodes.iter().map(|n| n.point).collect(),
         }
     }
@@ -101,6 +143,8 @@ pub struct Plan {
     pub(super) theta0: f64,
     pub(super) scale: f64,
     pub(super) origin: Xy,
+    /// The input is a displacement (no turn repeats it: never wrapped).
+    pub(super) linear: bool,
 }
 
 impl Plan {
@@ -125,7 +169,7 @@ impl Plan {
     }
 
     /// The signed conditioning of the whole solve and of each step at a pose given by the
-    /// positions of every point (solving frame).
+    /// positions of every point (solving frame; a linear input at its drawn value).
     pub(super) fn dets_at(&self, pos: &[Xy]) -> (f64, Vec<f64>) {
         let dets: Vec<f64> = self
             .step_op
@@ -137,7 +181,7 @@ impl Plan {
                     let delta = g.deltas(|p| pos[p]);
                     g.conditioning_with(&phi, &delta[..g.closures.len()])
                 }
-                _ => unreachable!("steps open with a dyad or a group"),
+                op => op.slider_det_at(0.0, pos),
             })
             .collect();
         (dets.iter().product(), dets)
@@ -147,10 +191,52 @@ impl Plan {
     pub fn has_group(&self) -> bool {
         self.ops.iter().any(|o| matches!(o, Op::Group(_)))
     }
+
+    /// True when every operation runs on the column path (RRR dyads, carries and the input
+    /// angle only: no group, no slider, no linear input).
+    pub(super) fn columns_ok(&self) -> bool {
+        self.ops.iter().all(|o| matches!(o, Op::Input { .. } | Op::Dyad(_) | Op::Carry { .. }))
+    }
 }
 
 /// Most subsets of links examined when searching for the smallest rigid group.
 const GROUP_SEARCH_BUDGET: usize = 200_000;
+
+/// A linear input's guide and what slides in it (its link's points, or its slot's point),
+/// seen as one body whose shape changes with the input s: a sliding point sits at its
+/// drawn place plus s `dir` in the guide's frame.
+struct Fused {
+    points: Vec<usize>,
+    sliding: Vec<bool>,
+    dir: Xy,
+    /// The guide link (named for steps that go through the fused body).
+    guide: usize,
+    /// The joint it replaces: its kind and index (not a constraint of its own any more).
+    joint: (LinearKind, usize),
+}
+
+impl Fused {
+    fn of(sc: &Scene) -> Option<Fused> {
+        let l = sc.linear?;
+        let mut sliding = vec![false; sc.names.len()];
+        let mut points = sc.links[l.guide].points.clone();
+        let moving: Vec<usize> = match l.kind {
+            LinearKind::Slot => vec![sc.slots[l.index].point],
+            LinearKind::Prismatic => sc.links[sc.prismatic[l.index].link].points.clone(),
+        };
+        for p in moving {
+            sliding[p] = true;
+            points.push(p);
+        }
+        Some(Fused { points, sliding, dir: l.dir, guide: l.guide, joint: (l.kind, l.index) })
+    }
+
+    /// The stroke term of `q - a` in the body frame: (sliding q - sliding a) dir.
+    fn stroke(&self, q: usize, a: usize) -> Xy {
+        let c = f64::from(u8::from(self.sliding[q])) - f64::from(u8::from(self.sliding[a]));
+        [c * self.dir[0], c * self.dir[1]]
+    }
+}
 
 pub(super) fn compile(sc: &Scene, want_points: &[usize], want_links: &[usize]) -> Result<Plan, Error> {
     let np = sc.names.len();
@@ -160,28 +246,50 @@ pub(super) fn compile(sc: &Scene, want_points: &[usize], want_links: &[usize]) -
         known[p] = true;
     }
     let mut ops: Vec<Op> = Vec::new();
-    let (piv, tip) = (xy[sc.input.pivot], xy[sc.input.tip]);
-    let u0 = sub(tip, piv);
-    let u0 = {
-        let n = dot(u0, u0).sqrt();
-        [u0[0] / n, u0[1] / n]
-    };
-    for &q in &sc.links[sc.input.link].points {
-        if !known[q] {
-            let d = sub(xy[q], piv);
-            ops.push(Op::Input { q, lam: dot(d, u0), mu: cross(u0, d) });
-            known[q] = true;
+    if let Some(input) = sc.input {
+        let (piv, tip) = (xy[input.pivot], xy[input.tip]);
+        let u0 = sub(tip, piv);
+        let u0 = {
+            let n = dot(u0, u0).sqrt();
+            [u0[0] / n, u0[1] / n]
+        };
+        for &q in &sc.links[input.link].points {
+            if !known[q] {
+                let d = sub(xy[q], piv);
+                ops.push(Op::Input { q, lam: dot(d, u0), mu: cross(u0, d) });
+                known[q] = true;
+            }
         }
     }
+    let fused = Fused::of(sc);
     loop {
-        carry_all(sc, &mut known, &mut ops);
+        carry_all(sc, fused.as_ref(), &mut known, &mut ops);
         if known.iter().all(|&k| k) {
             break;
         }
-        if let Some(d) = find_dyad(sc, &known) {
-            known[d.p] = true;
-            ops.push(Op::Dyad(d));
+        if let Some(op) = find_dyad(sc, fused.as_ref(), &known) {
+            for p in op.outputs() {
+                known[p] = true;
+            }
+            ops.push(op);
             continue;
+        }
+        if let Some(op) = find_slider(sc, fused.as_ref(), &known) {
+            for p in op.outputs() {
+                known[p] = true;
+            }
+            ops.push(op);
+            continue;
+        }
+        if !sc.slots.is_empty() || !sc.prismatic.is_empty() {
+            let unknown: Vec<&str> = (0..np).filter(|&p| !known[p]).map(|p| sc.names[p].as_str()).collect();
+            return Err(Error::scene(
+                "plan",
+                format!(
+                    "points {unknown:?} are not reached by closed forms (dyads, circle-line, line-line, a \
+                     guide through a point); groups of links with slots or prismatic pairs are not solved yet"
+                ),
+            ));
         }
         let g = find_group(sc, &known)?;
         for nd in &g.nodes {
@@ -192,14 +300,160 @@ pub(super) fn compile(sc: &Scene, want_points: &[usize], want_links: &[usize]) -
     prune(sc, ops, want_points, want_links)
 }
 
-/// Every link with two known points carries the rest (from the two farthest apart).
-fn carry_all(sc: &Scene, known: &mut [bool], ops: &mut Vec<Op>) {
+/// Two known points fixing the rotation of `link`: its own, or those of a prismatic
+/// partner (a prismatic pair keeps the two links' relative rotation).
+fn rotation_carrier(sc: &Scene, known: &[bool], link: usize) -> Option<(usize, usize)> {
+    let two = |l: usize| {
+        let mut k = sc.links[l].points.iter().copied().filter(|&p| known[p]);
+        Some((k.next()?, k.next()?))
+    };
+    two(link).or_else(|| {
+        sc.prismatic.iter().find_map(|pr| {
+            if pr.link == link {
+                two(pr.guide)
+            } else if pr.guide == link {
+                two(pr.link)
+            } else {
+                None
+            }
+        })
+    })
+}
+
+/// A unit vector along b - a (solving frame).
+fn unit(xy: &[Xy], a: usize, b: usize) -> Xy {
+    let d = sub(xy[b], xy[a]);
+    let n = dot(d, d).sqrt();
+    [d[0] / n, d[1] / n]
+}
+
+/// The known lines an unknown point `p` must stay on, with the link giving each: its slots
+/// on known guides, the paths of a prismatic link over a known guide, and the lines a
+/// known slot point draws on a guide whose rotation is known.
+fn lines_of(sc: &Scene, fused: Option<&Fused>, known: &[bool], p: usize) -> Vec<(Line, usize)> {
     let xy = &sc.xy;
+    let is_input = |k: LinearKind, i: usize| fused.is_some_and(|f| f.joint == (k, i));
+    let mut out = Vec::new();
+    for (i, sl) in sc.slots.iter().enumerate() {
+        if is_input(LinearKind::Slot, i) {
+            continue;
+        }
+        let (a, b) = sl.line;
+        if sl.point == p && known[a] && known[b] {
+            let len = dot(sub(xy[b], xy[a]), sub(xy[b], xy[a])).sqrt();
+            out.push((Line { base: a, a, b, m_off: [0.0, sl.offset / len], m_dir: [1.0 / len, 0.0] }, sl.guide));
+        }
+        // the slot point is known and p is on a guide whose rotation is known
+        if sl.point != p && known[sl.point] && sc.links[sl.guide].points.contains(&p) {
+            if let Some((ha, hb)) = rotation_carrier(sc, known, sl.guide) {
+                let d0 = unit(xy, a, b);
+                let shift = sub(xy[p], xy[a]);
+                let off = [shift[0] + sl.offset * d0[1], shift[1] - sl.offset * d0[0]];
+                let h = sub(xy[hb], xy[ha]);
+                out.push((Line { base: sl.point, a: ha, b: hb, m_off: cdiv(off, h), m_dir: cdiv(d0, h) }, sl.guide));
+            }
+        }
+    }
+    for (i, pr) in sc.prismatic.iter().enumerate() {
+        if is_input(LinearKind::Prismatic, i) {
+            continue;
+        }
+        let (a, b) = pr.line;
+        if sc.links[pr.link].points.contains(&p) && known[a] && known[b] {
+            let h = sub(xy[b], xy[a]);
+            let len = dot(h, h).sqrt();
+            out.push((Line { base: a, a, b, m_off: cdiv(sub(xy[p], xy[a]), h), m_dir: [1.0 / len, 0.0] }, pr.link));
+        }
+    }
+    out
+}
+
+/// The first closed form for a slider: a point on two known lines (PP), a point on a known
+/// line reached by a link from a known point (RRP), or a guide with one known point whose
+/// line passes through a known slot point (RPR).
+fn find_slider(sc: &Scene, fused: Option<&Fused>, known: &[bool]) -> Option<Op> {
+    let xy = &sc.xy;
+    for p in (0..sc.names.len()).filter(|&p| !known[p]) {
+        let lines = lines_of(sc, fused, known, p);
+        if let [(l1, k1), rest @ ..] = &lines[..] {
+            if let Some((l2, k2)) = rest.iter().find(|(l, _)| {
+                let (d1, d2) = (cmul(l1.m_dir, sub(xy[l1.b], xy[l1.a])), cmul(l.m_dir, sub(xy[l.b], xy[l.a])));
+                cross(d1, d2).abs() > 1e-9 * dot(d1, d1).sqrt() * dot(d2, d2).sqrt()
+            }) {
+                return Some(Op::Pp(LineLine { p, lines: [*l1, *l2], links: [*k1, *k2] }));
+            }
+            for &l in &sc.point_links[p] {
+                if l == *k1 {
+                    continue;
+                }
+                if let Some(&k) = sc.links[l].points.iter().find(|&&q| known[q]) {
+                    let e = sub(xy[p], xy[k]);
+                    let d = cmul(l1.m_dir, sub(xy[l1.b], xy[l1.a]));
+                    let side = if dot(e, d) < 0.0 { -1.0 } else { 1.0 };
+                    return Some(Op::Rrp(Rrp { p, k, r: dot(e, e).sqrt(), line: *l1, side, links: [*k1, l] }));
+                }
+            }
+        }
+    }
+    // a guide with one known point, its slot's point known: it turns to pass through it
+    for (i, sl) in sc.slots.iter().enumerate() {
+        if fused.is_some_and(|f| f.joint == (LinearKind::Slot, i)) || !known[sl.point] {
+            continue;
+        }
+        let pts = &sc.links[sl.guide].points;
+        let mut k = pts.iter().copied().filter(|&q| known[q]);
+        let (Some(k), None) = (k.next(), k.next()) else { continue };
+        if rotation_carrier(sc, known, sl.guide).is_some() {
+            continue;
+        }
+        let Some(&t) = pts.iter().find(|&&q| !known[q]) else { continue };
+        let d = unit(xy, sl.line.0, sl.line.1);
+        let side = if dot(d, sub(xy[sl.point], xy[k])) < 0.0 { -1.0 } else { 1.0 };
+        let on = *sc.point_links[sl.point].first().expect("a slot point is on a moving link");
+        return Some(Op::Rpr(Rpr {
+            t,
+            k,
+            q: sl.point,
+            k0: xy[k],
+            l0: xy[sl.line.0],
+            d,
+            t0: xy[t],
+            offset: sl.offset,
+            side,
+            links: [sl.guide, on],
+        }));
+    }
+    None
+}
+
+/// Every link with two known points carries the rest (from the two farthest apart); so does
+/// a linear input's fused guide (with the input's stroke); a link whose rotation is known
+/// from its prismatic partner carries the rest from one known point.
+fn carry_all(sc: &Scene, fused: Option<&Fused>, known: &mut [bool], ops: &mut Vec<Op>) {
+    let xy = &sc.xy;
+    let bodies = sc.links.len() + usize::from(fused.is_some());
     loop {
         let mut changed = false;
-        for l in &sc.links {
-            let k: Vec<usize> = l.points.iter().copied().filter(|&p| known[p]).collect();
-            if k.len() < 2 || k.len() == l.points.len() {
+        for body in 0..bodies {
+            let pts: &[usize] = match sc.links.get(body) {
+                Some(l) => &l.points,
+                None => &fused.expect("the extra body is the fused input").points,
+            };
+            let k: Vec<usize> = pts.iter().copied().filter(|&p| known[p]).collect();
+            if k.len() == pts.len() || k.is_empty() {
+                continue;
+            }
+            if k.len() < 2 {
+                // one known point and a known rotation: translate the drawn shape
+                let (Some(_), [base]) = (sc.links.get(body), &k[..]) else { continue };
+                let Some((a, b)) = rotation_carrier(sc, known, body) else { continue };
+                let h = sub(xy[b], xy[a]);
+                let unknown: Vec<usize> = pts.iter().copied().filter(|&q| !known[q]).collect();
+                for q in unknown {
+                    ops.push(Op::Offset { q, base: *base, a, b, m: cdiv(sub(xy[q], xy[*base]), h) });
+                    known[q] = true;
+                }
+                changed = true;
                 continue;
             }
             let mut best = (k[0], k[1], -1.0);
@@ -214,11 +468,22 @@ fn carry_all(sc: &Scene, known: &mut [bool], ops: &mut Vec<Op>) {
             }
             let (a, b, d2) = best;
             let ab = sub(xy[b], xy[a]);
-            let unknown: Vec<usize> = l.points.iter().copied().filter(|&q| !known[q]).collect();
+            let unknown: Vec<usize> = pts.iter().copied().filter(|&q| !known[q]).collect();
             for q in unknown {
                 let aq = sub(xy[q], xy[a]);
-                let m = [dot(aq, ab) / d2, cross(ab, aq) / d2];
-                ops.push(Op::Carry { q, a, b, m });
+                let stroke = match (body >= sc.links.len(), fused) {
+                    (true, Some(f)) => Some((f.stroke(q, a), f.stroke(b, a))),
+                    _ => None,
+                };
+                match stroke {
+                    Some((sq, sb)) if sq != [0.0; 2] || sb != [0.0; 2] => {
+                        ops.push(Op::StrokeCarry { q, a, b, num: [aq, sq], den: [ab, sb] });
+                    }
+                    _ => {
+                        let m = [dot(aq, ab) / d2, cross(ab, aq) / d2];
+                        ops.push(Op::Carry { q, a, b, m });
+                    }
+                }
                 known[q] = true;
             }
             changed = true;
@@ -229,14 +494,21 @@ fn carry_all(sc: &Scene, known: &mut [bool], ops: &mut Vec<Op>) {
     }
 }
 
-/// The first unknown point reached by two links from two distinct known points.
-fn find_dyad(sc: &Scene, known: &[bool]) -> Option<Dyad> {
+/// The first unknown point reached by two links (or a link and the fused input body) from
+/// two distinct known points.
+fn find_dyad(sc: &Scene, fused: Option<&Fused>, known: &[bool]) -> Option<Op> {
     let xy = &sc.xy;
+    let fused_id = sc.links.len();
     for p in (0..sc.names.len()).filter(|&p| !known[p]) {
         let mut reach: Vec<(usize, usize)> = Vec::new(); // (link, its known point)
         for &l in &sc.point_links[p] {
             if let Some(&k) = sc.links[l].points.iter().find(|&&q| known[q]) {
                 reach.push((l, k));
+            }
+        }
+        if let Some(f) = fused.filter(|f| f.points.contains(&p)) {
+            if let Some(&k) = f.points.iter().find(|&&q| known[q] && f.stroke(p, q) != [0.0; 2]) {
+                reach.push((fused_id, k));
             }
         }
         for (i, &(l1, k1)) in reach.iter().enumerate() {
@@ -247,7 +519,7 @@ fn find_dyad(sc: &Scene, known: &[bool]) -> Option<Dyad> {
                 }
                 let (e1, e2) = (sub(xy[p], xy[k1]), sub(xy[p], xy[k2]));
                 let side = cross(u, e1);
-                return Some(Dyad {
+                let d = Dyad {
                     p,
                     k1,
                     k2,
@@ -255,7 +527,17 @@ fn find_dyad(sc: &Scene, known: &[bool]) -> Option<Dyad> {
                     r2: dot(e2, e2).sqrt(),
                     side: if side < 0.0 { -1.0 } else { 1.0 },
                     links: [l1, l2],
-                });
+                };
+                let arm = |l: usize, k: usize, e: Xy| match fused {
+                    Some(f) if l == fused_id => [e, f.stroke(p, k)],
+                    _ => [e, [0.0; 2]],
+                };
+                if let Some(f) = fused.filter(|_| l1 == fused_id || l2 == fused_id) {
+                    let named = |l: usize| if l == fused_id { f.guide } else { l };
+                    let links = [named(l1), named(l2)];
+                    return Some(Op::StrokeDyad(Dyad { links, ..d }, [arm(l1, k1, e1), arm(l2, k2, e2)]));
+                }
+                return Some(Op::Dyad(d));
             }
         }
     }
@@ -340,7 +622,9 @@ fn prune(sc: &Scene, ops: Vec<Op>, want_points: &[usize], want_links: &[usize]) 
         }
     }
     if ops.iter().zip(&keep).any(|(o, &k)| k && matches!(o, Op::Input { .. })) {
-        need[sc.input.pivot] = true; // the input link's points hang from it
+        if let Some(input) = sc.input {
+            need[input.pivot] = true; // the input link's points hang from it
+        }
     }
     let mut kept = Vec::new();
     for (op, k) in ops.into_iter().zip(keep) {
@@ -377,7 +661,29 @@ fn prune(sc: &Scene, ops: Vec<Op>, want_points: &[usize], want_links: &[usize]) 
                 step_op.push(i);
                 Some(steps.len() - 1)
             }
-            Op::Carry { a, b, .. } => producer[*a].max(producer[*b]),
+            Op::Carry { .. } | Op::StrokeCarry { .. } | Op::Offset { .. } => {
+                op.inputs().iter().map(|&p| producer[p]).max().flatten()
+            }
+            Op::StrokeDyad(d, _) => {
+                steps.push(StepInfo { kind: StepKind::Dyad, points: vec![], unknowns: d.links.to_vec() });
+                step_op.push(i);
+                Some(steps.len() - 1)
+            }
+            Op::Rrp(r) => {
+                steps.push(StepInfo { kind: StepKind::Rrp, points: vec![], unknowns: r.links.to_vec() });
+                step_op.push(i);
+                Some(steps.len() - 1)
+            }
+            Op::Pp(l) => {
+                steps.push(StepInfo { kind: StepKind::Pp, points: vec![], unknowns: l.links.to_vec() });
+                step_op.push(i);
+                Some(steps.len() - 1)
+            }
+            Op::Rpr(r) => {
+                steps.push(StepInfo { kind: StepKind::Rpr, points: vec![], unknowns: r.links.to_vec() });
+                step_op.push(i);
+                Some(steps.len() - 1)
+            }
         };
         for p in op.outputs() {
             producer[p] = s;
@@ -397,9 +703,10 @@ fn prune(sc: &Scene, ops: Vec<Op>, want_points: &[usize], want_links: &[usize]) 
         link_points,
         fixed,
         npoints: np,
-        pivot: sc.xy[sc.input.pivot],
+        pivot: sc.input.map_or([0.0; 2], |i| sc.xy[i.pivot]),
         theta0: sc.theta0,
         scale: sc.scale,
         origin: sc.origin,
+        linear: sc.linear.is_some(),
     })
 }

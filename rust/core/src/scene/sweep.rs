@@ -16,6 +16,7 @@
 
 use super::columns;
 use super::dyad::{Dyad, DyadOut};
+use super::eval::Known;
 use super::group::{GroupSolve, MAX};
 use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
@@ -58,7 +59,57 @@ struct DyadState {
     limit: Option<(f64, f64)>,
 }
 
+/// What [`DyadState::choose`] decided: the side and its conditioning, or a status.
+type Choice = Result<(f64, f64), (Status, f64)>;
+
 impl DyadState {
+    /// The side at `theta` of an operation whose conditioning on a side is `det_on(side)`
+    /// (None: it cannot close): the side carried, flipped where the other side fits the
+    /// prediction (over a step no longer than `fine`: a change point); LIMIT past a dead
+    /// point met before; SINGULAR at a dead point (reached: the state moves there).
+    fn choose(
+        &mut self,
+        theta: f64,
+        max_step: f64,
+        fine: bool,
+        singular: f64,
+        det_on: impl Fn(f64) -> Option<f64>,
+    ) -> Choice {
+        if let Some((at, dir)) = self.limit {
+            if (theta - at) * dir > 0.0 {
+                return Err((Status::Limit, f64::NAN));
+            }
+        }
+        let mut side = self.side;
+        let Some(mut det) = det_on(side) else { return Err((Status::NotAssemblable, f64::NAN)) };
+        let pred = self.predict(theta, max_step);
+        // the other side fits the prediction better: the links went through a line
+        if (pred - det).abs() > (pred + det).abs() {
+            if !fine {
+                return Err((Status::BranchJump, det));
+            }
+            side = -side;
+            if let Some(t) = det_on(side) {
+                det = t;
+            }
+        }
+        if !(det.abs() >= singular) {
+            if det.is_nan() {
+                return Err((Status::NonFinite, det));
+            }
+            // at a dead point: the path reached it (the slope carries over)
+            *self = DyadState { side, theta, det, ..*self };
+            return Err((Status::Singular, det));
+        }
+        Ok((side, det))
+    }
+
+    /// Commits a solve on `side`; `ddet` NaN: the slope from the last commit (secant).
+    fn commit(&mut self, theta: f64, side: f64, det: f64, ddet: f64) {
+        let ddet = if ddet.is_finite() || self.theta == theta { ddet } else { (det - self.det) / (theta - self.theta) };
+        *self = DyadState { side, theta, det, ddet, limit: None };
+    }
+
     /// The predicted signed conditioning at `theta` (NaN: no prediction).
     fn predict(&self, theta: f64, max_step: f64) -> f64 {
         let h = theta - self.theta;
@@ -192,11 +243,14 @@ impl<'p> Solver<'p> {
             dyads: plan
                 .ops
                 .iter()
-                .map(|o| match o {
-                    Op::Dyad(d) => {
-                        Some(DyadState { side: d.side, theta: plan.theta0, det: f64::NAN, ddet: f64::NAN, limit: None })
-                    }
-                    _ => None,
+                .map(|o| {
+                    o.sided().then_some(DyadState {
+                        side: o.drawn_side(),
+                        theta: plan.theta0,
+                        det: f64::NAN,
+                        ddet: f64::NAN,
+                        limit: None,
+                    })
                 })
                 .collect(),
             nit: 0,
@@ -271,6 +325,26 @@ impl<'p> Solver<'p> {
                     self.pst[*q] = st;
                     (st, 1.0)
                 }
+                op @ (Op::StrokeCarry { .. }
+                | Op::StrokeDyad(..)
+                | Op::Rrp(_)
+                | Op::Pp(_)
+                | Op::Rpr(_)
+                | Op::Offset { .. }) => {
+                    let (r, own) = match bad(&self.pst, &op.inputs()) {
+                        Some(st) => ((st, f64::NAN), false),
+                        None => {
+                            let r = self.slider(i, op, theta);
+                            (r, matches!(r.0, Status::NotAssemblable | Status::BranchJump))
+                        }
+                    };
+                    self.own_failure[i] = own;
+                    failed |= own;
+                    for p in op.outputs() {
+                        self.pst[p] = r.0;
+                    }
+                    r
+                }
                 Op::Group(g) => {
                     let r = match bad(&self.pst, &g.anchors) {
                         Some(st) => (st, f64::NAN),
@@ -299,39 +373,23 @@ impl<'p> Solver<'p> {
     /// (see the module's notes). A fold is NOT_ASSEMBLABLE here (the caller halves the step
     /// and, at the smallest, records the dead point).
     fn dyad(&mut self, i: usize, d: &Dyad, theta: f64) -> (Status, f64) {
-        let state = self.dyads[i].expect("a dyad has a state");
-        if let Some((at, dir)) = state.limit {
-            if (theta - at) * dir > 0.0 {
-                return (Status::Limit, f64::NAN);
-            }
-        }
         let (a, b) = (self.pos[d.k1], self.pos[d.k2]);
-        let mut side = state.side;
-        let (mut p, mut det) = match d.solve_side(a, b, side) {
-            DyadOut::Solved(p, det) => (p, det),
-            DyadOut::NotAssemblable => return (Status::NotAssemblable, f64::NAN),
-            DyadOut::Indeterminate => return (Status::Singular, 0.0),
+        if d.solve(a, b) == DyadOut::Indeterminate {
+            return (Status::Singular, 0.0);
+        }
+        let mut state = self.dyads[i].expect("a dyad has a state");
+        let chosen = state.choose(theta, self.opts.max_step, self.fine(), self.opts.newton.singular, |side| {
+            match d.solve_side(a, b, side) {
+                DyadOut::Solved(_, det) => Some(det),
+                _ => None,
+            }
+        });
+        self.dyads[i] = Some(state);
+        let (side, det) = match chosen {
+            Ok(c) => c,
+            Err(r) => return r,
         };
-        let pred = state.predict(theta, self.opts.max_step);
-        // the other side fits the prediction better: the links went through a line
-        if (pred - det).abs() > (pred + det).abs() {
-            let fine = self.step <= self.opts.max_step * 2f64.powi(-FLIP_HALVINGS);
-            if !fine {
-                return (Status::BranchJump, det);
-            }
-            side = -side;
-            if let DyadOut::Solved(q, t) = d.solve_side(a, b, side) {
-                (p, det) = (q, t);
-            }
-        }
-        if !(det.abs() >= self.opts.newton.singular) {
-            if det.is_nan() {
-                return (Status::NonFinite, det);
-            }
-            // at a dead point: the path reached it (the slope carries over)
-            self.dyads[i] = Some(DyadState { side, theta, det, ..state });
-            return (Status::Singular, det);
-        }
+        let DyadOut::Solved(p, _) = d.solve_side(a, b, side) else { unreachable!("solved just now") };
         self.pos[d.p] = p;
         let (va, vb) = (self.vel[d.k1], self.vel[d.k2]);
         let Some(v) = Dyad::velocity(p, a, b, va, vb) else { return (Status::Singular, det) };
@@ -343,10 +401,68 @@ impl<'p> Solver<'p> {
                 None => return (Status::Singular, det),
             }
         }
-        // d det / d theta of cross(a - p, b - p) / (r1 r2)
-        let ddet = (cross(sub(va, v), sub(b, p)) + cross(sub(a, p), sub(vb, v))) / (d.r1 * d.r2);
-        self.dyads[i] = Some(DyadState { side, theta, det, ddet, limit: None });
+        // d det / d theta of cross(a - p, b - p) / (r1 r2) (rates are by the solving frame's
+        // input: a linear input's displacement is divided by the scale there)
+        let ddet = (cross(sub(va, v), sub(b, p)) + cross(sub(a, p), sub(vb, v))) / (d.r1 * d.r2) * self.rate();
+        state.commit(theta, side, det, ddet);
+        self.dyads[i] = Some(state);
         (Status::Converged, det)
+    }
+
+    /// d (solving-frame input) / d (sweep variable): 1 for an angle, 1 / scale for a
+    /// displacement.
+    fn rate(&self) -> f64 {
+        if self.plan.linear {
+            1.0 / self.plan.scale
+        } else {
+            1.0
+        }
+    }
+
+    /// A continuation step is short enough for a change point to be told from a near miss.
+    fn fine(&self) -> bool {
+        self.step <= self.opts.max_step * 2f64.powi(-FLIP_HALVINGS)
+    }
+
+    /// A slider's closed form or a fused linear input's operation at input value `theta`
+    /// (a displacement for a linear input): sided ones carry their side as dyads do.
+    fn slider(&mut self, i: usize, op: &Op, theta: f64) -> (Status, f64) {
+        let singular = self.opts.newton.singular;
+        // the fused guide reads the displacement in the solving frame
+        let s = if self.plan.linear { theta / self.plan.scale } else { theta };
+        let (side, mut state) = if op.sided() {
+            let mut state = self.dyads[i].expect("a sided operation has a state");
+            let k: Known<'_> = [&self.pos, &self.vel, &self.acc];
+            let chosen = state.choose(theta, self.opts.max_step, self.fine(), singular, |side| {
+                op.solve_slider(s, k, side, false).map(|x| x.det)
+            });
+            self.dyads[i] = Some(state);
+            match chosen {
+                Ok((side, _)) => (side, Some(state)),
+                Err(r) => return r,
+            }
+        } else {
+            (1.0, None)
+        };
+        let Some(out) = op.solve_slider(s, [&self.pos, &self.vel, &self.acc], side, true) else {
+            return (Status::NotAssemblable, f64::NAN);
+        };
+        if !(out.det.abs() >= singular) {
+            return (if out.det.is_nan() { Status::NonFinite } else { Status::Singular }, out.det);
+        }
+        if !out.x[1][0].is_finite() || !out.x[1][1].is_finite() {
+            return (Status::Singular, out.det);
+        }
+        for p in op.outputs() {
+            self.pos[p] = out.x[0];
+            self.vel[p] = out.x[1];
+            self.acc[p] = out.x[2];
+        }
+        if let Some(st) = state.as_mut() {
+            st.commit(theta, side, out.det, f64::NAN);
+            self.dyads[i] = state;
+        }
+        (Status::Converged, out.det)
     }
 
     fn group(&mut self, i: usize, theta: f64) -> (Status, f64) {
@@ -413,7 +529,11 @@ impl<'p> Solver<'p> {
         for nd in &g.nodes {
             self.pst[nd.point] = Status::Converged;
         }
-        let t = Tangent { theta, phi: out.phi, dphi: out.dphi };
+        let mut dphi = out.dphi;
+        for w in &mut dphi {
+            *w *= self.rate();
+        }
+        let t = Tangent { theta, phi: out.phi, dphi };
         let st = self.groups[i].as_mut().expect("a group has a state");
         st.previous = st.tangent.filter(|t0| t0.theta != theta);
         st.tangent = Some(t);
@@ -530,7 +650,8 @@ impl<'p> Solver<'p> {
             *dst = if ok(a) && ok(b) { (d[1] + 0.0).atan2(d[0]) } else { f64::NAN };
         }
         if let Some((v, w)) = out.velocity.as_mut() {
-            let omega = self.opts.omega.unwrap_or(0.0);
+            // per unit of the sweep variable (a displacement's rates carry 1 / scale)
+            let omega = self.opts.omega.unwrap_or(0.0) * self.rate();
             for (dst, &p) in v[2 * k * np..2 * (k + 1) * np].chunks_exact_mut(2).zip(&plan.points) {
                 let (u, good) = (self.vel[p], ok(p));
                 dst[0] = if good { u[0] * sc * omega } else { f64::NAN };
@@ -542,7 +663,7 @@ impl<'p> Solver<'p> {
             }
         }
         if let Some((acc, alpha)) = out.acceleration.as_mut() {
-            let w2 = self.opts.omega.unwrap_or(0.0).powi(2);
+            let w2 = (self.opts.omega.unwrap_or(0.0) * self.rate()).powi(2);
             for (dst, &p) in acc[2 * k * np..2 * (k + 1) * np].chunks_exact_mut(2).zip(&plan.points) {
                 let (u, good) = (self.acc[p], ok(p));
                 dst[0] = if good { u[0] * sc * w2 } else { f64::NAN };
@@ -619,7 +740,7 @@ impl Plan {
             check("acceleration", v.len(), n * np * 2)?;
             check("angular acceleration", w.len(), n * nl)?;
         }
-        if !self.has_group() {
+        if self.columns_ok() {
             columns::sweep(self, theta, opts, &mut out, &poll)?;
             if self.certified(theta, opts, &out) {
                 return Ok(());
@@ -677,8 +798,8 @@ impl Plan {
             if !self.assemblies(t, &hopts, interrupt)?.list.is_empty() {
                 continue;
             }
+            // the dead point that stopped the motion stays in `limit`
             out.status[k] = none;
-            out.limit[k] = f64::NAN;
             for code in
                 out.step_status[k * ns..(k + 1) * ns].iter_mut().chain(&mut out.point_status[k * np..(k + 1) * np])
             {
@@ -715,7 +836,7 @@ impl Plan {
                 if !started {
                     // the input repeats every turn: reach theta[k] the shortest way, then
                     // relabel the states to it
-                    let start = self.theta0 + wrap_angle(t - self.theta0);
+                    let start = if self.linear { t } else { self.theta0 + wrap_angle(t - self.theta0) };
                     s.advance(start, poll)?;
                     for g in s.groups.iter_mut().flatten() {
                         let shift = t - start;

@@ -15,6 +15,7 @@ fn spec(points: &[(&str, Xy)], links: &[(&str, &[&str])], ground: &str, input: (
         ground: ground.into(),
         input: (input.0.into(), input.1.into()),
         output: None,
+        ..Default::default()
     }
 }
 

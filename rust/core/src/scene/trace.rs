@@ -91,6 +91,12 @@ pub struct Tracer<'s> {
 impl<'s> Tracer<'s> {
     /// The chain of every non-ground link over the ground points.
     pub fn new(scene: &'s Scene) -> Result<Self, Error> {
+        let Some(pivoted) = scene.input.filter(|_| scene.slots.is_empty() && scene.prismatic.is_empty()) else {
+            return Err(Error::scene(
+                "trace",
+                "tracing circuits through dead points is not available yet for scenes with slots or prismatic pairs",
+            ));
+        };
         let links: Vec<usize> = (0..scene.links.len()).filter(|&l| l != scene.ground).collect();
         let pts: Vec<&[usize]> = links.iter().map(|&l| scene.links[l].points.as_slice()).collect();
         let mut known = vec![false; scene.names.len()];
@@ -99,7 +105,7 @@ impl<'s> Tracer<'s> {
         }
         let chain = Group::tree(&links, &pts, &known, &scene.xy, 1)
             .ok_or_else(|| Error::scene("trace", "the links do not form one connected linkage over the ground"))?;
-        let input = links.iter().position(|&l| l == scene.input.link).expect("the input is not ground");
+        let input = links.iter().position(|&l| l == pivoted.link).expect("the input is not ground");
         Ok(Tracer { chain, input, plan: scene.plan(None)?, scene })
     }
 

@@ -7,8 +7,8 @@ use std::collections::HashMap;
 use nalgebra::DMatrix;
 
 use super::plan;
-use super::vec2::{perp, sub, Xy};
-use super::{Link, Pivoted, Scene, SceneSpec};
+use super::vec2::{cross, dot, perp, sub, Xy};
+use super::{Linear, LinearKind, Link, Pivoted, Prismatic, Scene, SceneSpec, Slot};
 use crate::error::Error;
 
 /// Two points of one link closer than this, relative to the scene's size, coincide.
@@ -24,7 +24,7 @@ const DENSE_COLUMNS: usize = 600;
 const MAX_ENTRIES: usize = 1_000_000;
 
 pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
-    let SceneSpec { points, links, ground, input, output } = spec;
+    let SceneSpec { points, links, ground, input, output, slots, prismatic, linear_input } = spec;
     if points.is_empty() {
         return Err(Error::scene("points", "the scene has no points"));
     }
@@ -130,16 +130,106 @@ pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
         let tip = *parsed[l].points.iter().find(|&&q| q != p).expect("a link has >= 2 distinct points");
         Ok(Pivoted { link: l, pivot: p, tip })
     };
-    let input = pivoted("input", &input)?;
     let output = output.as_ref().map(|o| pivoted("output", o)).transpose()?;
 
-    let m = gruebler(parsed.len(), &point_links);
+    // slots and prismatic pairs: names, their links and line points (scaled positions for
+    // the offsets come once the frame is fixed, below)
+    let point_of = |entry: &str, name: &str| {
+        index.get(name).copied().ok_or_else(|| Error::scene(entry, format!("unknown point {name:?}")))
+    };
+    let line_of = |entry: &str, guide: usize, line: &(String, String)| -> Result<(usize, usize), Error> {
+        let (a, b) = (point_of(&format!("{entry}.line"), &line.0)?, point_of(&format!("{entry}.line"), &line.1)?);
+        for (n, p) in [(&line.0, a), (&line.1, b)] {
+            if !parsed[guide].points.contains(&p) {
+                return Err(Error::scene(
+                    format!("{entry}.line"),
+                    format!("{n:?} is not a point of the guide {:?}", parsed[guide].name),
+                ));
+            }
+        }
+        let d = sub(drawn[b], drawn[a]);
+        if !((d[0] / pre).hypot(d[1] / pre) > COINCIDENT * size) {
+            return Err(Error::scene(
+                format!("{entry}.line"),
+                format!("points {:?} and {:?} coincide", line.0, line.1),
+            ));
+        }
+        Ok((a, b))
+    };
+    let mut joint_names: HashMap<&str, &str> = HashMap::new();
+    let mut slot_list = Vec::with_capacity(slots.len());
+    for (name, sp) in &slots {
+        let entry = format!("slots.{name}");
+        if joint_names.insert(name.as_str(), "slot").is_some() {
+            return Err(Error::scene(entry, "is given twice"));
+        }
+        let point = point_of(&format!("{entry}.point"), &sp.point)?;
+        let guide = link_of(&format!("{entry}.guide"), &sp.guide)?;
+        if parsed[guide].points.contains(&point) {
+            return Err(Error::scene(
+                format!("{entry}.point"),
+                format!("{:?} is a point of its guide {:?}: it could not move along the line", sp.point, sp.guide),
+            ));
+        }
+        if point_links[point].iter().all(|&l| l == ground) {
+            return Err(Error::scene(format!("{entry}.point"), format!("{:?} is on no moving link", sp.point)));
+        }
+        let line = line_of(&entry, guide, &sp.line)?;
+        slot_list.push(Slot { name: name.clone(), point, guide, line, offset: 0.0 });
+    }
+    let mut prism_list = Vec::with_capacity(prismatic.len());
+    for (name, sp) in &prismatic {
+        let entry = format!("prismatic.{name}");
+        if joint_names.insert(name.as_str(), "prismatic").is_some() {
+            return Err(Error::scene(entry, "is given twice (names of slots and prismatic pairs are one namespace)"));
+        }
+        let link = link_of(&format!("{entry}.link"), &sp.link)?;
+        let guide = link_of(&format!("{entry}.guide"), &sp.guide)?;
+        if link == guide {
+            return Err(Error::scene(format!("{entry}.guide"), format!("{:?} cannot guide itself", sp.link)));
+        }
+        if let Some(&p) = parsed[link].points.iter().find(|p| parsed[guide].points.contains(p)) {
+            return Err(Error::scene(
+                format!("{entry}.link"),
+                format!("{:?} and its guide {:?} share point {:?}: they could not slide", sp.link, sp.guide, names[p]),
+            ));
+        }
+        let line = line_of(&entry, guide, &sp.line)?;
+        prism_list.push(Prismatic { name: name.clone(), link, guide, line });
+    }
+    let linear = match &linear_input {
+        None => None,
+        Some((kind, name)) => {
+            let (key, found) = match kind {
+                LinearKind::Slot => ("slot", slot_list.iter().position(|s| &s.name == name)),
+                LinearKind::Prismatic => ("prismatic", prism_list.iter().position(|s| &s.name == name)),
+            };
+            let index =
+                found.ok_or_else(|| Error::scene(format!("input.{key}"), format!("{name:?} is not a {key}")))?;
+            let (guide, line) = match kind {
+                LinearKind::Slot => (slot_list[index].guide, slot_list[index].line),
+                LinearKind::Prismatic => (prism_list[index].guide, prism_list[index].line),
+            };
+            Some(Linear { kind: *kind, index, guide, dir: sub(drawn[line.1], drawn[line.0]) })
+        }
+    };
+    let input = match linear {
+        None => Some(pivoted("input", &input)?),
+        Some(_) => None,
+    };
+
+    let m = gruebler(parsed.len(), &point_links) - slot_list.len() as i64 - 2 * prism_list.len() as i64;
     if m != 1 {
         let joints: usize = point_links.iter().map(|l| l.len().saturating_sub(1)).sum();
+        let extra = if slot_list.is_empty() && prism_list.is_empty() {
+            String::new()
+        } else {
+            format!(" - {} slots - 2 x {} prismatic pairs", slot_list.len(), prism_list.len())
+        };
         return Err(Error::scene(
             "mobility",
             format!(
-                "Gruebler's count gives M = {m} (3 x ({} links - 1) - 2 x {joints} joints), expected 1 \
+                "Gruebler's count gives M = {m} (3 x ({} links - 1) - 2 x {joints} joints{extra}), expected 1 \
                  (a one-degree-of-freedom linkage)",
                 parsed.len()
             ),
@@ -147,12 +237,54 @@ pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
     }
 
     let scale = power_of_two_below(size * pre);
-    let origin = drawn[input.pivot];
+    let origin = match (input, linear) {
+        (Some(i), _) => drawn[i.pivot],
+        (None, Some(l)) => match l.kind {
+            LinearKind::Slot => drawn[slot_list[l.index].line.0],
+            LinearKind::Prismatic => drawn[prism_list[l.index].line.0],
+        },
+        (None, None) => unreachable!("a scene has an angle or a linear input"),
+    };
     let xy: Vec<Xy> = drawn.iter().map(|&p| [(p[0] - origin[0]) / scale, (p[1] - origin[1]) / scale]).collect();
-    let d = sub(xy[input.tip], xy[input.pivot]);
-    let theta0 = (d[1] + 0.0).atan2(d[0]);
+    let theta0 = match input {
+        Some(i) => {
+            let d = sub(xy[i.tip], xy[i.pivot]);
+            (d[1] + 0.0).atan2(d[0])
+        }
+        None => 0.0,
+    };
+    let unit = |a: usize, b: usize| {
+        let d = sub(xy[b], xy[a]);
+        let n = d[0].hypot(d[1]);
+        [d[0] / n, d[1] / n]
+    };
+    for sl in &mut slot_list {
+        sl.offset = cross(unit(sl.line.0, sl.line.1), sub(xy[sl.point], xy[sl.line.0]));
+    }
+    let linear = linear.map(|l| {
+        let line = match l.kind {
+            LinearKind::Slot => slot_list[l.index].line,
+            LinearKind::Prismatic => prism_list[l.index].line,
+        };
+        Linear { dir: unit(line.0, line.1), ..l }
+    });
 
-    let sc = Scene { names, drawn, xy, origin, scale, links: parsed, point_links, ground, input, output, theta0 };
+    let sc = Scene {
+        names,
+        drawn,
+        xy,
+        origin,
+        scale,
+        links: parsed,
+        point_links,
+        ground,
+        input,
+        output,
+        slots: slot_list,
+        prismatic: prism_list,
+        linear,
+        theta0,
+    };
     rank_check(&sc)?;
     Ok(sc)
 }
@@ -280,9 +412,79 @@ fn dense_rank_check(sc: &Scene) -> Result<(), Error> {
             }
         }
     }
-    let mut row = vec![0.0; ncol];
-    row[col[sc.input.link].expect("input is not ground") + 2] = 1.0;
-    rows.push(row);
+    // a point's position derivative row: d p / d (tx, ty, phi) of link k, component comp
+    let dpos = |k: usize, p: usize, row: &mut [f64], w: Xy| {
+        if let Some(c) = col[k] {
+            let first = sc.links[k].points[0];
+            let r = perp(sub(sc.xy[p], sc.xy[first]));
+            row[c] += w[0];
+            row[c + 1] += w[1];
+            row[c + 2] += dot(w, r);
+        }
+    };
+    let link_of = |p: usize| sc.point_links[p][0];
+    // a slot: cross(u, p - l0) with u the guide's unit direction; d = cross(du, p - l0) +
+    // cross(u, dp - dl0), du = dphi_guide perp(u)
+    let on_line = |guide: usize, line: (usize, usize), p: usize, pl: usize, row: &mut [f64]| {
+        let u = {
+            let d = sub(sc.xy[line.1], sc.xy[line.0]);
+            let n = dot(d, d).sqrt();
+            [d[0] / n, d[1] / n]
+        };
+        let n = perp(u); // cross(u, v) = n . v
+        dpos(pl, p, row, n);
+        dpos(guide, line.0, row, [-n[0], -n[1]]);
+        if let Some(c) = col[guide] {
+            // cross(perp(u), p - l0) = -u . (p - l0)
+            row[c + 2] -= dot(u, sub(sc.xy[p], sc.xy[line.0]));
+        }
+    };
+    let linear = sc.linear.map(|l| (l.kind, l.index));
+    for (i, sl) in sc.slots.iter().enumerate() {
+        let mut row = vec![0.0; ncol];
+        on_line(sl.guide, sl.line, sl.point, link_of(sl.point), &mut row);
+        rows.push(row);
+        if linear == Some((LinearKind::Slot, i)) {
+            // the input holds the point's place along the line
+            let mut row = vec![0.0; ncol];
+            let u = sub(sc.xy[sl.line.1], sc.xy[sl.line.0]);
+            dpos(link_of(sl.point), sl.point, &mut row, u);
+            dpos(sl.guide, sl.line.0, &mut row, [-u[0], -u[1]]);
+            if let Some(c) = col[sl.guide] {
+                row[c + 2] += cross(u, sub(sc.xy[sl.point], sc.xy[sl.line.0]));
+            }
+            rows.push(row);
+        }
+    }
+    for (i, pr) in sc.prismatic.iter().enumerate() {
+        let q = sc.links[pr.link].points[0];
+        let mut row = vec![0.0; ncol];
+        on_line(pr.guide, pr.line, q, pr.link, &mut row);
+        rows.push(row);
+        let mut row = vec![0.0; ncol];
+        if let Some(c) = col[pr.link] {
+            row[c + 2] += 1.0;
+        }
+        if let Some(c) = col[pr.guide] {
+            row[c + 2] -= 1.0;
+        }
+        rows.push(row);
+        if linear == Some((LinearKind::Prismatic, i)) {
+            let mut row = vec![0.0; ncol];
+            let u = sub(sc.xy[pr.line.1], sc.xy[pr.line.0]);
+            dpos(pr.link, q, &mut row, u);
+            dpos(pr.guide, pr.line.0, &mut row, [-u[0], -u[1]]);
+            if let Some(c) = col[pr.guide] {
+                row[c + 2] += cross(u, sub(sc.xy[q], sc.xy[pr.line.0]));
+            }
+            rows.push(row);
+        }
+    }
+    if let Some(input) = sc.input {
+        let mut row = vec![0.0; ncol];
+        row[col[input.link].expect("input is not ground") + 2] = 1.0;
+        rows.push(row);
+    }
     debug_assert_eq!(rows.len(), ncol, "Gruebler M = 1 makes the system square");
     let j = DMatrix::from_fn(rows.len(), ncol, |r, c| rows[r][c]);
     let sv = j.singular_values();

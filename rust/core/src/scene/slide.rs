@@ -1,0 +1,276 @@
+//! Prismatic joints: slots (a point kept on a line of a guide link) and prismatic pairs (a
+//! link translating along a line of its guide), and the closed forms the plan peels for
+//! them, with their signed, scale-free conditioning:
+//!
+//! - [`Rrp`]: a point at a distance from a known point and on a known line (circle-line);
+//!   conditioning the cosine of the angle between the line and the link reaching the point
+//!   (0 where the circle touches the line: a dead point);
+//! - [`LineLine`]: a point on two known lines; conditioning the sine between them;
+//! - [`Rpr`]: a guide turning about a known point whose line passes through a known point;
+//!   conditioning the cosine between the line and the guide's radius to the point.
+//!
+//! A line is known when two points fix it: it passes through `base + m_off (b - a)` with
+//! direction `m_dir (b - a)` (complex products), so it turns and moves with the link that
+//! carries `a` and `b`. Every solve here also gives first and second derivatives by the
+//! input, from those of the known points.
+
+use super::vec2::{cross, dot, perp, sub, Xy};
+
+/// A pin in a slot: `point` stays on the line through `line`'s two points (points of link
+/// `guide`) at its drawn perpendicular `offset` (solving-frame units).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Slot {
+    /// Its name in the scene.
+    pub name: String,
+    /// The point kept on the line.
+    pub point: usize,
+    /// The link carrying the line.
+    pub guide: usize,
+    /// Two points of the guide fixing the line; its direction is line.0 -> line.1.
+    pub line: (usize, usize),
+    /// cross(unit direction, point - line.0) as drawn (solving frame).
+    pub offset: f64,
+}
+
+/// A prismatic pair: `link` translates along `line` (two points of `guide`) and keeps its
+/// drawn rotation relative to the guide.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Prismatic {
+    /// Its name in the scene.
+    pub name: String,
+    /// The translating link.
+    pub link: usize,
+    /// The link it slides in.
+    pub guide: usize,
+    /// Two points of the guide fixing the direction of travel (line.0 -> line.1).
+    pub line: (usize, usize),
+}
+
+/// Complex product: `m` applied to `v` (scale and turn).
+#[inline]
+pub(super) fn cmul(m: Xy, v: Xy) -> Xy {
+    [m[0] * v[0] - m[1] * v[1], m[1] * v[0] + m[0] * v[1]]
+}
+
+/// Complex quotient a / b.
+#[inline]
+pub(super) fn cdiv(a: Xy, b: Xy) -> Xy {
+    let n = dot(b, b);
+    [(a[0] * b[0] + a[1] * b[1]) / n, (a[1] * b[0] - a[0] * b[1]) / n]
+}
+
+/// A line fixed by known points: through `base + m_off (b - a)`, along `m_dir (b - a)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Line {
+    pub base: usize,
+    pub a: usize,
+    pub b: usize,
+    pub m_off: Xy,
+    pub m_dir: Xy,
+}
+
+/// A line's point and direction with their first and second derivatives.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct LineAt {
+    pub p: [Xy; 3],
+    pub d: [Xy; 3],
+}
+
+impl Line {
+    /// The points it reads.
+    pub(super) fn inputs(&self) -> [usize; 3] {
+        [self.base, self.a, self.b]
+    }
+
+    /// Its point and (unit-length as drawn) direction from the known points' positions,
+    /// velocities and accelerations (`k[0]`, `k[1]`, `k[2]`, indexed by point).
+    pub(super) fn at(&self, k: [&[Xy]; 3]) -> LineAt {
+        let mut p = [[0.0; 2]; 3];
+        let mut d = [[0.0; 2]; 3];
+        for o in 0..3 {
+            let ab = sub(k[o][self.b], k[o][self.a]);
+            let off = cmul(self.m_off, ab);
+            p[o] = [k[o][self.base][0] + off[0], k[o][self.base][1] + off[1]];
+            d[o] = cmul(self.m_dir, ab);
+        }
+        LineAt { p, d }
+    }
+}
+
+/// x with e1 . x = c1 and e2 . x = c2; `None` when e1 and e2 are parallel.
+#[inline]
+pub(super) fn solve2(e1: Xy, e2: Xy, c1: f64, c2: f64) -> Option<Xy> {
+    let det = cross(e1, e2);
+    if det == 0.0 {
+        return None;
+    }
+    Some([(c1 * e2[1] - c2 * e1[1]) / det, (e1[0] * c2 - e2[0] * c1) / det])
+}
+
+/// The derivatives' equations of "x on line l": perp(d) . x' = cross(d, p') - cross(d', x - p)
+/// and, one order up, perp(d) . x'' = cross(d, p'') - cross(d'', x - p) - 2 cross(d', x' - p').
+#[inline]
+fn on_line_rates(l: &LineAt, x: Xy, v: Xy) -> (Xy, f64, f64) {
+    let e = perp(l.d[0]);
+    let c1 = cross(l.d[0], l.p[1]) - cross(l.d[1], sub(x, l.p[0]));
+    let c2 = cross(l.d[0], l.p[2]) - cross(l.d[2], sub(x, l.p[0])) - 2.0 * cross(l.d[1], sub(v, l.p[1]));
+    (e, c1, c2)
+}
+
+/// A point solved with its first and second derivatives by the input, and the step's
+/// signed conditioning.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Solved {
+    pub x: [Xy; 3],
+    pub det: f64,
+}
+
+/// Circle-line: point `p` at distance `r` from known point `k` (through link `link`) and on
+/// `line`, on `side` (+1: ahead of the foot of k along the line's direction).
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Rrp {
+    pub p: usize,
+    pub k: usize,
+    pub r: f64,
+    pub line: Line,
+    pub side: f64,
+    /// The slot or prismatic pair giving the line, and the link from `k`.
+    pub links: [usize; 2],
+}
+
+impl Rrp {
+    /// The two intersections' one on `side`, or `None` where the circle misses the line
+    /// (beyond rounding).
+    pub(super) fn solve(&self, k: [Xy; 3], l: &LineAt, side: f64, rates: bool) -> Option<Solved> {
+        let n = dot(l.d[0], l.d[0]).sqrt();
+        let u = [l.d[0][0] / n, l.d[0][1] / n];
+        let w = sub(k[0], l.p[0]);
+        let along = dot(w, u);
+        let foot = [l.p[0][0] + along * u[0], l.p[0][1] + along * u[1]];
+        let dist = cross(u, w);
+        let r = self.r;
+        let round = 4.0 * f64::EPSILON * (r + dist.abs());
+        let h2 = (r - dist) * (r + dist);
+        if !(h2 >= -round * r) {
+            return None;
+        }
+        let h = side * h2.max(0.0).sqrt();
+        let x = [foot[0] + h * u[0], foot[1] + h * u[1]];
+        let det = h / r;
+        let mut out = Solved { x: [x, [f64::NAN; 2], [f64::NAN; 2]], det };
+        if rates {
+            let (e1, c1, a1) = on_line_rates(l, x, [0.0; 2]);
+            let e2 = sub(x, k[0]);
+            if let Some(v) = solve2(e1, e2, c1, dot(e2, k[1])) {
+                let dv = sub(v, k[1]);
+                // the line's second-order term needs x' itself
+                let a1 = a1 - 2.0 * cross(l.d[1], v);
+                let a2 = dot(e2, k[2]) - dot(dv, dv);
+                out.x[1] = v;
+                out.x[2] = solve2(e1, e2, a1, a2).unwrap_or([f64::NAN; 2]);
+            }
+        }
+        Some(out)
+    }
+
+    /// Signed conditioning at positions: the cosine between the line and k -> p.
+    pub(super) fn det_at(&self, p: Xy, k: Xy, l: &LineAt) -> f64 {
+        let n = dot(l.d[0], l.d[0]).sqrt();
+        dot(sub(p, k), l.d[0]) / (n * self.r)
+    }
+}
+
+/// Line-line: point `p` on two known lines.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct LineLine {
+    pub p: usize,
+    pub lines: [Line; 2],
+    pub links: [usize; 2],
+}
+
+impl LineLine {
+    pub(super) fn solve(&self, l1: &LineAt, l2: &LineAt, rates: bool) -> Solved {
+        let (n1, n2) = (dot(l1.d[0], l1.d[0]).sqrt(), dot(l2.d[0], l2.d[0]).sqrt());
+        let det = cross(l1.d[0], l2.d[0]) / (n1 * n2);
+        // p = p1 + t d1 with cross(d2, p - p2) = 0
+        let t = cross(l2.d[0], sub(l2.p[0], l1.p[0])) / cross(l2.d[0], l1.d[0]);
+        let x = [l1.p[0][0] + t * l1.d[0][0], l1.p[0][1] + t * l1.d[0][1]];
+        let mut out = Solved { x: [x, [f64::NAN; 2], [f64::NAN; 2]], det };
+        if rates {
+            let (e1, c1, a1) = on_line_rates(l1, x, [0.0; 2]);
+            let (e2, c2, a2) = on_line_rates(l2, x, [0.0; 2]);
+            if let Some(v) = solve2(e1, e2, c1, c2) {
+                let a1 = a1 - 2.0 * cross(l1.d[1], v);
+                let a2 = a2 - 2.0 * cross(l2.d[1], v);
+                out.x[1] = v;
+                out.x[2] = solve2(e1, e2, a1, a2).unwrap_or([f64::NAN; 2]);
+            }
+        }
+        out
+    }
+}
+
+/// Guide turning about known point `k`: its slot line (through `l0` with unit direction
+/// `d`, both as drawn) passes through known point `q` at the drawn `offset`. Solves the
+/// guide's rotation and places its point `t`, on `side` (+1: q ahead of k along the line).
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Rpr {
+    pub t: usize,
+    pub k: usize,
+    pub q: usize,
+    /// Drawn (solving frame): k, the line's point, its unit direction, and t.
+    pub k0: Xy,
+    pub l0: Xy,
+    pub d: Xy,
+    pub t0: Xy,
+    pub offset: f64,
+    pub side: f64,
+    /// The guide and the slot point's link.
+    pub links: [usize; 2],
+}
+
+impl Rpr {
+    /// cross(R d, q - k) = c, with c = offset + cross(d, l0 - k0).
+    fn c(&self) -> f64 {
+        self.offset + cross(self.d, sub(self.l0, self.k0))
+    }
+
+    pub(super) fn solve(&self, k: [Xy; 3], q: [Xy; 3], side: f64, rates: bool) -> Option<Solved> {
+        let w = sub(q[0], k[0]);
+        let rw = dot(w, w).sqrt();
+        let c = self.c();
+        let round = 4.0 * f64::EPSILON * (rw + c.abs());
+        if !(c.abs() <= rw + round) || rw == 0.0 {
+            return None;
+        }
+        // u = R d: cross(u, w) = c and dot(u, w) = side sqrt(|w|^2 - c^2)
+        let along = side * ((rw - c.abs()) * (rw + c.abs())).max(0.0).sqrt();
+        let u = [(along * w[0] + c * w[1]) / (rw * rw), (along * w[1] - c * w[0]) / (rw * rw)];
+        // the rotation taking d to u, applied to t0 - k0
+        let rot = [u[0] * self.d[0] + u[1] * self.d[1], u[1] * self.d[0] - u[0] * self.d[1]];
+        let arm = cmul(rot, sub(self.t0, self.k0));
+        let x = [k[0][0] + arm[0], k[0][1] + arm[1]];
+        let det = along / rw;
+        let mut out = Solved { x: [x, [f64::NAN; 2], [f64::NAN; 2]], det };
+        if rates && along != 0.0 {
+            let dw = sub(q[1], k[1]);
+            let ddw = sub(q[2], k[2]);
+            let psi1 = cross(u, dw) / along;
+            let u1 = [-psi1 * u[1], psi1 * u[0]];
+            let psi2 = (2.0 * cross(u1, dw) + cross(u, ddw) - psi1 * psi1 * c) / along;
+            out.x[1] = [k[1][0] - psi1 * arm[1], k[1][1] + psi1 * arm[0]];
+            out.x[2] = [k[2][0] - psi2 * arm[1] - psi1 * psi1 * arm[0], k[2][1] + psi2 * arm[0] - psi1 * psi1 * arm[1]];
+        }
+        Some(out)
+    }
+
+    /// Signed conditioning at positions (guide placed so that t is at `t`).
+    pub(super) fn det_at(&self, t: Xy, k: Xy, q: Xy) -> f64 {
+        // the guide's rotation from t, then the cosine between its line and k -> q
+        let rot = cdiv(sub(t, k), sub(self.t0, self.k0));
+        let n = dot(rot, rot).sqrt();
+        let u = cmul([rot[0] / n, rot[1] / n], self.d);
+        let w = sub(q, k);
+        dot(u, w) / dot(w, w).sqrt()
+    }
+}
