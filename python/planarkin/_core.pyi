@@ -118,6 +118,9 @@ class Scene:
         ground: str,
         input: tuple[str, str],
         output: tuple[str, str] | None = None,
+        slots: list[tuple[str, tuple[str, str, tuple[str, str]]]] = ...,
+        prismatic: list[tuple[str, tuple[str, str, tuple[str, str]]]] = ...,
+        linear_input: tuple[str, str] | None = None,
     ) -> Scene: ...
     @property
     def input_angle(self) -> float: ...

@@ -55,7 +55,7 @@ def _pivoted(d: Mapping[str, Any], key: str) -> tuple[str, str]:
     v = d[key]
     linear = isinstance(v, Mapping) and len(v) == 1 and next(iter(v)) in ("slot", "prismatic")
     if linear:
-        (kind, name), = v.items()
+        ((kind, name),) = v.items()
         _entry(isinstance(name, str), f"{key}.{kind}", f"must be a {kind} name, got {name!r}")
         return kind, name
     _entry(
@@ -73,7 +73,11 @@ def _drive_dict(v: tuple[str, str], linear: bool) -> dict[str, str]:
     return {v[0]: v[1]} if linear else {"link": v[0], "pivot": v[1]}
 
 
-def _joints(data: Mapping[str, Any], key: str, first: str) -> dict[str, tuple[str, str, tuple[str, str]]]:
+#: A slot (point, guide, line) or a prismatic pair (link, guide, line).
+Joint = tuple[str, str, tuple[str, str]]
+
+
+def _joints(data: Mapping[str, Any], key: str, first: str) -> dict[str, Joint]:
     """Slots (``first`` = "point") or prismatic pairs (``first`` = "link"): name -> (point
     or link, guide, (line point, line point))."""
     table = data.get(key)
@@ -91,7 +95,8 @@ def _joints(data: Mapping[str, Any], key: str, first: str) -> dict[str, tuple[st
         for k in (first, "guide"):
             _entry(isinstance(v[k], str), f"{entry}.{k}", f"must be a name, got {v[k]!r}")
         line = v["line"]
-        ok = isinstance(line, (list, tuple)) and len(line) == 2 and all(isinstance(q, str) for q in line)
+        ok = isinstance(line, (list, tuple)) and len(line) == 2
+        ok = ok and all(isinstance(q, str) for q in line)
         _entry(ok, f"{entry}.line", f"must be a pair of point names, got {line!r}")
         out[str(n)] = (v[first], v["guide"], (line[0], line[1]))
     return out
@@ -170,11 +175,11 @@ class Scene:
         inp = _pivoted(data, "input")
         out = _pivoted(data, "output") if data.get("output") is not None else None
         slots, prism = _joints(data, "slots", "point"), _joints(data, "prismatic", "link")
-        linear_in = inp[0] in ("slot", "prismatic") and isinstance(data["input"], Mapping) and "link" not in data["input"]
+        linear_in = "link" not in data["input"]
         linear_out = out is not None and "link" not in data["output"]
-        if linear_out:
-            assert out is not None
-            _entry(out[1] in (slots if out[0] == "slot" else prism), f"output.{out[0]}", f"{out[1]!r} is not a {out[0]}")
+        if out is not None and linear_out:
+            table = slots if out[0] == "slot" else prism
+            _entry(out[1] in table, f"output.{out[0]}", f"{out[1]!r} is not a {out[0]}")
         outputs = data.get("outputs")
         if outputs is not None:
             ok = isinstance(outputs, (list, tuple)) and all(isinstance(o, str) for o in outputs)
@@ -249,7 +254,8 @@ class Scene:
         for key, first in (("slots", "point"), ("prismatic", "link")):
             if d[key]:
                 out[key] = {
-                    n: {first: a, "guide": g, "line": list(line)} for n, (a, g, line) in d[key].items()
+                    n: {first: a, "guide": g, "line": list(line)}
+                    for n, (a, g, line) in d[key].items()
                 }
         return out
 
@@ -301,7 +307,7 @@ class Scene:
 
     @property
     def input_kind(self) -> str:
-        """"angle" (a crank's absolute direction, radians) or "displacement" (along a slot
+        """ "angle" (a crank's absolute direction, radians) or "displacement" (along a slot
         or prismatic pair from the drawn pose, scene units)."""
         return "angle" if "link" in self._data["input"] else "displacement"
 
@@ -433,7 +439,10 @@ class Scene:
                 ends.append(float(lim.min() if side[0] else lim.max()))
             else:
                 solved = s[side & ok]
-                ends.append(float(solved.min() if side[0] else solved.max()) if solved.size else 0.0)
+                if not solved.size:
+                    ends.append(0.0)
+                else:
+                    ends.append(float(solved.min() if side[0] else solved.max()))
         return ends[0], ends[1]
 
     def plan(self, outputs: Iterable[str] | str | None = None) -> Plan:
@@ -477,9 +486,12 @@ class Scene:
         tol, max_iter = as_float("tol", tol), as_i64("max_iter", max_iter)
         ms = as_float("max_step", max_step)
         w = None if omega is None else as_float("omega", omega)
-        *arrays, kin = core.sweep(t, tol, max_iter, ms, w)
+        pts, ang, status, nit, det, limit, sst, sdet, pst, kin = core.sweep(t, tol, max_iter, ms, w)
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
-        sw = SceneSweep.build(plan, t, *arrays, vel, acc, omega=w, input=self.input_kind)
+        sw = SceneSweep.build(
+            plan, t, pts, ang, status, nit, det, limit, sst, sdet, pst, vel, acc,
+            omega=w, input=self.input_kind,
+        )  # fmt: skip
         out = self._output_of(sw)
         return sw if out is None else dataclasses.replace(sw, output=out)
 
