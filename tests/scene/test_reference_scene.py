@@ -85,6 +85,14 @@ EXPECTED = {
     "peaucellier",
     "stephenson3",
     "watt2",
+    # with slots and prismatic pairs
+    "elliptic-trammel",
+    "hydraulic-boom",
+    "inverted-slider-crank",
+    "scotch-yoke",
+    "slider-crank",
+    "slider-crank-offset",
+    "whitworth",
 }
 
 

@@ -1,4 +1,5 @@
-"""A TOML writer for the scene format's few shapes (strings, numbers, lists, tables):
+"""A TOML writer for the scene format's few shapes (strings, numbers, lists, tables,
+inline tables):
 Python reads TOML (tomllib) but does not write it."""
 
 from __future__ import annotations
@@ -16,6 +17,8 @@ def _value(v: Any) -> str:
         return json.dumps(v)  # a JSON string is a valid TOML basic string
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(_value(x) for x in v) + "]"
+    if isinstance(v, dict):  # an inline table (a slot's or prismatic pair's keys)
+        return "{" + ", ".join(f"{_key(k)} = {_value(x)}" for k, x in v.items()) + "}"
     raise TypeError(f"cannot write {type(v).__name__} to TOML")
 
 
