@@ -555,16 +555,17 @@ def double_butterfly(kind):
 
 
 def slider_crank(offset):
-    r, l, e, t0 = 40.0, 160.0, offset, 30 * DEG
+    r, rod, e, t0 = 40.0, 160.0, offset, 30 * DEG
     a = np.array([r * math.cos(t0), r * math.sin(t0)])
-    b = np.array([a[0] + math.sqrt(l * l - (a[1] - e) ** 2), e])
+    b = np.array([a[0] + math.sqrt(rod * rod - (a[1] - e) ** 2), e])
     what = "centred" if e == 0 else f"offset (e = {e:g} mm)"
+    along = "" if e == 0 else f" at {e:g} mm from it"
     return {
         "name": f"slider-crank, {what}",
         "description": (
             f"The slider-crank of engines, pumps and presses, {what}: crank O2-A r = {r:g} mm, "
-            f"connecting rod A-B l = {l:g} mm (r / l = 1/4, a usual engine ratio), the piston "
-            f"pin B in a slot along the ground line O2 -> X{'' if e == 0 else f' at {e:g} mm from it'}. "
+            f"connecting rod A-B l = {rod:g} mm (r / l = 1/4, a usual engine ratio), the "
+            f"piston pin B in a slot along the ground line O2 -> X{along}. "
             "Dimensions chosen here. Piston position x_B = r cos t + sqrt(l^2 - (r sin t - e)^2); "
             "output: its displacement along the slot from the drawn pose. Drawn at t = 30 deg."
         ),
@@ -603,12 +604,12 @@ def inverted_slider_crank():
 
 
 def whitworth():
-    r, c, big_r, l, t0 = 60.0, 30.0, 50.0, 150.0, 30 * DEG
+    r, c, big_r, rod, t0 = 60.0, 30.0, 50.0, 150.0, 30 * DEG
     o4 = np.array([0.0, c])
     a = np.array([r * math.cos(t0), r * math.sin(t0)])
     u = (a - o4) / dist(a, o4)
     cc = o4 - big_r * u
-    dd = np.array([cc[0] - math.sqrt(l * l - (cc[1] - c) ** 2), c])
+    dd = np.array([cc[0] - math.sqrt(rod * rod - (cc[1] - c) ** 2), c])
     return {
         "name": "Whitworth quick return",
         "description": (

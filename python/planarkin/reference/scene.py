@@ -1,7 +1,10 @@
 """The NumPy reference of scenes: any scene solved by a route independent of the Rust
 planner. Every link other than ground and input is a rigid body with an unknown pose, and
 all the joint constraints are solved at once by Newton-Raphson from the drawn pose (no
-plan, no dyad peeling), so parity tests compare two different formulations.
+plan, no dyad peeling), so parity tests compare two different formulations. Slots and
+prismatic pairs are equations too (a point's signed distance from a line; a pair's
+relative rotation and offset); a linear input adds the displacement it holds, with every
+non-ground link free.
 """
 
 from __future__ import annotations
@@ -47,26 +50,45 @@ class _System:
             if key not in scene:
                 raise ValueError(f"scene is missing the key {key!r}")
         inp = scene["input"]
-        if not isinstance(inp, Mapping) or "link" not in inp or "pivot" not in inp:
-            raise ValueError("scene['input'] must hold the keys 'link' and 'pivot'")
+        linear = (
+            isinstance(inp, Mapping) and len(inp) == 1 and next(iter(inp)) in ("slot", "prismatic")
+        )
+        if not linear and (not isinstance(inp, Mapping) or "link" not in inp or "pivot" not in inp):
+            raise ValueError(
+                "scene['input'] must hold the keys 'link' and 'pivot', or 'slot' or 'prismatic'"
+            )
         self.points = {
             str(k): np.array([float(v[0]), float(v[1])]) for k, v in scene["points"].items()
         }
         self.links = {str(k): [str(p) for p in v] for k, v in scene["links"].items()}
         self.ground = str(scene["ground"])
-        self.input = str(inp["link"])
-        self.pivot = str(inp["pivot"])
-        for name in (self.ground, self.input):
+        # slots: name -> (point, guide, line); prismatic pairs: name -> (link, guide, line)
+        self.slots = {
+            str(k): (str(v["point"]), str(v["guide"]), tuple(map(str, v["line"])))
+            for k, v in (scene.get("slots") or {}).items()
+        }
+        self.prismatic = {
+            str(k): (str(v["link"]), str(v["guide"]), tuple(map(str, v["line"])))
+            for k, v in (scene.get("prismatic") or {}).items()
+        }
+        # a linear input: ("slot" | "prismatic", name); else the input link and its pivot
+        self.linear = next(iter(inp.items())) if linear else None
+        self.input = "" if linear else str(inp["link"])
+        self.pivot = "" if linear else str(inp["pivot"])
+        for name in (self.ground, *([] if linear else [self.input])):
             if name not in self.links:
                 raise ValueError(f"unknown link {name!r} (ground or input)")
         for link, pts in self.links.items():
             for p in pts:
                 if p not in self.points:
                     raise ValueError(f"link {link!r} carries the unknown point {p!r}")
-        if self.pivot not in self.links[self.input] or self.pivot not in self.links[self.ground]:
+        if not linear and (
+            self.pivot not in self.links[self.input] or self.pivot not in self.links[self.ground]
+        ):
             raise ValueError(f"input pivot {self.pivot!r} must be on ground and input links")
         out = scene.get("output")
-        self.output = (str(out["link"]), str(out["pivot"])) if isinstance(out, Mapping) else None
+        pivoted_out = isinstance(out, Mapping) and "link" in out
+        self.output = (str(out["link"]), str(out["pivot"])) if pivoted_out else None
 
         # the scene's size: its longest link (largest distance between two points of a link)
         self.size = 0.0
@@ -79,10 +101,13 @@ class _System:
 
         self.free = [k for k in self.links if k not in (self.ground, self.input)]
         self.index = {k: i for i, k in enumerate(self.free)}
-        pin = self.points[self.pivot]
-        first_other = next(p for p in self.links[self.input] if p != self.pivot)
-        d = self.points[first_other] - pin
-        self.theta0 = math.atan2(d[1], d[0])
+        if linear:
+            self.theta0 = 0.0  # displacements are measured from the drawn pose
+        else:
+            pin = self.points[self.pivot]
+            first_other = next(p for p in self.links[self.input] if p != self.pivot)
+            d = self.points[first_other] - pin
+            self.theta0 = math.atan2(d[1], d[0])
 
         carriers: dict[str, list[str]] = {p: [] for p in self.points}
         for link, pts in self.links.items():
@@ -103,7 +128,7 @@ class _System:
                     continue
                 self.equations.append((p, link, ref))
         self.n = 3 * len(self.free)
-        self.m = 2 * len(self.equations)
+        self.m = 2 * len(self.equations) + len(self.slots) + 2 * len(self.prismatic) + bool(linear)
         if self.m != self.n:
             raise ValueError(
                 f"scene has {self.m} joint equations for {self.n} unknowns: its mobility "
@@ -132,10 +157,76 @@ class _System:
         pos = f + self.size * x[3 * i : 3 * i + 2] + rv
         return pos, (i, rv)
 
-    def residual_jacobian(self, x: np.ndarray, cs: tuple[float, float]):
-        """F (m,) and J (m, n), both scale-free."""
+    def _through(self, p: str, link: str, x: np.ndarray, cs: tuple[float, float]):
+        """(position of p through link, its (2, n) Jacobian by the unknowns)."""
+        pos, d = self.position(p, link, x, cs)
+        jac = np.zeros((2, self.n))
+        if d is not None:
+            i, rv = d
+            jac[0, 3 * i], jac[1, 3 * i + 1] = self.size, self.size
+            jac[:, 3 * i + 2] = (-rv[1], rv[0])
+        return pos, jac
+
+    def _rotation(self, link: str, x: np.ndarray, cs: tuple[float, float]):
+        """(a link's rotation from the drawn pose, its (n,) gradient)."""
+        g = np.zeros(self.n)
+        if link == self.ground:
+            return 0.0, g
+        if link == self.input:
+            return math.atan2(cs[1], cs[0]), g
+        i = self.index[link]
+        g[3 * i + 2] = 1.0
+        return float(x[3 * i + 2]), g
+
+    def _line_terms(self, p: str, home: str, guide: str, line, x, cs):
+        """Along and across coordinates of p from the guide's line (through line[0],
+        directed to line[1]), with their gradients: (along, d along, across, d across)."""
+        a, ja = self._through(line[0], guide, x, cs)
+        b, jb = self._through(line[1], guide, x, cs)
+        q, jq = self._through(p, home, x, cs)
+        u, ju = b - a, jb - ja
+        ell = float(np.hypot(*(self.points[line[1]] - self.points[line[0]])))
+        w, jw = q - a, jq - ja
+        along = float(u @ w) / ell
+        d_along = (ju.T @ w + jw.T @ u) / ell
+        across = float(u[0] * w[1] - u[1] * w[0]) / ell
+        d_across = (ju[0] * w[1] - ju[1] * w[0] + u[0] * jw[1] - u[1] * jw[0]) / ell
+        return along, d_along, across, d_across
+
+    def _drawn_line_terms(self, p: str, line) -> tuple[float, float]:
+        u = self.points[line[1]] - self.points[line[0]]
+        w = self.points[p] - self.points[line[0]]
+        ell = float(np.hypot(*u))
+        return float(u @ w) / ell, float(u[0] * w[1] - u[1] * w[0]) / ell
+
+    def _slider_rows(self, x: np.ndarray, cs: tuple[float, float], s: float):
+        """The slots', prismatic pairs' and linear input's residuals and gradients."""
+        rows = []
+        for name, (p, guide, line) in self.slots.items():
+            along, da, across, dc = self._line_terms(p, self.home[p], guide, line, x, cs)
+            a0, c0 = self._drawn_line_terms(p, line)
+            rows.append((across - c0, dc))
+            if self.linear == ("slot", name):
+                rows.append((along - a0 - s, da))
+        for name, (link, guide, line) in self.prismatic.items():
+            q = self.links[link][0]
+            along, da, across, dc = self._line_terms(q, link, guide, line, x, cs)
+            a0, c0 = self._drawn_line_terms(q, line)
+            rows.append((across - c0, dc))
+            (r1, g1), (r2, g2) = self._rotation(link, x, cs), self._rotation(guide, x, cs)
+            rows.append((wrap(r1 - r2) * self.size, (g1 - g2) * self.size))
+            if self.linear == ("prismatic", name):
+                rows.append((along - a0 - s, da))
+        return rows
+
+    def residual_jacobian(self, x: np.ndarray, cs: tuple[float, float], s: float = 0.0):
+        """F (m,) and J (m, n), both scale-free; ``s`` is a linear input's displacement."""
         f = np.empty(self.m)
         j = np.zeros((self.m, self.n))
+        base = 2 * len(self.equations)
+        for k, (r, g) in enumerate(self._slider_rows(x, cs, s)):
+            f[base + k] = r / self.size
+            j[base + k] = g / self.size
         for k, (p, link, ref) in enumerate(self.equations):
             a, da = self.position(p, link, x, cs)
             b, db = self.position(p, ref, x, cs)
@@ -150,14 +241,21 @@ class _System:
                 j[2 * k + 1, 3 * i + 2] += sign * rv[0] / self.size
         return f, j
 
-    def newton(self, x: np.ndarray, theta: float, tol: float, max_iter: int):
-        """Newton-Raphson from x at input angle theta: (x, Status, nit)."""
+    def drive(self, theta: float) -> tuple[tuple[float, float], float]:
+        """The input link's turn (cos, sin) from the drawn pose and a linear input's
+        displacement, at input value theta."""
+        if self.linear is not None:
+            return (1.0, 0.0), theta
         dt = theta - self.theta0
-        cs = (math.cos(dt), math.sin(dt))
+        return (math.cos(dt), math.sin(dt)), 0.0
+
+    def newton(self, x: np.ndarray, theta: float, tol: float, max_iter: int):
+        """Newton-Raphson from x at input value theta: (x, Status, nit)."""
+        cs, s = self.drive(theta)
         x = x.copy()
         nit = 0
         while True:
-            f, j = self.residual_jacobian(x, cs)
+            f, j = self.residual_jacobian(x, cs, s)
             if not (np.all(np.isfinite(f)) and np.all(np.isfinite(x))):
                 return x, Status.NON_FINITE, nit
             if self.n:
@@ -189,8 +287,7 @@ class _System:
 
     def sign(self, x: np.ndarray, theta: float) -> float:
         """The sign of det J at x: it names the branch (it flips at a dead point)."""
-        dt = theta - self.theta0
-        _, j = self.residual_jacobian(x, (math.cos(dt), math.sin(dt)))
+        _, j = self.residual_jacobian(x, *self.drive(theta))
         return float(np.linalg.slogdet(j)[0]) if self.n else 1.0
 
     def conditioning(self, x: np.ndarray, theta: float) -> float:
@@ -198,14 +295,12 @@ class _System:
         branch, as in ``sign``), scale-free, 0 at a dead point; 1 with no free link."""
         if not self.n:
             return 1.0
-        dt = theta - self.theta0
-        _, j = self.residual_jacobian(x, (math.cos(dt), math.sin(dt)))
+        _, j = self.residual_jacobian(x, *self.drive(theta))
         return float(np.linalg.det(j) / np.prod(np.linalg.norm(j, axis=0)))
 
     def pose(self, x: np.ndarray, theta: float) -> dict[str, np.ndarray]:
         """Every point's position, each through its home link."""
-        dt = theta - self.theta0
-        cs = (math.cos(dt), math.sin(dt))
+        cs, _ = self.drive(theta)
         return {p: self.position(p, self.home[p], x, cs)[0] for p in self.points}
 
     def angle_points(self, link: str) -> tuple[str, str]:
@@ -218,13 +313,15 @@ class _System:
 
 
 def scene_mobility(scene: Mapping) -> int:
-    """Gruebler's count 3 (links - 1) - 2 sum over points (links at the point - 1)."""
+    """Gruebler's count 3 (links - 1) - 2 sum over points (links at the point - 1), less
+    one per slot and two per prismatic pair."""
     links = scene["links"]
     count: dict[str, int] = {}
     for pts in links.values():
         for p in set(pts):
             count[p] = count.get(p, 0) + 1
-    return 3 * (len(links) - 1) - 2 * sum(k - 1 for k in count.values())
+    pins = 3 * (len(links) - 1) - 2 * sum(k - 1 for k in count.values())
+    return pins - len(scene.get("slots") or {}) - 2 * len(scene.get("prismatic") or {})
 
 
 #: A substep whose solution lies farther than this (rotation in radians, translation over
@@ -269,7 +366,7 @@ def scene_sweep(
     *,
     tol: float = 1e-12,
     max_iter: int = 50,
-    max_step: float = math.radians(1.0),
+    max_step: float | None = None,
 ) -> SceneSweep:
     """Sweeps a scene over input angles ``theta`` (radians), following the drawn assembly;
     returns a :class:`planarkin.SceneSweep` (no plan: ``plan``, ``limit``, the per-step
@@ -287,7 +384,9 @@ def scene_sweep(
     Continuation: from the drawn pose at the drawn angle to ``theta[0]`` along the
     wrapped shortest difference, then along ``theta`` in order (the raw differences: a
     jump of k turns is marched through, k turns of substeps), in substeps no larger than
-    ``max_step``, each predicted linearly from the last two converged states. A
+    ``max_step`` (default 1 degree; for a linear input, whose theta is a displacement from
+    the drawn pose and is required, the scene's size times 1 degree), each predicted
+    linearly from the last two converged states. A
     non-finite theta is NON_FINITE and skipped. An angle that fails gets NaN points and
     angles and status MAX_ITERATIONS, SINGULAR (reciprocal condition number of the
     Jacobian below 1e-10), NON_FINITE, or BRANCH_JUMP (a substep converged where det J
@@ -296,12 +395,16 @@ def scene_sweep(
     and its angle. Default ``theta``: the drawn angle + 0, 1, ..., 360 degrees.
     """
     sys_ = _System(scene)
+    if theta is None and sys_.linear is not None:
+        raise ValueError("theta: a linear input's displacements must be given")
     if theta is None:
         th = sys_.theta0 + np.arange(361) * (TAU / 360)
     else:
         th = np.atleast_1d(np.asarray(theta, dtype=np.float64)).ravel()
     # the kernel's rules for these options (SceneSweepOptions::new), as the reference's own
     tol, max_iter = check_options(tol, max_iter)
+    if max_step is None:  # 1 degree; for a linear input, 1 degree's worth of the drawing
+        max_step = math.radians(1.0) * (1.0 if sys_.linear is None else sys_.size)
     max_step = positive_finite("max_step", max_step)
     n = th.size
     status = np.zeros(n, dtype=np.int8)
@@ -324,7 +427,8 @@ def scene_sweep(
             continue
         if not hist:
             # the drawn state, re-labelled t minus the wrapped shortest difference
-            hist = [(t - wrap(t - sys_.theta0), *drawn)]  # type: ignore[misc]
+            start = 0.0 if sys_.linear is not None else t - wrap(t - sys_.theta0)
+            hist = [(start, *drawn)]  # type: ignore[misc]
         x, s, k, h = _march(sys_, hist, t, tol, max_iter, max_step)
         nit[i] = k
         status[i] = s
