@@ -516,9 +516,10 @@ class Scene:
             return None
         drawn = {n: np.asarray(d["points"][n]) for n in (q, a, b)}
         u0 = drawn[b] - drawn[a]
-        s0 = float(np.dot(drawn[q] - drawn[a], u0) / np.linalg.norm(u0))
+        s0 = float(np.dot(drawn[q] - drawn[a], u0 / math.hypot(*u0)))
         u = pts[b] - pts[a]
-        return np.einsum("ij,ij->i", pts[q] - pts[a], u) / np.linalg.norm(u, axis=1) - s0
+        u = u / np.hypot(u[:, 0], u[:, 1])[:, None]  # unit first: no square overflows
+        return np.einsum("ij,ij->i", pts[q] - pts[a], u) - s0
 
     # --- every assembly, circuits, tracing ------------------------------------------------
 

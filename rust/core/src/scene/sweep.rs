@@ -701,10 +701,12 @@ fn rot_m(m: Xy, d: Xy) -> Xy {
 }
 
 impl Plan {
-    /// Solves the plan at every angle of `theta` (radians, any order): from the drawn pose
-    /// to `theta[0]` the shortest way round, then along `theta` in order. Angles past a dead
-    /// point of a group are LIMIT; those that the drawn circuit reaches the other way round
-    /// are then solved by continuing backwards from the drawn pose over the end of `theta`.
+    /// Solves the plan at every input value of `theta` (radians, or a linear input's
+    /// displacements; any order): from the drawn pose to `theta[0]` (an angle the shortest
+    /// way round), then along `theta` in order. Values past a dead point are LIMIT; those
+    /// that the drawn circuit reaches the other way are then solved by continuing from the
+    /// drawn pose backwards over `theta`, from the last LIMIT value to the first. What
+    /// stays LIMIT is NOT_ASSEMBLABLE where the linkage has no assembly at all.
     /// `interrupt` is asked every few thousand angles (Ctrl-C from Python).
     pub fn sweep(
         &self,
@@ -748,12 +750,12 @@ impl Plan {
         }
         let limit = Status::Limit.code();
         self.continuation(theta, 0..n, opts, &mut out, false, &poll)?;
-        // the rest of the drawn circuit, backwards from the drawn pose
-        if out.status.contains(&limit) {
-            let last = (0..n).rev().take_while(|&k| out.status[k] == limit || !theta[k].is_finite()).last();
-            if let Some(first) = last {
-                self.continuation(theta, (first..n).rev(), opts, &mut out, true, &poll)?;
-            }
+        // the rest of the drawn circuit, backwards from the drawn pose: the angles left
+        // LIMIT, from the last of them back to the first (what the other way round reaches)
+        if let (Some(first), Some(last)) =
+            (out.status.iter().position(|&s| s == limit), out.status.iter().rposition(|&s| s == limit))
+        {
+            self.continuation(theta, (first..=last).rev(), opts, &mut out, true, &poll)?;
         }
         self.classify_limits(theta, &mut out, interrupt)
     }
@@ -811,9 +813,8 @@ impl Plan {
         Ok(())
     }
 
-    /// Continuation from the drawn pose over the indices `order`; `backward` stops at the
-    /// first LIMIT (what lies beyond is off the drawn circuit's reach) and leaves
-    /// non-finite angles as they are.
+    /// Continuation from the drawn pose over the indices `order`; `backward` writes only the
+    /// angles the forward pass left LIMIT (and leaves non-finite angles as they are).
     fn continuation(
         &self,
         theta: &[f64],
@@ -865,14 +866,12 @@ impl Plan {
                     s.advance(t, poll)?;
                 }
             }
-            if backward && !t.is_finite() {
+            // going back, only what the forward pass left LIMIT is written
+            if backward && (!t.is_finite() || out.status[k] != Status::Limit.code()) {
                 continue;
             }
             s.write(k, out);
             out.limit[k] = s.limit_angle();
-            if backward && out.status[k] == Status::Limit.code() {
-                break;
-            }
         }
         Ok(())
     }
