@@ -216,9 +216,13 @@ def crank_angles(step_deg: float) -> np.ndarray:
 
 
 def scene_angles(scene: Scene, step_deg: float) -> np.ndarray:
-    """One full turn from the drawn input angle in ``step_deg`` steps (both ends)."""
+    """One full turn from the drawn input angle in ``step_deg`` steps (both ends); for a
+    linear input, as many displacements across its stroke (both dead points included)."""
     # its own formula (not crank_angles + the drawn angle): scene outputs keep their digits
     n = angle_count(step_deg, "input angles")
+    if scene.input_kind == "displacement":
+        lo, hi = scene.stroke()
+        return np.linspace(lo, hi, n)
     return scene.input_angle + np.arange(n) * math.radians(step_deg)
 
 

@@ -528,7 +528,8 @@ def scene_summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
     plan, limit = sw.plan, sw.limit
     assert plan is not None and limit is not None  # a kernel sweep has both
     ok = sw.success
-    deg = wrap_deg(sw.theta)
+    angle = sw.input == "angle"  # else a linear input: displacements, as they are
+    deg = wrap_deg(sw.theta) if angle else sw.theta
     absdet = np.abs(sw.det[ok])
     # where the motion stops: the edges of the solved spans (to the sweep's resolution)
     edges = []
@@ -537,9 +538,12 @@ def scene_summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
             edges.append({"deg": float(deg[a]), "det": float(sw.det[a]), "side": "start"})
         if b < len(ok):
             edges.append({"deg": float(deg[b - 1]), "det": float(sw.det[b - 1]), "side": "end"})
-    dead = sorted({round(wrapped(float(v)), 9) for v in limit if math.isfinite(v)})
+    dead = sorted(
+        {round(wrapped(float(v)) if angle else float(v), 9) for v in limit if math.isfinite(v)}
+    )
     omega = sw.omega
     unit = scene.units or "length"
+    linear = scene.input_kind == "displacement"
     return {
         "scene": scene.name,
         "description": scene.description,
@@ -548,13 +552,16 @@ def scene_summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
         "joints": sum(len(v) - 1 for v in scene.joints.values()),
         "points": len(scene.points),
         "mobility": scene.mobility,
-        "input": {"link": scene.input[0], "pivot": scene.input[1]},
-        "drawn_input_deg": wrapped(scene.input_angle),
+        "input": scene.to_dict()["input"],
+        "input_kind": scene.input_kind,
+        "drawn_input_deg": wrapped(scene.input_angle) if linear is False else None,
+        "stroke": None if linear is False else [float(sw.theta[0]), float(sw.theta[-1])],
         "input_speed": None
         if omega is None
         else {
-            "omega_rad_s": omega,
-            "rpm": scene_fig.rpm(omega),
+            "omega_rad_s": None if linear else omega,
+            "rpm": None if linear else scene_fig.rpm(omega),
+            "speed": f"{omega:g} {unit}/s" if linear else None,
             "constant": True,
             "velocity_unit": f"{unit}/s",
             "acceleration_unit": f"{unit}/s^2",
@@ -582,14 +589,20 @@ def scene_table(s: dict) -> str:
         ("scene", s["scene"] or "(unnamed)"),
         ("links / joints / points", f"{s['links']} / {s['joints']} / {s['points']}"),
         ("mobility (Gruebler)", s["mobility"]),
-        (
-            "input",
-            f"{s['input']['link']} at {s['input']['pivot']}, drawn at "
-            f"{s['drawn_input_deg']:.3f} deg",
-        ),  # fmt: skip
     ]
+    if s["input_kind"] == "displacement":
+        ((kind, name),) = s["input"].items()
+        lo, hi = s["stroke"]
+        rows.append(("input", f"displacement along {kind} {name!r} from the drawn pose, "
+                              f"stroke {lo:.6g} to {hi:.6g} (its dead points)"))  # fmt: skip
+    else:
+        rows.append(("input", f"{s['input']['link']} at {s['input']['pivot']}, drawn at "
+                              f"{s['drawn_input_deg']:.3f} deg"))  # fmt: skip
     speed = s["input_speed"]
-    if speed is not None:
+    if speed is not None and speed["speed"] is not None:
+        rows.append(("input speed", f"{speed['speed']} (constant); velocities in "
+                                    f"{speed['velocity_unit']}"))  # fmt: skip
+    elif speed is not None:
         rows.append((
             "input speed",
             f"omega = {speed['omega_rad_s']:.4f} rad/s ({speed['rpm']:g} rpm, constant); "
@@ -630,7 +643,8 @@ def scene_columns(sw: SceneSweep, units: str | None) -> list[str]:
     each point's position (and velocity, acceleration when computed), each link's angle
     (and angular velocity, acceleration)."""
     u = units or "length"
-    cols = ["theta [deg]", "status [code]", "status_name", "nit [-]", "det [-]"]
+    first = "theta [deg]" if sw.input == "angle" else f"s [{u}]"  # a linear input's displacement
+    cols = [first, "status [code]", "status_name", "nit [-]", "det [-]"]
     for n in sw.points:
         cols += [f"{n}_x [{u}]", f"{n}_y [{u}]"]
         if sw.velocities is not None:
@@ -652,7 +666,7 @@ def _write_scene_csv(path: Path, sw: SceneSweep, units: str | None) -> None:
     per_link = [
         a for a in (sw.angular_velocity_array, sw.angular_acceleration_array) if a is not None
     ]
-    theta = wrap_deg(sw.theta)
+    theta = wrap_deg(sw.theta) if sw.input == "angle" else sw.theta
     link_deg = wrap_deg(sw.angle_array)
 
     def rows() -> Iterator[list[object]]:
@@ -680,7 +694,8 @@ def _run_scene(args: argparse.Namespace) -> int:
     theta = scene_angles(sc, args.step)
     finite("--rpm", args.rpm)
     finite("--dpi", args.dpi, positive=True)
-    omega = args.rpm * math.tau / 60
+    # a linear input is driven at 1 length unit per second (--rpm is for cranks)
+    omega = args.rpm * math.tau / 60 if sc.input_kind == "angle" else 1.0
     figures = {} if args.no_figures else SCENE_FIGURES
     with bar(3 + len(figures), "analyze", quiet=args.quiet) as b:
         sw = sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, omega=omega)

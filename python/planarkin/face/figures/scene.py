@@ -20,11 +20,20 @@ __all__ = ["conditioning", "ground_size", "linkage", "rpm", "tracer_names", "tra
 
 
 def tracer_names(scene: Scene, sweep: SceneSweep) -> list[str]:
-    """Reported points on one link only (tracers), else the requested points."""
-    joints = scene.joints
-    t = [p for p in sweep.points if p not in joints]
+    """Reported points on one link only (tracers), else the requested points; never a
+    ground point (it does not move) or a slot's point (a joint)."""
+    joints = set(scene.joints) | {pt for pt, _, _ in scene.slots.values()}
+    fixed = set(scene.links[scene.ground])
+    t = [p for p in sweep.points if p not in joints and p not in fixed]
     out = list(scene.outputs or [])
-    return [p for p in dict.fromkeys(out + t) if p in sweep.points]
+    return [p for p in dict.fromkeys(out + t) if p in sweep.points and p not in fixed]
+
+
+def _input_label(scene: Scene, value: float) -> str:
+    """θ in degrees for a crank, s in the scene's units for a linear input."""
+    if scene.input_kind == "angle":
+        return f"θ = {wrapped(value):.1f}°"
+    return f"s = {value:.4g} {scene.units or ''}".rstrip()
 
 
 def ground_size(scene: Scene) -> float:
@@ -80,16 +89,17 @@ def linkage(scene: Scene, sweep: SceneSweep, *, poses: int = 4) -> Figure:
         ax.set_xlabel(f"x [{scene.units or 'length'}]")
     one.set_ylabel(f"y [{scene.units or 'length'}]")
     draw.pose(one, st, scene.points)
-    one.set_title(f"as drawn, θ = {wrapped(scene.input_angle):.1f}°")
+    one.set_title(f"as drawn, {_input_label(scene, scene.input_angle)}")
     idx = _poses(sweep, poses)
     cmap = colormaps["viridis"]
     for k, i in enumerate(idx):
         xy = {n: v[i] for n, v in sweep.points.items()}
         c = cmap(0.85 * k / max(1, len(idx) - 1))
         draw.pose(many, st, xy, color=c, lw=2.0, ms=4, fill_alpha=0.15,
-                  label=f"θ = {wrapped(sweep.theta[i]):.1f}°")  # fmt: skip
+                  label=_input_label(scene, sweep.theta[i]))  # fmt: skip
     solved = int(sweep.success.sum())
-    many.set_title(f"{len(idx)} poses ({solved} of {len(sweep)} input angles solved)")
+    what = "input angles" if scene.input_kind == "angle" else "input displacements"
+    many.set_title(f"{len(idx)} poses ({solved} of {len(sweep)} {what} solved)")
     if many.get_legend_handles_labels()[0]:
         many.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small",
                     borderaxespad=0.0)  # fmt: skip
