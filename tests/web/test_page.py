@@ -163,6 +163,27 @@ def test_a_linear_inputs_slider_works_in_length_units(page):
     assert state["points"]["A"][0] == pytest.approx(60 + state["theta"], abs=TOL)
 
 
+def test_dragging_a_slot_point_edits_a_linear_scene(page):
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    state0 = page.open("?scene=elliptic-trammel&theta=-20")
+    canvas = page.el("canvas")
+    x, y = state0["screen"]["B"]
+    w, h = canvas.size["width"], canvas.size["height"]
+    ActionChains(page.d).move_to_element_with_offset(canvas, round(x - w / 2), round(y - h / 2)) \
+        .click_and_hold().move_by_offset(15, 0).release().perform()  # fmt: skip
+    state = page.state()
+    assert state["error"] is None and state["drawn"]["B"] != state0["points"]["B"]
+    # the new drawing keeps its slots (B now off its line by a drawn offset): Python solves
+    # the same edited scene, from s = 0 at the new drawing
+    data = pk.scenes.data("elliptic-trammel")
+    data["points"] = state["drawn"]
+    sc = pk.Scene.from_dict(data)
+    assert state["theta"] == 0 and [s["name"] for s in state["slots"]] == ["a", "b"]
+    _assert_scene_state(state, sc, 0.0)
+    np.testing.assert_allclose(state["stroke"], sc.stroke(), rtol=0, atol=1e-9)
+
+
 def test_auto_advance_bounces_between_the_strokes_ends(page):
     sc = pk.scenes.load("elliptic-trammel")
     lo, hi = sc.stroke()
