@@ -4,12 +4,15 @@
 - one frame of Jansen's leg solved by the WebAssembly module, as the page calls it (a
   JSON request in, the pose and the full tracer path of 361 inputs out), and its parts;
 - one frame of the four-bar (pose, coupler path of 361 crank angles, class, limits);
+- a scene driven by a prismatic pair (the hydraulic-cylinder boom): loading it (checks,
+  plan and its stroke: the 801-input probe) and one frame (pose and the 361-input path);
 - the frame rate the page holds while auto-rotating (requestAnimationFrame count);
 - planarkin.wasm's size, raw and gzip -9.
 
 Usage: python benches/web_frame.py [--page DIR] [--out JSON] [--screenshots DIR]
 (needs selenium, chromium and chromedriver: see tests/web/conftest.py). --screenshots
-also writes web_fourbar.png and web_jansen.png (the README's pictures) into DIR."""
+also writes web_fourbar.png, web_jansen.png and web_slider_crank.png (the README's
+pictures) into DIR."""
 
 from __future__ import annotations
 
@@ -55,7 +58,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--page", type=Path, default=FOLDER, help="the page's folder")
     ap.add_argument("--out", type=Path, default=Path("benches/results/web.json"))
-    ap.add_argument("--screenshots", type=Path, help="write web_fourbar.png, web_jansen.png here")
+    ap.add_argument("--screenshots", type=Path, help="write the README's pictures here")
     args = ap.parse_args()
     page = args.page.resolve()
 
@@ -83,6 +86,15 @@ def main() -> None:
         req.update(p=3, delta=0.5)
         d.execute_script(bench, req, 200, 3)
         res["fourbar_frame"] = d.execute_script(bench, req, 200, 9)
+        # a linear input: loading the scene finds its stroke; a frame spans it
+        boom = json.loads(d.execute_script("return window.PK_SCENES['hydraulic-boom'];"))
+        _open(d, page, "?scene=hydraulic-boom")
+        for key, req, n in (
+            ("boom_scene", {"op": "scene", "scene": boom}, 20),
+            ("boom_frame", {"op": "frame", "theta": 100.0}, 200),
+        ):
+            d.execute_script(bench, req, n, 3)
+            res[key] = d.execute_script(bench, req, n, 9)
         # the frame rate while auto-rotating (the page's own requestAnimationFrame count)
         for key, query in (("fps_jansen", "?scene=jansen&auto=1&speed=2"),
                            ("fps_fourbar", "?auto=1&speed=2")):  # fmt: skip
@@ -96,7 +108,8 @@ def main() -> None:
         if args.screenshots:
             args.screenshots.mkdir(parents=True, exist_ok=True)
             shots = (("web_fourbar.png", "?fourbar=6,2,5,5&theta=60&grid=1"),
-                     ("web_jansen.png", "?scene=jansen&theta=30"))  # fmt: skip
+                     ("web_jansen.png", "?scene=jansen&theta=30"),
+                     ("web_slider_crank.png", "?scene=slider-crank&theta=30"))  # fmt: skip
             for name, query in shots:
                 _open(d, page, query)
                 if "grid=1" in query:

@@ -21,7 +21,7 @@ def _python_pose(sc: pk.Scene, theta: float) -> tuple[dict[str, np.ndarray], str
     return {n: sw.points[n][0] for n in sc.points}, pk.Status(int(sw.status[0])).name
 
 
-def _as_xy(v: list | None) -> np.ndarray:
+def _as_xy(v: list) -> np.ndarray:
     return np.array([np.nan if c is None else c for c in v], dtype=np.float64)
 
 
@@ -47,12 +47,159 @@ def test_loads_with_no_console_error(page):
     assert page.message() == ""
 
 
+def _url_theta(sc: pk.Scene) -> tuple[str, float]:
+    """A sensible input for a scene: 30 deg for an angle; for a linear input (the URL's
+    theta is then the displacement, scene units) half the stroke's upper end."""
+    if sc.input_kind == "angle":
+        return "30", math.radians(30)
+    s = sc.stroke()[1] / 2
+    return repr(s), s
+
+
 @pytest.mark.parametrize("name", pk.scenes.names())
 def test_builtin_scene_state_equals_python(page, name):
-    state = page.open(f"?scene={name}&theta=30")
+    sc = pk.scenes.load(name)
+    text, theta = _url_theta(sc)
+    state = page.open(f"?scene={name}&theta={text}")
     assert state["scene"] == name
-    _assert_scene_state(state, pk.scenes.load(name), math.radians(30))
+    assert state["input_kind"] == sc.input_kind
+    _assert_scene_state(state, sc, theta)
     assert not [e for e in page.logs() if e["level"] == "SEVERE"]
+
+
+@pytest.mark.parametrize("name", ["hydraulic-boom", "elliptic-trammel"])
+def test_a_linear_input_has_pythons_stroke(page, name):
+    sc = pk.scenes.load(name)
+    state = page.open(f"?scene={name}")
+    assert state["input_kind"] == "displacement" and state["theta"] == 0
+    np.testing.assert_allclose(state["stroke"], sc.stroke(), rtol=0, atol=1e-9)
+    _assert_scene_state(state, sc, 0.0)
+    # Python's default sweep spans the stroke: the page's path is that sweep
+    path = page.d.execute_script("return pk.call({op: 'path'})")
+    np.testing.assert_allclose(path["theta"], sc.sweep().theta, rtol=0, atol=1e-9)
+
+
+def _canvas_pixel(page, x: float, y: float) -> list[int]:
+    """RGBA of the canvas at CSS pixel (x, y) (the page draws at devicePixelRatio)."""
+    return page.d.execute_script(
+        "const c = document.getElementById('canvas'), r = window.devicePixelRatio || 1;"
+        "return Array.from(c.getContext('2d').getImageData("
+        "Math.round(arguments[0] * r), Math.round(arguments[1] * r), 1, 1).data);",
+        x,
+        y,
+    )
+
+
+def test_the_slider_cranks_slot_is_drawn(page):
+    sc = pk.scenes.load("slider-crank")
+    state = page.open("?scene=slider-crank&theta=30")
+    (slot,) = state["slots"]
+    assert slot["name"] == "piston" and state["prismatic"] == []
+    # the block sits on B; the rail lies on the ground line y = 0 and covers B's travel
+    np.testing.assert_allclose(slot["block"], state["points"]["B"], rtol=0, atol=TOL)
+    (x0, y0), (x1, y1) = slot["rail"]
+    xb = sc.sweep().points["B"][:, 0]
+    assert y0 == pytest.approx(0, abs=1e-9) and y1 == pytest.approx(0, abs=1e-9)
+    assert min(x0, x1) < xb.min() and max(x0, x1) > xb.max()
+    # on the canvas: the block's colour beside the pin, the rail's edges along its length
+    # (the view maps scene units to CSS pixels: screen = (ox + k x, oy - k y))
+    scr, pts = state["screen"], state["points"]
+    k = (scr["B"][0] - scr["O2"][0]) / (pts["B"][0] - pts["O2"][0])
+    ox, oy = scr["O2"][0] - k * pts["O2"][0], scr["O2"][1] + k * pts["O2"][1]
+    bx, by = scr["B"]
+    assert _canvas_pixel(page, bx + 10, by) == [255, 210, 127, 255]
+    xm = ox + k * (xb.min() + xb.max()) / 2
+    column = [_canvas_pixel(page, xm, oy + dy) for dy in range(5, 12)]
+    assert any(p[3] == 255 and max(p[:3]) < 128 for p in column), column
+    beyond = ox + k * max(x0, x1) + 20
+    assert all(_canvas_pixel(page, beyond, oy + dy)[3] == 0 for dy in range(-12, 13))
+
+
+def test_the_booms_sleeve_is_drawn(page):
+    state = page.open("?scene=hydraulic-boom")
+    (pair,) = state["prismatic"]
+    assert pair["name"] == "cylinder" and state["slots"] == []
+    # on the cylinder's line C1 -> C2, the direction of travel
+    c1, c2 = (np.array(state["points"][n]) for n in ("C1", "C2"))
+    u = (c2 - c1) / np.linalg.norm(c2 - c1)
+    np.testing.assert_allclose(pair["direction"], u, rtol=0, atol=1e-12)
+    for end in pair["sleeve"]:
+        d = np.array(end) - c1
+        assert abs(d[0] * u[1] - d[1] * u[0]) < 1e-6 * np.linalg.norm(c2 - c1)
+
+
+def test_the_input_slider_moves_the_slider_cranks_piston(page):
+    from selenium.webdriver.common.keys import Keys
+
+    sc = pk.scenes.load("slider-crank")
+    state0 = page.open("?scene=slider-crank&theta=30")
+    page.el("theta").send_keys(Keys.ARROW_RIGHT * 50)  # 0.1 deg each
+    state = page.state()
+    assert state["theta"] == pytest.approx(math.radians(35), abs=1e-9)
+    _assert_scene_state(state, sc, state["theta"])
+    assert state["points"]["B"][0] != state0["points"]["B"][0]
+    # the piston's displacement along its slot is Python's output
+    sw = sc.sweep([state0["theta"], state["theta"]])
+    moved = state["points"]["B"][0] - state0["points"]["B"][0]
+    assert moved == pytest.approx(sw.output[1] - sw.output[0], abs=TOL)
+    assert moved < 0  # the crank turning on past 30 deg draws the piston in
+
+
+def test_a_linear_inputs_slider_works_in_length_units(page):
+    from selenium.webdriver.common.keys import Keys
+
+    sc = pk.scenes.load("elliptic-trammel")
+    lo, hi = sc.stroke()
+    page.open("?scene=elliptic-trammel")
+    slider = page.el("theta")
+    assert float(slider.get_attribute("min")) == pytest.approx(lo, abs=1e-9)
+    assert float(slider.get_attribute("max")) == pytest.approx(hi, abs=1e-9)
+    slider.send_keys(Keys.ARROW_LEFT * 20)
+    state = page.state()
+    assert state["theta"] == pytest.approx(float(slider.get_attribute("value")), abs=1e-12)
+    assert state["theta"] == pytest.approx(-20 * (hi - lo) / 1000, rel=1e-6)
+    _assert_scene_state(state, sc, state["theta"])
+    # the displacement is A's, along x from the drawn 60 mm
+    assert state["points"]["A"][0] == pytest.approx(60 + state["theta"], abs=TOL)
+
+
+def test_dragging_a_slot_point_edits_a_linear_scene(page):
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    state0 = page.open("?scene=elliptic-trammel&theta=-20")
+    canvas = page.el("canvas")
+    x, y = state0["screen"]["B"]
+    w, h = canvas.size["width"], canvas.size["height"]
+    ActionChains(page.d).move_to_element_with_offset(canvas, round(x - w / 2), round(y - h / 2)) \
+        .click_and_hold().move_by_offset(15, 0).release().perform()  # fmt: skip
+    state = page.state()
+    assert state["error"] is None and state["drawn"]["B"] != state0["points"]["B"]
+    # the new drawing keeps its slots (B now off its line by a drawn offset): Python solves
+    # the same edited scene, from s = 0 at the new drawing
+    data = pk.scenes.data("elliptic-trammel")
+    data["points"] = state["drawn"]
+    sc = pk.Scene.from_dict(data)
+    assert state["theta"] == 0 and [s["name"] for s in state["slots"]] == ["a", "b"]
+    _assert_scene_state(state, sc, 0.0)
+    np.testing.assert_allclose(state["stroke"], sc.stroke(), rtol=0, atol=1e-9)
+
+
+def test_auto_advance_bounces_between_the_strokes_ends(page):
+    sc = pk.scenes.load("elliptic-trammel")
+    lo, hi = sc.stroke()
+    page.open("?scene=elliptic-trammel&auto=1&speed=10")
+    seen = []
+    for _ in range(400):
+        s = page.state()
+        seen.append(s["theta"])
+        assert s["status"] == "CONVERGED"
+        assert lo - 1e-9 <= s["theta"] <= hi + 1e-9
+        if min(seen) < lo + 10 and max(seen) > hi - 10 and seen[-1] > min(seen) + 20:
+            break
+        time.sleep(0.02)
+    else:
+        raise AssertionError(f"did not bounce: {min(seen)}, {max(seen)}")
+    page.el("auto").click()
 
 
 def test_jansen_at_the_drawn_angle_by_default(page):

@@ -2,9 +2,12 @@
 // WebAssembly (planarkin.wasm, here as wasm.js), computes everything it shows.
 //
 // URL parameters: scene=NAME (a built-in scene) or fourbar=r1,r2,r3,r4 (the four-bar by
-// its lengths, the default); theta=DEGREES (the input angle); mode=open|crossed, p,
-// delta=DEGREES (four-bar); auto=1 (auto-rotate). What the page computed is in the text
-// of #state as JSON: {"scene", "theta" (radians), "points" {name: [x, y]}, "status", ...}.
+// its lengths, the default); theta=DEGREES (the input angle; for a scene driven by a slot
+// or prismatic pair, the displacement from the drawn pose in scene units); mode=open|crossed,
+// p, delta=DEGREES (four-bar); auto=1 (auto-rotate, or for a linear input auto-advance
+// between the stroke's ends). What the page computed is in the text of #state as JSON:
+// {"scene", "theta" (radians, or the displacement), "input_kind", "points" {name: [x, y]},
+// "status", "slots" and "prismatic" (what was drawn for them), ...}.
 "use strict";
 
 (function () {
@@ -36,7 +39,7 @@
     mode: "open",
     p: 3,
     delta: 30 * DEG,
-    theta: 0, // radians: theta2 (four-bar) or the scene's input angle
+    theta: 0, // theta2 (four-bar), the scene's input angle (radians) or displacement (units)
     dir: 1, // auto-rotate direction (reverses where the motion stops)
     sceneData: null, // the scene as data (the file format), as drawn now
     sceneRaw: null, // its text when it came unedited from a file or a built-in
@@ -49,7 +52,10 @@
     view: null, // {s, ox, oy}: screen = (ox + s x, oy - s y)
     drag: -1,
     lastGood: 0,
+    joints: { slots: [], prismatic: [] }, // what was drawn for slots and prismatic pairs
   };
+  // the scene is driven by a slot or prismatic pair: its input is a displacement
+  const linear = () => S.kind === "scene" && !!S.info && S.info.input_kind === "displacement";
 
   // --- four-bar --------------------------------------------------------------------------
   function solveFourbar() {
@@ -134,6 +140,33 @@
   const wx = (px) => (px - S.view.ox) / S.view.s;
   const wy = (py) => (S.view.oy - py) / S.view.s;
 
+  // unit direction and normal (scene units) of the line a -> b; null if degenerate
+  function frame2(a, b) {
+    const dx = b[0] - a[0], dy = b[1] - a[1], l = Math.hypot(dx, dy);
+    return l > 0 && isFinite(l) ? { u: [dx / l, dy / l], n: [-dy / l, dx / l] } : null;
+  }
+  const along = (p, a, f) => (p[0] - a[0]) * f.u[0] + (p[1] - a[1]) * f.u[1];
+  const across = (p, a, f) => (p[0] - a[0]) * f.n[0] + (p[1] - a[1]) * f.n[1];
+  const at = (a, f, t, o) => [a[0] + t * f.u[0] + o * f.n[0], a[1] + t * f.u[1] + o * f.n[1]];
+  // the path's value of point j at input i (NaN when not solved)
+  const pathAt = (i, j, np) => [S.path.pts[(i * np + j) * 2], S.path.pts[(i * np + j) * 2 + 1]];
+  const finiteXY = (p) => isFinite(p[0]) && isFinite(p[1]);
+
+  // a slot's travel along its line over the path: [lo, hi], distances from line[0] in the
+  // guide (it moves with the guide); null when nothing is solved
+  function slotTravel(slot, np) {
+    const [ia, ib] = slot.line;
+    let lo = Infinity, hi = -Infinity;
+    for (let i = 0; S.path && i < S.path.n; i++) {
+      const ai = pathAt(i, ia, np), bi = pathAt(i, ib, np), pi = pathAt(i, slot.point, np);
+      const fi = [ai, bi, pi].every(finiteXY) ? frame2(ai, bi) : null;
+      if (!fi) continue;
+      const t = along(pi, ai, fi);
+      lo = Math.min(lo, t); hi = Math.max(hi, t);
+    }
+    return lo <= hi ? [lo, hi] : null;
+  }
+
   function fitNow() {
     const pts = [];
     if (S.kind === "fourbar") {
@@ -148,6 +181,16 @@
       for (const v of Object.values(S.sceneData.points)) pts.push(v.map(Number));
       if (S.path) for (let i = 0; i < S.path.pts.length; i += 2) pts.push([S.path.pts[i], S.path.pts[i + 1]]);
       if (S.overlay) for (const o of S.overlay) for (let i = 0; i < o.pts.length; i += 2) pts.push([o.pts[i], o.pts[i + 1]]);
+      // slots' rails wherever their guides take them
+      const np = S.info ? S.info.names.length : 0;
+      if (S.path && S.info) for (const sl of S.info.slots) {
+        const tr = slotTravel(sl, np);
+        for (let i = 0; tr && i < S.path.n; i++) {
+          const ai = pathAt(i, sl.line[0], np), bi = pathAt(i, sl.line[1], np), pi = pathAt(i, sl.point, np);
+          const fi = [ai, bi, pi].every(finiteXY) ? frame2(ai, bi) : null;
+          if (fi) for (const t of tr) pts.push(at(ai, fi, t, across(pi, ai, fi)));
+        }
+      }
     }
     fit(pts);
   }
@@ -224,6 +267,105 @@
   }
 
   const fmtDeg = (t) => (t / DEG).toFixed(2) + "\u00b0";
+  const units = () => (S.sceneData && typeof S.sceneData.units === "string" ? " " + S.sceneData.units : "");
+  const fmtLen = (v) => v.toFixed(2) + units();
+  // the scene's input value as shown, and its symbol
+  const fmtIn = (t) => (linear() ? fmtLen(t) : fmtDeg(t));
+  const sym = () => (linear() ? "s" : "\u03b8");
+
+  // a straight band of half-width w pixels from a to b (scene points): the long sides stroked
+  function band(a, b, w, color, fill, hatch = false) {
+    const X0 = sx(a[0]), Y0 = sy(a[1]), X1 = sx(b[0]), Y1 = sy(b[1]);
+    const l = Math.hypot(X1 - X0, Y1 - Y0);
+    if (!(l > 0)) return;
+    const nx = (-(Y1 - Y0) / l) * w, ny = ((X1 - X0) / l) * w;
+    ctx.fillStyle = fill;
+    ctx.beginPath(); ctx.moveTo(X0 + nx, Y0 + ny); ctx.lineTo(X1 + nx, Y1 + ny);
+    ctx.lineTo(X1 - nx, Y1 - ny); ctx.lineTo(X0 - nx, Y0 - ny); ctx.closePath(); ctx.fill();
+    ctx.strokeStyle = color; ctx.lineWidth = 2; ctx.lineCap = "butt";
+    ctx.beginPath(); ctx.moveTo(X0 + nx, Y0 + ny); ctx.lineTo(X1 + nx, Y1 + ny);
+    ctx.moveTo(X0 - nx, Y0 - ny); ctx.lineTo(X1 - nx, Y1 - ny); ctx.stroke();
+    if (!hatch) return;
+    // fixed to the ground: ticks outside both sides
+    const ux = (X1 - X0) / l, uy = (Y1 - Y0) / l, ox = nx / w, oy = ny / w;
+    ctx.lineWidth = 1;
+    ctx.beginPath();
+    for (let d = 4; d < l; d += 7) {
+      for (const k of [1, -1]) {
+        const x = X0 + ux * d + k * nx, y = Y0 + uy * d + k * ny;
+        ctx.moveTo(x, y); ctx.lineTo(x + k * ox * 5 - ux * 4, y + k * oy * 5 - uy * 4);
+      }
+    }
+    ctx.stroke();
+  }
+  // a slider block: a rectangle centred on p (scene), aligned with the unit direction u
+  function block(p, u, color) {
+    ctx.save();
+    ctx.translate(sx(p[0]), sy(p[1]));
+    ctx.rotate(Math.atan2(-u[1], u[0]));
+    ctx.fillStyle = color; ctx.strokeStyle = "#222"; ctx.lineWidth = 1.5;
+    ctx.fillRect(-13, -6, 26, 12); ctx.strokeRect(-13, -6, 26, 12);
+    ctx.restore();
+  }
+
+
+  // a slot: a rail along its line (through the slot point's track, parallel to the guide's
+  // line as it is now) covering the point's travel in the guide over the path, and a block
+  // centred on the point. Returns what was drawn (scene units).
+  function drawSlot(slot, pts, np, color) {
+    const a = pts[slot.line[0]], b = pts[slot.line[1]], p = pts[slot.point];
+    if (![a, b, p].every(finiteXY)) return null;
+    const f = frame2(a, b);
+    if (!f) return null;
+    const tr = slotTravel(slot, np), now = along(p, a, f);
+    const lo = tr ? Math.min(tr[0], now) : now, hi = tr ? Math.max(tr[1], now) : now;
+    const pad = 22 / S.view.s, off = across(p, a, f);
+    const r0 = at(a, f, lo - pad, off), r1 = at(a, f, hi + pad, off);
+    band(r0, r1, 8, color, "rgba(0,0,0,0.05)", slot.guide === S.info.ground);
+    return { name: slot.name, rail: [r0, r1], block: p, direction: f.u };
+  }
+
+  // a prismatic pair: an open sleeve fixed on the guide, on the axis of the sliding link's
+  // point nearest the guide's line, where the link passes at every input of the path (else
+  // at the guide's end that faces the link). Returns what was drawn (scene units).
+  function drawSleeve(pr, pts, np, color) {
+    const [ia, ib] = pr.line, a = pts[ia], b = pts[ib];
+    const mine = S.info.links[pr.link].points, guide = S.info.links[pr.guide].points;
+    if (![a, b, ...mine.map((j) => pts[j])].every(finiteXY)) return null;
+    const f = frame2(a, b);
+    if (!f) return null;
+    let q = mine[0];
+    for (const j of mine) if (Math.abs(across(pts[j], a, f)) < Math.abs(across(pts[q], a, f))) q = j;
+    const span = (get) => {
+      const t = mine.map((j) => get(j)).filter(isFinite);
+      return t.length ? [Math.min(...t), Math.max(...t)] : null;
+    };
+    const now = span((j) => along(pts[j], a, f));
+    let [lo, hi] = now;
+    if (S.path) {
+      for (let i = 0; i < S.path.n; i++) {
+        const ai = pathAt(i, ia, np), bi = pathAt(i, ib, np), fi = finiteXY(ai) && finiteXY(bi) ? frame2(ai, bi) : null;
+        if (!fi) continue;
+        const sp = span((j) => along(pathAt(i, j, np), ai, fi));
+        if (!sp) continue;
+        lo = Math.max(lo, sp[0]); hi = Math.min(hi, sp[1]);
+      }
+    }
+    const px = 1 / S.view.s;
+    let c, h;
+    if (lo <= hi) {
+      c = (lo + hi) / 2; h = Math.max(8 * px, Math.min((hi - lo) / 2, 22 * px));
+    } else {
+      const g = guide.map((j) => along(pts[j], a, f)).filter(isFinite);
+      const [g0, g1] = [Math.min(...g), Math.max(...g)], m = (now[0] + now[1]) / 2;
+      h = 16 * px;
+      c = m > g1 ? g1 + h : m < g0 ? g0 - h : m;
+    }
+    const off = across(pts[q], a, f);
+    const s0 = at(a, f, c - h, off), s1 = at(a, f, c + h, off);
+    band(s0, s1, 9, color, color + "30", pr.guide === S.info.ground);
+    return { name: pr.name, sleeve: [s0, s1], direction: f.u };
+  }
 
   function drawFourbar() {
     const fb = S.fb;
@@ -280,21 +422,40 @@
     const groundPts = (links.find(([ln]) => ln === ground) || [null, []])[1];
     const perPoint = new Array(np).fill(0);
     for (const [, pl] of links) for (const n of pl) if (n in idx) perPoint[idx[n]]++;
-    if (S.overlay) for (const o of S.overlay) for (let j = 0; j < np; j++) if (perPoint[j] === 1) polyline(o.pts, 2 * np, 2 * j, o.m, o.color, 1.5);
+    // not tracers: a slot's point (a joint, with its block), the points that carry a slot's
+    // or prismatic pair's line, and a sliding link's points (unless they are outputs)
+    if (info) {
+      for (const sl of info.slots) for (const j of [sl.point, ...sl.line]) perPoint[j]++;
+      for (const pr of info.prismatic) for (const j of [...pr.line, ...info.links[pr.link].points]) perPoint[j]++;
+    }
+    const tracer = (j) => perPoint[j] === 1 && !groundPts.includes(names[j]);
+    const colorOf = {};
+    let c = 0;
+    for (const [ln] of links) colorOf[ln] = ln === ground ? "#555555" : COLORS[c++ % COLORS.length];
+    const linkColor = (k) => colorOf[info.links[k].name] || "#555555";
+    // the point that shows a linear input: the slot's point, or the sliding link's first
+    let tip = -1;
+    if (info && info.input) tip = info.input.tip;
+    else if (info && info.linear_input) {
+      const li = info.linear_input;
+      tip = li.kind === "slot" ? info.slots[li.index].point : info.links[info.prismatic[li.index].link].points[0];
+    }
+    if (S.overlay) for (const o of S.overlay) for (let j = 0; j < np; j++) if (tracer(j)) polyline(o.pts, 2 * np, 2 * j, o.m, o.color, 1.5);
     if (S.path && $("paths").checked) {
       // tracers (points on one link) and the scene's requested outputs
       const outs = Array.isArray(data.outputs) ? data.outputs : [];
       const tracers = names.map((n, j) => j).filter((j) => !groundPts.includes(names[j]) &&
-        (perPoint[j] === 1 || outs.includes(names[j])));
+        (tracer(j) || outs.includes(names[j])));
       for (const j of tracers) polyline(S.path.pts, 2 * np, 2 * j, S.path.n, PATH_COLOR, 2);
       // the input's reach: the path of the input link's tip (where it stops, marked below)
-      const tip = info ? info.input.tip : -1;
       if (tip >= 0) polyline(S.path.pts, 2 * np, 2 * tip, S.path.n, "#bbb", 3, S.path.status);
       const marked = tip >= 0 ? [...tracers, tip] : tracers;
       // where the motion stops: the last input reached before a LIMIT (a dead point)
-      const st = S.path.status, n = S.path.n;
+      // (a linear input's path spans its stroke: both ends are dead points)
+      const st = S.path.status, n = S.path.n, ends = linear();
       for (let i = 0; i < n; i++) {
-        const edge = st[i] === 0 && ((i + 1 < n && st[i + 1] !== 0) || (i > 0 && st[i - 1] !== 0));
+        const edge = st[i] === 0 && ((i + 1 < n && st[i + 1] !== 0) || (i > 0 && st[i - 1] !== 0) ||
+          (ends && (i === 0 || i === n - 1)));
         if (!edge) continue;
         for (const j of marked) {
           const x = S.path.pts[(i * np + j) * 2], y = S.path.pts[(i * np + j) * 2 + 1];
@@ -303,32 +464,63 @@
         }
       }
     }
-    let c = 0;
+    // slots' rails under the links
+    const drawn = { slots: [], prismatic: [] };
+    if (info && S.view) for (const sl of info.slots) {
+      const d = drawSlot(sl, pts, np, linkColor(sl.guide));
+      if (d) drawn.slots.push(d);
+    }
     for (const [ln, pl] of links) {
       const xy = pl.filter((n) => n in idx).map((n) => pts[idx[n]]).filter(([x, y]) => isFinite(x) && isFinite(y));
       if (ln === ground) {
         for (const q of xy) groundMark(...q);
         continue;
       }
-      const color = COLORS[c++ % COLORS.length];
+      const color = colorOf[ln];
       if (xy.length < 2) continue;
       if (xy.length > 2) {
-        ctx.fillStyle = color + "40"; ctx.strokeStyle = color; ctx.lineWidth = 2;
+        // a polygon with its points (nearly) in line is drawn as a bar
+        let area = 0, extent = 0;
+        xy.forEach(([x, y], k) => {
+          const [x1, y1] = xy[(k + 1) % xy.length];
+          area += (sx(x) * sy(y1) - sx(x1) * sy(y)) / 2;
+          extent = Math.max(extent, Math.hypot(sx(x1) - sx(x), sy(y1) - sy(y)));
+        });
+        const flat = Math.abs(area) < 3 * extent;
+        ctx.fillStyle = color + "40"; ctx.strokeStyle = color; ctx.lineWidth = flat ? 6 : 2; ctx.lineJoin = "round";
         ctx.beginPath(); xy.forEach(([x, y], k) => (k ? ctx.lineTo(sx(x), sy(y)) : ctx.moveTo(sx(x), sy(y))));
         ctx.closePath(); ctx.fill(); ctx.stroke();
       } else {
         bar(xy[0], xy[1], color);
       }
     }
+    // prismatic pairs' sleeves over the sliding links, slots' blocks under the pins
+    if (info && S.view) {
+      for (const pr of info.prismatic) {
+        const d = drawSleeve(pr, pts, np, linkColor(pr.guide));
+        if (d) drawn.prismatic.push(d);
+      }
+      for (const d of drawn.slots) block(d.block, d.direction, "#ffd27f");
+    }
+    S.joints = drawn;
+    const named = [];
     names.forEach((n, j) => {
       const [x, y] = pts[j];
       if (!isFinite(x)) return;
-      joint(x, y, perPoint[j] === 1 ? PATH_COLOR : j === S.drag ? "#ffd54f" : "#fff");
-      if ($("labels").checked) label(n, x, y);
+      if (perPoint[j] === 1 && groundPts.includes(n) && j !== S.drag) {
+        // a point of the ground only (say, a slot's direction): a small dot
+        ctx.fillStyle = "#555"; ctx.beginPath(); ctx.arc(sx(x), sy(y), 2.5, 0, 2 * Math.PI); ctx.fill();
+      } else {
+        joint(x, y, tracer(j) ? PATH_COLOR : j === S.drag ? "#ffd54f" : "#fff");
+      }
+      // one name where points coincide on the screen
+      if (!$("labels").checked || named.some(([X, Y]) => Math.hypot(X - sx(x), Y - sy(y)) < 8)) return;
+      named.push([sx(x), sy(y)]);
+      label(n, x, y);
     });
     if (info && $("labels").checked) {
-      const inp = info.input;
-      label("\u03b8 = " + fmtDeg(S.theta), ...pts[inp.pivot], 10, 22);
+      const where = info.input ? info.input.pivot : tip;
+      if (where >= 0 && finiteXY(pts[where])) label(sym() + " = " + fmtIn(S.theta), ...pts[where], 10, 22);
     }
   }
 
@@ -365,9 +557,18 @@
     const p = S.pose;
     const lim = [...new Set(S.path.limit.filter((v) => v !== null).map((v) => v.toFixed(9)))].map(Number);
     const fails = S.path.status.filter((s) => s !== 0).length;
-    let t = `${badge(p ? p.status : "?")} at \u03b8 = ${fmtDeg(S.theta)}\n`;
-    if (p && p.status === "LIMIT") t += `past the dead point at ${fmtDeg(p.limit)}: the motion stops there\n`;
+    let t = `${badge(p ? p.status : "?")} at ${sym()} = ${fmtIn(S.theta)}\n`;
+    if (p && p.status === "LIMIT") t += `past the dead point at ${fmtIn(p.limit)}: the motion stops there\n`;
     t += `steps: ${S.info.steps.join(", ")}\n`;
+    if (linear()) {
+      const li = S.info.linear_input, [lo, hi] = S.info.stroke;
+      t += `input: displacement along ${li.kind} '${li.name}' from the drawn pose\n`;
+      t += `stroke (dead point to dead point): ${fmtLen(lo)} to ${fmtLen(hi)}\n`;
+      const st = S.path.status, n = S.path.n;
+      const atEnds = st.every((c, i) => c === 0 || i === 0 || i === n - 1);
+      if (fails) t += `over the stroke: ${fails} of ${n} inputs not converged` + (atEnds ? " (at its ends, the dead points)\n" : "\n");
+      return t;
+    }
     t += fails ? `over one turn from the drawn pose: ${fails} of ${S.path.n} inputs not reached\n` : "the input turns fully on the drawn circuit\n";
     if (lim.length) t += `dead points (LIMIT past them): ${lim.map(fmtDeg).join(", ")}\n`;
     const st = S.path.status, ends = [];
@@ -402,6 +603,10 @@
         status: p ? p.status : null,
         error: $("message").textContent || null,
         drawn: S.sceneData.points,
+        input_kind: S.info ? S.info.input_kind : null,
+        stroke: S.info ? S.info.stroke : null,
+        slots: S.joints.slots,
+        prismatic: S.joints.prismatic,
       };
     }
     // where each point is on the canvas (CSS pixels from its top left), for tests
@@ -414,13 +619,29 @@
 
   function refreshText() {
     $("info").innerHTML = infoText();
-    $("theta").value = String(((S.theta / DEG + 540) % 360) - 180);
-    $("theta-v").textContent = (S.theta / DEG).toFixed(1) + "\u00b0";
+    const th = $("theta");
+    if (linear()) {
+      // the slider spans the stroke, in scene units
+      const [lo, hi] = S.info.stroke;
+      const range = [String(lo), String(hi), String(hi > lo ? (hi - lo) / 1000 : 1e-3)];
+      if ([th.min, th.max, th.step].join() !== range.join()) [th.min, th.max, th.step] = range;
+      th.value = String(S.theta);
+      $("theta-v").textContent = S.theta.toFixed(2);
+      $("input-title").textContent = "Input displacement" + (units() ? ` (${units().trim()})` : "");
+      $("auto-label").textContent = "auto-advance";
+      $("speed-v").textContent = fmtLen((Number($("speed").value) * (hi - lo)) / 360);
+    } else {
+      if (th.min !== "-180") [th.min, th.max, th.step] = ["-180", "180", "0.1"];
+      th.value = String(((S.theta / DEG + 540) % 360) - 180);
+      $("theta-v").textContent = (S.theta / DEG).toFixed(1) + "\u00b0";
+      $("input-title").textContent = "Input angle";
+      $("auto-label").textContent = "auto-rotate";
+      $("speed-v").textContent = $("speed").value + "\u00b0";
+    }
     for (const [k, v] of [["r1", S.r[0]], ["r2", S.r[1]], ["r3", S.r[2]], ["r4", S.r[3]], ["p", S.p]]) {
       $(k).value = String(v); $(k + "-v").textContent = v.toFixed(2);
     }
     $("delta").value = String(S.delta / DEG); $("delta-v").textContent = (S.delta / DEG).toFixed(1) + "\u00b0";
-    $("speed-v").textContent = $("speed").value + "\u00b0";
     $("fourbar-panel").classList.toggle("hidden", S.kind !== "fourbar");
     $("scene-panel").classList.toggle("hidden", S.kind !== "scene");
     $("mode-" + S.mode).checked = true;
@@ -436,8 +657,19 @@
 
   // --- input -------------------------------------------------------------------------------------------
   function step() {
-    const d = S.dir * Number($("speed").value) * DEG;
     const before = S.theta;
+    if (linear()) {
+      // auto-advance: speed/360 of the stroke a frame, bouncing between its ends
+      const [lo, hi] = S.info.stroke;
+      let next = before + (S.dir * Number($("speed").value) * (hi - lo)) / 360, dir = S.dir;
+      if (next >= hi) { next = hi; dir = -1; } else if (next <= lo) { next = lo; dir = 1; }
+      S.theta = next;
+      solveScene();
+      if (S.pose && S.pose.status === "CONVERGED") S.dir = dir;
+      else { S.dir = -S.dir; S.theta = before; solveScene(); }
+      return;
+    }
+    const d = S.dir * Number($("speed").value) * DEG;
     S.theta = before + d;
     if (S.kind === "fourbar") {
       solveFourbar();
@@ -493,7 +725,7 @@
     $("p").addEventListener("input", () => { S.p = Number($("p").value); update(); });
     $("delta").addEventListener("input", () => { S.delta = Number($("delta").value) * DEG; update(); });
     for (const m of ["open", "crossed"]) $("mode-" + m).addEventListener("change", () => { S.mode = m; update(); });
-    $("theta").addEventListener("input", () => { S.theta = Number($("theta").value) * DEG; update(); });
+    $("theta").addEventListener("input", () => { S.theta = Number($("theta").value) * (linear() ? 1 : DEG); update(); });
     $("speed").addEventListener("input", () => refreshText());
     for (const k of ["grid", "labels", "paths"]) $(k).addEventListener("change", () => draw());
 
@@ -537,7 +769,7 @@
       list.textContent = "";
       if (a.error) { setMessage(a.error); return; }
       const head = document.createElement("div");
-      head.textContent = `${a.assemblies.length} assemblies at \u03b8 = ${fmtDeg(S.theta)}:`;
+      head.textContent = `${a.assemblies.length} assemblies at ${sym()} = ${fmtIn(S.theta)}:`;
       list.appendChild(head);
       a.assemblies.forEach((x, k) => {
         const b = document.createElement("button");
@@ -559,12 +791,12 @@
         color: COLORS[(k + 3) % COLORS.length] + "b0",
       }));
       const head = document.createElement("div");
-      head.textContent = `${c.circuits.length} circuits at \u03b8 = ${fmtDeg(S.theta)}:`;
+      head.textContent = `${c.circuits.length} circuits at ${sym()} = ${fmtIn(S.theta)}:`;
       list.appendChild(head);
       c.circuits.forEach((ci, k) => {
         const b = document.createElement("button");
         b.style.color = COLORS[(k + 3) % COLORS.length];
-        const tp = ci.turning_points.length ? `turning at ${ci.turning_points.map(fmtDeg).join(", ")}` : "no turning point";
+        const tp = ci.turning_points.length ? `turning at ${ci.turning_points.map(fmtIn).join(", ")}` : "no turning point";
         b.textContent = `circuit ${k + 1}: ${ci.full_turn ? "full turn" : "rocks"}; ${tp}; assemblies ${ci.assemblies.map((i) => "#" + (i + 1)).join(" ")}`;
         b.addEventListener("click", () => switchTo(c.assemblies[ci.assemblies[0]].points));
         list.appendChild(b);
@@ -679,7 +911,7 @@
       openText(text, url.split("/").pop());
     }
     if (q.has("theta")) {
-      S.theta = Number(q.get("theta")) * DEG;
+      S.theta = Number(q.get("theta")) * (linear() ? 1 : DEG);
       update();
     }
     requestAnimationFrame(frame);

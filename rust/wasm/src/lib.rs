@@ -10,9 +10,11 @@
 //! Python's `ValueError` carries. Requests (see `request`):
 //!
 //! - `scene`: validate a scene (the file format) and keep it; the reply describes it;
-//! - `pose`, `path`, `frame`: the kept scene solved at one input angle, over the default
-//!   361 angles, or both (one animation frame);
-//! - `assemblies`, `circuits`: every assembly at an input angle, and their circuits;
+//! - `pose`, `path`, `frame`: the kept scene solved at one input value, over the default
+//!   361 values, or both (one animation frame); an input value is an angle (radians) or,
+//!   for a scene driven by a slot or prismatic pair, the displacement from the drawn pose
+//!   (scene units), and the default values span one turn or that input's stroke;
+//! - `assemblies`, `circuits`: every assembly at an input value, and their circuits;
 //! - `fourbar`: a four-bar by its lengths: pose, coupler path, Grashof and Barker class,
 //!   limit positions.
 //!
@@ -174,12 +176,19 @@ mod tests {
         let cases = [
             (r#"[1]"#, "scene: must be a mapping, got list"),
             (r#"{"points": {}, "links": {}, "ground": "g"}"#, "input: is required"),
-            (r#"{"points": {"A": [1]}, "links": {}, "ground": "g", "input": {}}"#, "points.A: must be a pair [x, y], got [1]"),
+            (
+                r#"{"points": {"A": [1]}, "links": {}, "ground": "g", "input": {}}"#,
+                "points.A: must be a pair [x, y], got [1]",
+            ),
             (
                 r#"{"points": {"A": [1, "x"]}, "links": {}, "ground": "g", "input": {}}"#,
                 "points.A[1] must be a real number, got 'x'",
             ),
-            (r#"{"colour": 1.5}"#, "scene: unknown keys ['colour']; known keys: name, description, units, points, links, ground, input, output, outputs"),
+            (
+                r#"{"colour": 1.5}"#,
+                "scene: unknown keys ['colour']; known keys: name, description, units, points, links, ground, input, \
+                 output, outputs, slots, prismatic",
+            ),
             (
                 r#"{"points": {"A": [0, 0]}, "links": {"l": ["A", 2]}, "ground": "l", "input": {"link": "l", "pivot": "A"}}"#,
                 "links.l: must be a list of point names, got ['A', 2]",
@@ -193,6 +202,76 @@ mod tests {
         let bad = FOURBAR.replace(r#""rocker": ["O4", "B"]"#, r#""rocker": ["O4", "Q"]"#);
         let reply = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {bad}}}"#));
         assert_eq!(reply["error"], "links.rocker: unknown point \"Q\"");
+    }
+
+    /// The elliptic trammel: A slides along x (the input), B along y; P on the bar.
+    const TRAMMEL: &str = r#"{"points": {"O": [0, 0], "X": [1, 0], "Y": [0, 1], "A": [60, 0], "B": [0, 80], "P": [36, 32]},
+        "links": {"ground": ["O", "X", "Y"], "bar": ["A", "B", "P"]}, "ground": "ground",
+        "input": {"slot": "a"}, "outputs": ["P"],
+        "slots": {"a": {"point": "A", "guide": "ground", "line": ["O", "X"]},
+                  "b": {"point": "B", "guide": "ground", "line": ["O", "Y"]}}}"#;
+
+    #[test]
+    fn a_linear_input_sweeps_its_stroke() {
+        let mut s = State::default();
+        let info = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {TRAMMEL}}}"#));
+        assert_eq!(info["input_kind"], "displacement");
+        assert_eq!(info["input"], Value::Null);
+        assert_eq!(info["linear_input"], json!({"kind": "slot", "name": "a", "index": 0, "guide": 0}));
+        assert_eq!(info["slots"][1], json!({"name": "b", "point": 4, "guide": 0, "line": [0, 2]}));
+        assert_eq!(info["size"], 80.0);
+        // A reaches x = -100 and x = 100 (B on the x axis): s from -160 to 40
+        let stroke: Vec<f64> = info["stroke"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        assert!((stroke[0] + 160.0).abs() < 1e-6 && (stroke[1] - 40.0).abs() < 1e-6, "{stroke:?}");
+        let path = ask(&mut s, r#"{"op": "path"}"#);
+        assert_eq!(path["theta"][0].as_f64(), Some(stroke[0]));
+        assert_eq!(path["theta"][360].as_f64(), Some(stroke[1]));
+        // the displacement from the drawn pose, in scene units
+        let pose = ask(&mut s, r#"{"op": "pose", "theta": -30}"#);
+        assert_eq!(pose["status"], "CONVERGED");
+        let (a, b) = (&pose["points"][3], &pose["points"][4]);
+        assert!((a[0].as_f64().unwrap() - 30.0).abs() < 1e-12 && a[1].as_f64().unwrap().abs() < 1e-12);
+        assert!((b[1].as_f64().unwrap() - (100f64.powi(2) - 900.0).sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_slots_name_the_entry_as_python_does() {
+        let mut s = State::default();
+        let cases = [
+            (r#""slots": [1]"#, "slots: must be a table name -> {point, guide, line}"),
+            (
+                r#""slots": {"c": {"point": "A"}}"#,
+                "slots.c: must be a table with keys 'point', 'guide' and 'line', got {'point': 'A'}",
+            ),
+            (
+                r#""slots": {"a": {"point": "A", "guide": "ground", "line": ["O", 3]}}"#,
+                "slots.a.line: must be a pair of point names, got ['O', 3]",
+            ),
+            (
+                r#""slots": {"a": {"point": "A", "guide": 1, "line": ["O", "X"]}}"#,
+                "slots.a.guide: must be a name, got 1",
+            ),
+            (r#""input": {"slot": 3}"#, "input.slot: must be a slot name, got 3"),
+            (r#""input": {"slot": "zz"}"#, "input.slot: \"zz\" is not a slot"),
+            (r#""output": {"slot": "zz"}"#, "output.slot: 'zz' is not a slot"),
+            (r#""output": {"prismatic": "a"}"#, "output.prismatic: 'a' is not a prismatic"),
+            (
+                r#""input": {"link": "bar"}"#,
+                "input: must be a table with keys 'link' and 'pivot' (an angle), or with one key 'slot' or \
+                 'prismatic' (a displacement), got {'link': 'bar'}",
+            ),
+            (
+                r#""prismatic": {"p": null}"#,
+                "prismatic.p: must be a table with keys 'link', 'guide' and 'line', got None",
+            ),
+            (r#""slots": null"#, "input.slot: \"a\" is not a slot"),
+        ];
+        for (change, message) in cases {
+            // a later key replaces an earlier one (serde_json keeps the last)
+            let scene = format!("{}, {change}}}", TRAMMEL.trim_end().strip_suffix('}').unwrap());
+            let reply = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {scene}}}"#));
+            assert_eq!(reply["error"], message, "{change}");
+        }
     }
 
     #[test]

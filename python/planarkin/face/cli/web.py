@@ -41,7 +41,13 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument(
         "--port", type=int, default=0, help="port on 127.0.0.1 (default 0: any free port)"
     )
-    p.add_argument("--theta", type=float, metavar="DEG", help="input angle to open at (deg)")
+    p.add_argument(
+        "--theta",
+        type=float,
+        metavar="DEG",
+        help="input angle to open at (deg); for a scene driven by a slot or prismatic pair, "
+        "the displacement from the drawn pose (scene units)",
+    )
     p.add_argument("--no-browser", action="store_true", help="serve without opening a browser")
     p.set_defaults(func=run)
     return p
