@@ -3,7 +3,6 @@ assemblies, circuits and traces; ``as_fourbar`` recognises a four-bar scene."""
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import math
 from collections.abc import Iterable, Mapping
@@ -488,20 +487,19 @@ class Scene:
         w = None if omega is None else as_float("omega", omega)
         pts, ang, status, nit, det, limit, sst, sdet, pst, kin = core.sweep(t, tol, max_iter, ms, w)
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
-        sw = SceneSweep.build(
+        return SceneSweep.build(
             plan, t, pts, ang, status, nit, det, limit, sst, sdet, pst, vel, acc,
-            omega=w, input=self.input_kind,
+            omega=w, input=self.input_kind, output=self._output_of(plan.points, pts),
         )  # fmt: skip
-        out = self._output_of(sw)
-        return sw if out is None else dataclasses.replace(sw, output=out)
 
-    def _output_of(self, sw: SceneSweep) -> np.ndarray | None:
+    def _output_of(self, names: tuple[str, ...], coords: np.ndarray) -> np.ndarray | None:
         """The output coordinate along a sweep, from its reported points (None: no output, or
         its points are not among those reported)."""
         o = self.output
         if o is None:
             return None
-        pts, d = sw.points, self._data
+        d = self._data
+        pts = {n: coords[:, j] for j, n in enumerate(names)}
         if "link" in d["output"]:
             link, pivot = o
             tip = next(q for q in d["links"][link] if q != pivot)
