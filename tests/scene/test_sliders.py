@@ -10,15 +10,8 @@ import planarkin as pk
 import pytest
 from planarkin.reference import scene_sweep
 
-SLIDERS = [
-    "elliptic-trammel",
-    "hydraulic-boom",
-    "inverted-slider-crank",
-    "scotch-yoke",
-    "slider-crank",
-    "slider-crank-offset",
-    "whitworth",
-]
+#: The built-in scenes with slots or prismatic pairs.
+SLIDERS = [n for n in pk.scenes.names() if {"slots", "prismatic"} & set(pk.scenes.data(n))]
 
 
 def pt(sc, name):
@@ -162,6 +155,7 @@ def moved(sc, f=1.0, angle=0.0, shift=(0.0, 0.0)):
 
 @pytest.mark.parametrize("name", SLIDERS)
 def test_power_of_two_scaling_is_bit_stable(name):
+    assert len(SLIDERS) == 7
     sc = pk.scenes.load(name)
     ref = sc.sweep(outputs="all")
     for e in (-600, -3, 7, 600):

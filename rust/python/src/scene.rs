@@ -3,8 +3,7 @@
 
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use planarkin_core::scene::{
-    Assemblies, LinearKind, Plan, PrismaticSpec, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, SlotSpec, Trace,
-    TraceOptions,
+    Assemblies, LinearKind, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace, TraceOptions,
 };
 use planarkin_core::solve::homotopy::HomotopyOptions;
 use planarkin_core::NewtonOptions;
@@ -56,11 +55,8 @@ impl PyScene {
             ground,
             input,
             output,
-            slots: slots.into_iter().map(|(n, (point, guide, line))| (n, SlotSpec { point, guide, line })).collect(),
-            prismatic: prismatic
-                .into_iter()
-                .map(|(n, (link, guide, line))| (n, PrismaticSpec { link, guide, line }))
-                .collect(),
+            slots: slots.into_iter().map(|(n, j)| (n, j.into())).collect(),
+            prismatic: prismatic.into_iter().map(|(n, j)| (n, j.into())).collect(),
             linear_input,
         };
         Ok(Self { inner: Scene::new(spec).map_err(err)? })

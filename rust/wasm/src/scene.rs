@@ -9,7 +9,7 @@
 use std::f64::consts::TAU;
 
 use planarkin_core::scene::{
-    LinearKind, Plan, PrismaticSpec, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, SlotSpec, Trace, TraceOptions,
+    LinearKind, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace, TraceOptions,
 };
 use planarkin_core::solve::homotopy::HomotopyOptions;
 use planarkin_core::{Never, NewtonOptions};
@@ -258,11 +258,8 @@ fn spec(data: &Value) -> Result<(SceneSpec, Extra), String> {
         ground,
         input,
         output,
-        slots: slots.into_iter().map(|(n, (point, guide, line))| (n, SlotSpec { point, guide, line })).collect(),
-        prismatic: prismatic
-            .into_iter()
-            .map(|(n, (link, guide, line))| (n, PrismaticSpec { link, guide, line }))
-            .collect(),
+        slots: slots.into_iter().map(|(n, j)| (n, j.into())).collect(),
+        prismatic: prismatic.into_iter().map(|(n, j)| (n, j.into())).collect(),
         linear_input,
     };
     Ok((spec, (outputs, linear_output)))

@@ -78,6 +78,20 @@ pub struct PrismaticSpec {
     pub line: (String, String),
 }
 
+impl From<(String, String, (String, String))> for SlotSpec {
+    /// (point, guide, line).
+    fn from((point, guide, line): (String, String, (String, String))) -> Self {
+        Self { point, guide, line }
+    }
+}
+
+impl From<(String, String, (String, String))> for PrismaticSpec {
+    /// (link, guide, line).
+    fn from((link, guide, line): (String, String, (String, String))) -> Self {
+        Self { link, guide, line }
+    }
+}
+
 /// Which kind of prismatic joint drives a linear input.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LinearKind {

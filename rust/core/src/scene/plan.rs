@@ -649,41 +649,23 @@ fn prune(sc: &Scene, ops: Vec<Op>, want_points: &[usize], want_links: &[usize]) 
     let mut steps: Vec<StepInfo> = Vec::new();
     let mut step_op = Vec::new();
     for (i, op) in kept.iter().enumerate() {
-        let s = match op {
+        let opens = match op {
             Op::Input { .. } => None,
-            Op::Dyad(d) => {
-                steps.push(StepInfo { kind: StepKind::Dyad, points: vec![], unknowns: d.links.to_vec() });
+            Op::Carry { .. } | Op::StrokeCarry { .. } | Op::Offset { .. } => None,
+            Op::Dyad(d) | Op::StrokeDyad(d, _) => Some((StepKind::Dyad, d.links.to_vec())),
+            Op::Group(g) => Some((StepKind::Group, g.links.clone())),
+            Op::Rrp(r) => Some((StepKind::Rrp, r.links.to_vec())),
+            Op::Pp(l) => Some((StepKind::Pp, l.links.to_vec())),
+            Op::Rpr(r) => Some((StepKind::Rpr, r.links.to_vec())),
+        };
+        let s = match opens {
+            Some((kind, unknowns)) => {
+                steps.push(StepInfo { kind, points: vec![], unknowns });
                 step_op.push(i);
                 Some(steps.len() - 1)
             }
-            Op::Group(g) => {
-                steps.push(StepInfo { kind: StepKind::Group, points: vec![], unknowns: g.links.clone() });
-                step_op.push(i);
-                Some(steps.len() - 1)
-            }
-            Op::Carry { .. } | Op::StrokeCarry { .. } | Op::Offset { .. } => {
-                op.inputs().iter().map(|&p| producer[p]).max().flatten()
-            }
-            Op::StrokeDyad(d, _) => {
-                steps.push(StepInfo { kind: StepKind::Dyad, points: vec![], unknowns: d.links.to_vec() });
-                step_op.push(i);
-                Some(steps.len() - 1)
-            }
-            Op::Rrp(r) => {
-                steps.push(StepInfo { kind: StepKind::Rrp, points: vec![], unknowns: r.links.to_vec() });
-                step_op.push(i);
-                Some(steps.len() - 1)
-            }
-            Op::Pp(l) => {
-                steps.push(StepInfo { kind: StepKind::Pp, points: vec![], unknowns: l.links.to_vec() });
-                step_op.push(i);
-                Some(steps.len() - 1)
-            }
-            Op::Rpr(r) => {
-                steps.push(StepInfo { kind: StepKind::Rpr, points: vec![], unknowns: r.links.to_vec() });
-                step_op.push(i);
-                Some(steps.len() - 1)
-            }
+            // a carry joins the step that made its latest input
+            None => op.inputs().iter().map(|&p| producer[p]).max().flatten(),
         };
         for p in op.outputs() {
             producer[p] = s;
