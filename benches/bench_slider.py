@@ -76,8 +76,10 @@ class PylinkageSlider:
     def run(self) -> np.ndarray:
         c, s = math.cos(-self.step), math.sin(-self.step)
         a = self.p["A"]
-        self.linkage.set_coords([tuple(self.p["O2"]), tuple(self.p["X"]),
-                                 (c * a[0] - s * a[1], s * a[0] + c * a[1]), tuple(self.p["B"])])  # fmt: skip
+        turned = (c * a[0] - s * a[1], s * a[0] + c * a[1])
+        self.linkage.set_coords(
+            [tuple(self.p["O2"]), tuple(self.p["X"]), turned, tuple(self.p["B"])]
+        )
         return self.linkage.step_fast(iterations=self.n)
 
 

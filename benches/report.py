@@ -326,6 +326,25 @@ def scene_targets(bench: Bench) -> list[tuple[str, str, str, str]]:
                     _verdict(nit < 1.5),
                 )
             )
+    sk, sl, sn = (bench.median(k) for k in ("slider_pk", "slider_pylinkage", "slider_numpy"))
+    if sk and sl:
+        out.append(
+            (
+                "slider-crank (piston, 361 angles) >= 3x faster than pylinkage + numba (RRPDyad)",
+                f"{_t(sk)} vs {_t(sl)}",
+                f"{sl / sk:.2f}x faster",
+                _verdict(sl / sk >= 3),
+            )
+        )
+    if sk and sn:
+        out.append(
+            (
+                "slider-crank faster than the NumPy closed form written as a user would",
+                f"{_t(sk)} vs {_t(sn)}",
+                f"{sn / sk:.2f}x faster",
+                _verdict(sn > sk),
+            )
+        )
     one, full = bench.median("scene_plan_first_dyad"), bench.median("scene_plan_all")
     if one and full:
         out.append(
@@ -519,6 +538,7 @@ def render() -> None:
         ("growth with M", None, None),
         ("overhead", "ovh_solve", 1),
         ("scene: Jansen", "scene_jansen_pk", 361),
+        ("scene: centred slider-crank", "slider_pk", 361),
         ("scene: groups", None, 361),
         ("scene: Watt", "scene_plan_all", 361),
         ("scene: double butterfly", None, 0),

@@ -232,8 +232,9 @@ def scene_figures(name: str) -> dict[str, Figure]:
     figs = {
         "linkage": scene_fig.linkage(sc, whole),
         "conditioning": scene_fig.conditioning(sc, sw),
-        "circuits": circuits_fig.circuits(sc, sc.circuits(), sc.input_angle),
     }
+    if not (sc.slots or sc.prismatic):  # circuits of slider scenes are not traced yet
+        figs["circuits"] = circuits_fig.circuits(sc, sc.circuits(), sc.input_angle)
     t = scene_fig.tracers(sc, sw)
     if t is not None:
         figs["tracers"] = t
