@@ -87,8 +87,9 @@ class _System:
         ):
             raise ValueError(f"input pivot {self.pivot!r} must be on ground and input links")
         out = scene.get("output")
-        pivoted_out = isinstance(out, Mapping) and "link" in out
-        self.output = (str(out["link"]), str(out["pivot"])) if pivoted_out else None
+        self.output = None
+        if isinstance(out, Mapping) and "link" in out:  # an angle output (not a linear one)
+            self.output = (str(out["link"]), str(out["pivot"]))
 
         # the scene's size: its longest link (largest distance between two points of a link)
         self.size = 0.0
