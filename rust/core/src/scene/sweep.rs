@@ -40,6 +40,12 @@ const STEP_ITER: u32 = 5;
 /// A converged group whose rotations moved more than this from the prediction (with a
 /// prediction made over at most one `max_step`) has jumped to another solution.
 const JUMP: f64 = 0.25;
+/// A group whose last conditioning is below this is near a dead point: a step that fails
+/// there gets up to NEAR_DEAD_ITER Newton steps and a mirrored start.
+const NEAR_DEAD: f64 = 1e-2;
+/// Newton steps near a dead point, where it converges linearly: enough to halve an error
+/// of 1e-2 down to a tolerance of 1e-9 (at most the user's max_iter).
+const NEAR_DEAD_ITER: u32 = 25;
 /// A dyad changes side only over a step shorter than `max_step / 2^FLIP_HALVINGS`: there a
 /// prediction that crosses zero is a change point, not a near miss.
 const FLIP_HALVINGS: i32 = 14;
@@ -140,6 +146,8 @@ struct GroupState {
     /// Sign of the conditioning on the branch followed (as drawn; it changes at a change
     /// point).
     sign: f64,
+    /// The conditioning at the last solution (NaN before the first).
+    det: f64,
 }
 
 impl GroupState {
@@ -236,6 +244,7 @@ impl<'p> Solver<'p> {
                         previous: None,
                         limit: None,
                         sign: g.sign,
+                        det: f64::NAN,
                     }),
                     _ => None,
                 })
@@ -484,17 +493,20 @@ impl<'p> Solver<'p> {
         };
         let mut out: GroupSolve = solve(&guess[..n], &self.step_newton);
         self.nit += out.nit;
-        if out.status == Status::MaxIterations && self.opts.newton.max_iter > self.step_newton.max_iter {
-            // Newton converges only linearly near a dead point: give it the user's budget
-            out = solve(&guess[..n], &self.opts.newton);
+        let near_dead = !(state.det.abs() >= NEAR_DEAD);
+        let near_newton = NewtonOptions { max_iter: self.opts.newton.max_iter.min(NEAR_DEAD_ITER), ..self.opts.newton };
+        if near_dead && out.status == Status::MaxIterations && near_newton.max_iter > self.step_newton.max_iter {
+            // Newton converges only linearly near a dead point (the error halves per step):
+            // give it enough steps for that
+            out = solve(&guess[..n], &near_newton);
             self.nit += out.nit;
         }
         let mut sign = state.sign;
-        if out.status == Status::Converged && out.det * sign < 0.0 {
+        if near_dead && out.status == Status::Converged && out.det * sign < 0.0 {
             // near a dead point both branches are close: the prediction reflected through
             // the solution found starts Newton on the other one
             let mirror: Vec<f64> = (0..n).map(|k| guess[k] - wrap_angle(out.phi[k] - guess[k])).collect();
-            let again = solve(&mirror, &self.opts.newton);
+            let again = solve(&mirror, &near_newton);
             self.nit += again.nit;
             if again.status == Status::Converged && again.det * sign > 0.0 && jump(&again, &guess[..n]) <= JUMP {
                 out = again;
@@ -540,22 +552,26 @@ impl<'p> Solver<'p> {
         st.theta = theta;
         st.phi = out.phi;
         st.sign = sign;
+        st.det = out.det;
         st.limit = None;
         (Status::Converged, out.det)
     }
 
-    /// Continuation to `to` from where the groups are (the one farthest away sets the
-    /// start): uniform steps of at most `max_step`, each halved while some group fails; a
+    /// Continuation to `to` from where the groups and dyads are (the one farthest away sets
+    /// the start; one stopped at a dead point that `to` lies beyond does not): uniform steps of at most `max_step`, each halved while some group fails; a
     /// group that still fails at the smallest step has met a dead point there, and angles
     /// past it are LIMIT. Ends with an evaluation at `to`. Every step is counted on `poll`
     /// (a small `max_step` makes many).
     fn advance(&mut self, to: f64, poll: &Poll<'_>) -> Result<(), Error> {
+        // a state stopped at a dead point that `to` lies beyond stays there: it sets no start
+        let moves = |limit: Option<(f64, f64)>| limit.is_none_or(|(at, dir)| (to - at) * dir <= 0.0);
         let from = self
             .groups
             .iter()
             .flatten()
+            .filter(|g| moves(g.limit))
             .map(|g| g.theta)
-            .chain(self.dyads.iter().flatten().map(|d| d.theta))
+            .chain(self.dyads.iter().flatten().filter(|d| moves(d.limit)).map(|d| d.theta))
             .max_by(|a, b| (a - to).abs().total_cmp(&(b - to).abs()))
             .unwrap_or(to);
         let h = to - from;
