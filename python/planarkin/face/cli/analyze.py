@@ -629,12 +629,14 @@ def scene_table(s: dict) -> str:
         rows.append(
             ("|conditioning|", f"{s['conditioning_min']:.3g} .. {s['conditioning_max']:.3g}")
         )
+    # a linear input's values are displacements (the keys keep their names in the JSON)
+    unit = "deg" if s["input_kind"] == "angle" else (s["units"] or "length")
     if s["dead_points_deg"]:
         dead = ", ".join(f"{v:.4f}" for v in s["dead_points_deg"])
-        rows.append(("dead points met (deg)", dead + " (the input must reverse there)"))
+        rows.append((f"dead points met ({unit})", dead + " (the input must reverse there)"))
     if s["motion_stops_deg"]:
         stops = ", ".join(f"{e['deg']:.1f}" for e in s["motion_stops_deg"])
-        rows.append(("motion stops near (deg)", stops))
+        rows.append((f"motion stops near ({unit})", stops))
     return table(rows)
 
 
