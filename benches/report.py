@@ -291,29 +291,22 @@ def _verdict(ok: bool | None) -> str:
     return "n/a" if ok is None else ("**met**" if ok else "**missed**")
 
 
+def _faster(target: str, ours: float | None, peer: float | None, at_least: float):
+    """A (target, measured, ratio, verdict) row: ours at least ``at_least`` times faster."""
+    if not (ours and peer):
+        return []
+    return [(target, f"{_t(ours)} vs {_t(peer)}", f"{peer / ours:.2f}x faster",
+             _verdict(peer / ours >= at_least))]  # fmt: skip
+
+
 def scene_targets(bench: Bench) -> list[tuple[str, str, str, str]]:
     """(target, measured, ratio, verdict) for the scenes issue's targets."""
-    out = []
     pk, pl, npc = (bench.median(k) for k in ("scene_jansen_pk", "scene_jansen_pylinkage",
                                              "scene_jansen_numpy"))  # fmt: skip
-    if pk and pl:
-        out.append(
-            (
-                "Jansen's leg (foot, 361 angles) >= 3x faster than pylinkage + numba",
-                f"{_t(pk)} vs {_t(pl)}",
-                f"{pl / pk:.2f}x faster",
-                _verdict(pl / pk >= 3),
-            )
-        )
-    if pk and npc:
-        out.append(
-            (
-                "Jansen's leg faster than a vectorized NumPy circle-intersection chain",
-                f"{_t(pk)} vs {_t(npc)}",
-                f"{npc / pk:.2f}x faster",
-                _verdict(npc > pk),
-            )
-        )
+    out = _faster("Jansen's leg (foot, 361 angles) >= 3x faster than pylinkage + numba",
+                  pk, pl, 3)  # fmt: skip
+    out += _faster("Jansen's leg faster than a vectorized NumPy circle-intersection chain",
+                   pk, npc, 1)  # fmt: skip
     for name in ("double-butterfly-1", "double-butterfly-2"):
         row = bench.get(f"scene_group_{name}")
         if row:
@@ -327,24 +320,10 @@ def scene_targets(bench: Bench) -> list[tuple[str, str, str, str]]:
                 )
             )
     sk, sl, sn = (bench.median(k) for k in ("slider_pk", "slider_pylinkage", "slider_numpy"))
-    if sk and sl:
-        out.append(
-            (
-                "slider-crank (piston, 361 angles) >= 3x faster than pylinkage + numba (RRPDyad)",
-                f"{_t(sk)} vs {_t(sl)}",
-                f"{sl / sk:.2f}x faster",
-                _verdict(sl / sk >= 3),
-            )
-        )
-    if sk and sn:
-        out.append(
-            (
-                "slider-crank faster than the NumPy closed form written as a user would",
-                f"{_t(sk)} vs {_t(sn)}",
-                f"{sn / sk:.2f}x faster",
-                _verdict(sn > sk),
-            )
-        )
+    out += _faster("slider-crank (piston, 361 angles) >= 3x faster than pylinkage + numba "
+                   "(RRPDyad)", sk, sl, 3)  # fmt: skip
+    out += _faster("slider-crank faster than the NumPy closed form written as a user would",
+                   sk, sn, 1)  # fmt: skip
     one, full = bench.median("scene_plan_first_dyad"), bench.median("scene_plan_all")
     if one and full:
         out.append(
