@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 from planarkin import Status
 from planarkin.reference import scene as ref
+from planarkin.scene._model import KEYS
 
 #: Where the built-in scenes live (package data of planarkin.scene.builtin).
 HERE = Path(__file__).resolve().parents[1] / "python" / "planarkin" / "scene" / "builtin"
@@ -795,19 +796,7 @@ def check(name, scene, lo=None, hi=None):
 
 
 def write(name, scene):
-    order = (
-        "name",
-        "description",
-        "units",
-        "points",
-        "links",
-        "ground",
-        "input",
-        "output",
-        "outputs",
-        "slots",
-        "prismatic",
-    )
+    order = KEYS  # the scene format's keys, in the order the files list them
     out = {k: scene[k] for k in order if k in scene}
     out["points"] = {k: [float(v[0]), float(v[1])] for k, v in scene["points"].items()}
     rows = []

@@ -65,29 +65,32 @@ struct DyadState {
     limit: Option<(f64, f64)>,
 }
 
-/// What [`DyadState::choose`] decided: the side and its conditioning, or a status.
-type Choice = Result<(f64, f64), (Status, f64)>;
+/// What [`DyadState::choose`] decided: the side, its conditioning and its solve, or a
+/// status.
+type Choice<T> = Result<(f64, f64, T), (Status, f64)>;
 
 impl DyadState {
     /// The side at `theta` of an operation whose conditioning on a side is `det_on(side)`
     /// (None: it cannot close): the side carried, flipped where the other side fits the
     /// prediction (over a step no longer than `fine`: a change point); LIMIT past a dead
     /// point met before; SINGULAR at a dead point (reached: the state moves there).
-    fn choose(
+    /// `solve(side)` gives the conditioning and the solve on a side; the chosen one is
+    /// returned, not solved again.
+    fn choose<T>(
         &mut self,
         theta: f64,
         max_step: f64,
         fine: bool,
         singular: f64,
-        det_on: impl Fn(f64) -> Option<f64>,
-    ) -> Choice {
+        solve: impl Fn(f64) -> Option<(f64, T)>,
+    ) -> Choice<T> {
         if let Some((at, dir)) = self.limit {
             if (theta - at) * dir > 0.0 {
                 return Err((Status::Limit, f64::NAN));
             }
         }
         let mut side = self.side;
-        let Some(mut det) = det_on(side) else { return Err((Status::NotAssemblable, f64::NAN)) };
+        let Some((mut det, mut out)) = solve(side) else { return Err((Status::NotAssemblable, f64::NAN)) };
         let pred = self.predict(theta, max_step);
         // the other side fits the prediction better: the links went through a line
         if (pred - det).abs() > (pred + det).abs() {
@@ -95,9 +98,8 @@ impl DyadState {
                 return Err((Status::BranchJump, det));
             }
             side = -side;
-            if let Some(t) = det_on(side) {
-                det = t;
-            }
+            let Some(other) = solve(side) else { return Err((Status::NotAssemblable, f64::NAN)) };
+            (det, out) = other;
         }
         if !(det.abs() >= singular) {
             if det.is_nan() {
@@ -107,7 +109,7 @@ impl DyadState {
             *self = DyadState { side, theta, det, ..*self };
             return Err((Status::Singular, det));
         }
-        Ok((side, det))
+        Ok((side, det, out))
     }
 
     /// Commits a solve on `side`; `ddet` NaN: the slope from the last commit (secant).
@@ -389,16 +391,15 @@ impl<'p> Solver<'p> {
         let mut state = self.dyads[i].expect("a dyad has a state");
         let chosen = state.choose(theta, self.opts.max_step, self.fine(), self.opts.newton.singular, |side| {
             match d.solve_side(a, b, side) {
-                DyadOut::Solved(_, det) => Some(det),
+                DyadOut::Solved(p, det) => Some((det, p)),
                 _ => None,
             }
         });
         self.dyads[i] = Some(state);
-        let (side, det) = match chosen {
+        let (side, det, p) = match chosen {
             Ok(c) => c,
             Err(r) => return r,
         };
-        let DyadOut::Solved(p, _) = d.solve_side(a, b, side) else { unreachable!("solved just now") };
         self.pos[d.p] = p;
         let (va, vb) = (self.vel[d.k1], self.vel[d.k2]);
         let Some(v) = Dyad::velocity(p, a, b, va, vb) else { return (Status::Singular, det) };
@@ -439,22 +440,23 @@ impl<'p> Solver<'p> {
         let singular = self.opts.newton.singular;
         // the fused guide reads the displacement in the solving frame
         let s = if self.plan.linear { theta / self.plan.scale } else { theta };
-        let (side, mut state) = if op.sided() {
+        let k: Known<'_> = [&self.pos, &self.vel, &self.acc];
+        // one solve per side tried, with its rates: the chosen one is kept
+        let (side, out, mut state) = if op.sided() {
             let mut state = self.dyads[i].expect("a sided operation has a state");
-            let k: Known<'_> = [&self.pos, &self.vel, &self.acc];
             let chosen = state.choose(theta, self.opts.max_step, self.fine(), singular, |side| {
-                op.solve_slider(s, k, side, false).map(|x| x.det)
+                op.solve_slider(s, k, side, true).map(|x| (x.det, x))
             });
             self.dyads[i] = Some(state);
             match chosen {
-                Ok((side, _)) => (side, Some(state)),
+                Ok((side, _, out)) => (side, out, Some(state)),
                 Err(r) => return r,
             }
         } else {
-            (1.0, None)
-        };
-        let Some(out) = op.solve_slider(s, [&self.pos, &self.vel, &self.acc], side, true) else {
-            return (Status::NotAssemblable, f64::NAN);
+            let Some(out) = op.solve_slider(s, k, 1.0, true) else {
+                return (Status::NotAssemblable, f64::NAN);
+            };
+            (1.0, out, None)
         };
         if !(out.det.abs() >= singular) {
             return (if out.det.is_nan() { Status::NonFinite } else { Status::Singular }, out.det);
