@@ -146,6 +146,9 @@ class Plan:
     def points(self) -> list[int]: ...
     @property
     def links(self) -> list[int]: ...
+    def stroke(
+        self, size: float, tol: float, max_iter: int, max_step: float
+    ) -> tuple[float, float]: ...
     def sweep(
         self,
         theta: _F64,

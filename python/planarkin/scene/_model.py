@@ -422,27 +422,13 @@ class Scene:
 
     def stroke(self) -> tuple[float, float]:
         """A linear input's reachable interval (lo <= 0 <= hi) from the drawn pose: its ends
-        are the dead points where the motion stops (found by following the motion out from
-        the drawn pose both ways, refined by the sweep's step halving)."""
+        are the dead points where the motion stops (the kernel follows the motion out from
+        the drawn pose both ways over 4 sizes of the drawing, and its step halving refines
+        each end)."""
         _entry(self.input_kind == "displacement", "input", "stroke() is for a linear input")
-        reach = 4.0 * self._size()
-        s = np.linspace(-reach, reach, 801)
-        sw = self.sweep(s, max_step=MAX_STEP * self._size())
-        ok = sw.success
-        ends = []
-        for side in (s < 0, s > 0):
-            beyond = side & ~ok
-            lim = sw.limit[beyond] if sw.limit is not None else np.array([])
-            lim = lim[np.isfinite(lim)]
-            if lim.size:
-                ends.append(float(lim.min() if side[0] else lim.max()))
-            else:
-                solved = s[side & ok]
-                if not solved.size:
-                    ends.append(0.0)
-                else:
-                    ends.append(float(solved.min() if side[0] else solved.max()))
-        return ends[0], ends[1]
+        _, core = self._compiled(None)
+        size = self._size()
+        return core.stroke(size, 1e-9, 100, MAX_STEP * size)
 
     def plan(self, outputs: Iterable[str] | str | None = None) -> Plan:
         """The steps that solve ``outputs`` (point or link names; None: the scene's

@@ -174,6 +174,15 @@ impl PyPlan {
         self.inner.links().to_vec()
     }
 
+    /// A linear input's stroke (lo, hi) for a drawing of extent `size` (Plan::stroke).
+    #[pyo3(signature = (size, tol, max_iter, max_step))]
+    fn stroke(&self, py: Python<'_>, size: f64, tol: f64, max_iter: i64, max_step: f64) -> PyResult<(f64, f64)> {
+        let opts =
+            SceneSweepOptions::new(NewtonOptions::new(tol, max_iter).map_err(err)?, max_step, None).map_err(err)?;
+        let plan = &self.inner;
+        Signals::detach(py, |signals| plan.stroke(size, &opts, signals))
+    }
+
     /// Sweep: (points (N,P,2), angles (N,L), status, nit, det, limit, step_status (N,S),
     /// step_det (N,S), point_status (N,P), (velocity (N,P,2), angular velocity (N,L),
     /// acceleration (N,P,2), angular acceleration (N,L))?).

@@ -27,9 +27,6 @@ const RUNS: i64 = 2;
 /// Python's default sweep: 361 input angles from the drawn one through one full turn (or
 /// 361 displacements across a linear input's stroke).
 const PATH_ANGLES: usize = 361;
-/// `Scene.stroke()`'s probe: 801 displacements across +-4 sizes of the drawing.
-const PROBE: usize = 801;
-const REACH: f64 = 4.0;
 
 /// A validated scene and the plan that solves every point, kept between requests.
 pub(crate) struct Kept {
@@ -303,22 +300,9 @@ impl Kept {
         Ok(kept)
     }
 
-    /// `Scene.stroke()`: the motion followed out from the drawn pose both ways over
-    /// displacements of up to 4 sizes; each end is the dead point where it stops (`limit`
-    /// of the inputs not reached on that side), else the farthest input reached.
+    /// `Scene.stroke()`: the core's `Plan::stroke` on this plan.
     fn find_stroke(&self, plan: &Plan) -> Result<(f64, f64), String> {
-        let reach = REACH * self.size;
-        let s = linspace(-reach, reach, PROBE);
-        let Solved { status, limit, .. } = raw_sweep(plan, &s, &self.opts)?;
-        let mut ends = [0.0; 2];
-        for (k, end) in ends.iter_mut().enumerate() {
-            let side = |i: usize| if k == 0 { s[i] < 0.0 } else { s[i] > 0.0 };
-            let pick = |a: f64, b: f64| if k == 0 { a.min(b) } else { a.max(b) };
-            let lim = (0..PROBE).filter(|&i| side(i) && status[i] != 0 && limit[i].is_finite()).map(|i| limit[i]);
-            let solved = (0..PROBE).filter(|&i| side(i) && status[i] == 0).map(|i| s[i]);
-            *end = lim.reduce(pick).or_else(|| solved.reduce(pick)).unwrap_or(0.0);
-        }
-        Ok((ends[0], ends[1]))
+        plan.stroke(self.size, &self.opts, &Never).map_err(|e| e.to_string())
     }
 
     /// Names, links (as point indices), ground, input (an angle's link and pivot, or a linear

@@ -17,6 +17,7 @@ mod group;
 mod options;
 mod plan;
 mod slide;
+mod stroke;
 mod sweep;
 mod trace;
 mod validate;
