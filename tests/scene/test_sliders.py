@@ -137,7 +137,10 @@ def test_elliptic_trammel_draws_its_ellipse():
     np.testing.assert_allclose(sw.points["A"][inner, 0], a[inner], rtol=0, atol=1e-12 * big_l)
     b = np.sqrt(big_l**2 - a**2)
     want = np.stack([a * (1 - p / big_l), b * p / big_l], -1)
-    assert rel(sw.points["P"][inner], want[inner], big_l) < 1e-12
+    assert rel(sw.points["P"][1:-1], want[1:-1], big_l) < 1e-12
+    # the stroke's ends are the dead points themselves (|det| ~ 1e-6), where P moves as
+    # the square root of the distance to them: rounding of the input is amplified there
+    assert rel(sw.points["P"][[0, -1]], want[[0, -1]], big_l) < 1e-9
 
 
 # --- the drawing: scale, rotation, translation -------------------------------------------
@@ -193,7 +196,10 @@ def test_rotation_and_translation_move_the_motion_with_the_drawing(name):
 def test_kernel_matches_the_numpy_reference(name):
     sc = pk.scenes.load(name)
     sw = sc.sweep(outputs="all")
-    theta = sw.theta[1:-1] if sc.input_kind == "displacement" else sw.theta
+    # (a linear input's default values run from dead point to dead point; the reference
+    # marches there with a linear predictor in substeps of 1 degree of size, which fails
+    # within a few tenths of a percent of the stroke from its ends)
+    theta = sw.theta[2:-2] if sc.input_kind == "displacement" else sw.theta
     sw = sc.sweep(theta, outputs="all")
     ref = scene_sweep(sc.to_dict(), theta)
     np.testing.assert_array_equal(ref.status, sw.status)

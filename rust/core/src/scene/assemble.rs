@@ -165,13 +165,17 @@ impl Walk<'_> {
     ) -> Result<(), Error> {
         {
             {
-                let nc = g.closures.len();
-                let delta = g.deltas(|p| pos[p]);
-                let (a, b) = g.linear_form(&delta[..nc]);
+                let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
+                let Some((a, b)) = g.linear_form(&anchors) else {
+                    return Err(Error::scene(
+                        "assemblies",
+                        "every assembly of a Newton group with slots or prismatic pairs is not available yet \
+                         (its loop equations are bilinear in the displacements)",
+                    ));
+                };
                 let sol = unit_circle_solutions_polled(&a, &b, &self.opts, &self.poll)?;
                 self.out.complex_counts[self.group_slot[i]].push(sol.complex.len());
                 self.out.failed_paths += sol.failed;
-                let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
                 // each solution's elbows (the joints' assembly modes) label it
                 let mut real: Vec<(String, f64, Vec<f64>)> = sol
                     .real
@@ -179,7 +183,7 @@ impl Walk<'_> {
                     .map(|phi| {
                         let mut at = pos.to_vec();
                         g.place(&phi, &anchors, |p, xy| at[p] = xy);
-                        (g.elbow_label(|p| at[p]), g.conditioning_with(&phi, &delta[..nc]), phi)
+                        (g.elbow_label(|p| at[p]), g.conditioning_with(&phi, &anchors), phi)
                     })
                     .collect();
                 real.sort_by(|x, y| x.0.cmp(&y.0).then(x.2[0].total_cmp(&y.2[0])));

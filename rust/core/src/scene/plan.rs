@@ -177,9 +177,9 @@ impl Plan {
             .map(|&i| match &self.ops[i] {
                 Op::Dyad(d) => d.det_at(pos[d.p], pos[d.k1], pos[d.k2]),
                 Op::Group(g) => {
-                    let phi = g.rotations_from(|p| pos[p]);
-                    let delta = g.deltas(|p| pos[p]);
-                    g.conditioning_with(&phi, &delta[..g.closures.len()])
+                    let x = g.unknowns_from(|p| pos[p]);
+                    let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
+                    g.conditioning_with(&x, &anchors)
                 }
                 op => op.slider_det_at(0.0, pos),
             })
@@ -280,16 +280,6 @@ pub(super) fn compile(sc: &Scene, want_points: &[usize], want_links: &[usize]) -
             }
             ops.push(op);
             continue;
-        }
-        if !sc.slots.is_empty() || !sc.prismatic.is_empty() {
-            let unknown: Vec<&str> = (0..np).filter(|&p| !known[p]).map(|p| sc.names[p].as_str()).collect();
-            return Err(Error::scene(
-                "plan",
-                format!(
-                    "points {unknown:?} are not reached by closed forms (dyads, circle-line, line-line, a \
-                     guide through a point); groups of links with slots or prismatic pairs are not solved yet"
-                ),
-            ));
         }
         let g = find_group(sc, &known)?;
         for nd in &g.nodes {
@@ -550,18 +540,11 @@ fn find_dyad(sc: &Scene, fused: Option<&Fused>, known: &[bool]) -> Option<Op> {
 fn find_group(sc: &Scene, known: &[bool]) -> Result<Group, Error> {
     let cand: Vec<usize> = (0..sc.links.len()).filter(|&l| sc.links[l].points.iter().any(|&p| !known[p])).collect();
     let unknown: Vec<&str> = (0..sc.names.len()).filter(|&p| !known[p]).map(|p| sc.names[p].as_str()).collect();
-    let dof = |set: &[usize]| -> i64 {
-        let mut m = std::collections::HashMap::<usize, i64>::new();
-        for &l in set {
-            for &p in &sc.links[l].points {
-                *m.entry(p).or_default() += 1;
-            }
-        }
-        let c: i64 = m.iter().map(|(&p, &k)| if known[p] { 2 * k } else { 2 * (k - 1) }).sum();
-        3 * set.len() as i64 - c
-    };
     let mut examined = 0usize;
-    for size in (2..=cand.len().min(MAX)).step_by(2) {
+    // revolute groups have an even number of links; with sliders any number can be rigid
+    let sliders = !sc.slots.is_empty() || !sc.prismatic.is_empty();
+    let (first, by) = if sliders { (1, 1) } else { (2, 2) };
+    for size in (first..=cand.len().min(MAX)).step_by(by) {
         let mut idx: Vec<usize> = (0..size).collect();
         loop {
             examined += 1;
@@ -572,9 +555,8 @@ fn find_group(sc: &Scene, known: &[bool]) -> Result<Group, Error> {
                 ));
             }
             let set: Vec<usize> = idx.iter().map(|&i| cand[i]).collect();
-            if dof(&set) == 0 {
-                let pts: Vec<&[usize]> = set.iter().map(|&l| sc.links[l].points.as_slice()).collect();
-                if let Some(g) = Group::build(&set, &pts, known, &sc.xy) {
+            if Group::freedom(sc, &set, known) == 0 {
+                if let Some(g) = Group::build(sc, &set, known) {
                     return Ok(g);
                 }
             }

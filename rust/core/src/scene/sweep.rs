@@ -17,7 +17,7 @@
 use super::columns;
 use super::dyad::{Dyad, DyadOut};
 use super::eval::Known;
-use super::group::{GroupSolve, MAX};
+use super::group::{Group, GroupSolve, MAX};
 use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
 use super::vec2::{angular_acceleration, cross, dot, perp, sub, Xy};
@@ -156,7 +156,8 @@ impl GroupState {
     /// Second order from the last two tangents; first order with one; the last solution
     /// itself after a gap or where the tangent is steep (a prediction over several steps,
     /// or across a dead point's square-root turn, is worse than none).
-    fn predict(&self, theta: f64, n: usize, max_step: f64) -> [f64; MAX] {
+    fn predict(&self, theta: f64, g: &Group, max_step: f64) -> [f64; MAX] {
+        let n = g.n();
         let h = theta - self.theta;
         let mut x = self.phi;
         if h.abs() > 4.0 * max_step {
@@ -169,7 +170,7 @@ impl GroupState {
                 // the cubic through both solutions with both tangents (Hermite), one step on
                 Some(t0) => {
                     let s = t1.theta - t0.theta;
-                    let dp = wrap_angle(t1.phi[k] - t0.phi[k]);
+                    let dp = g.gap(k, t1.phi[k], t0.phi[k]);
                     let (a, b) = (t0.dphi[k], t1.dphi[k]);
                     let c2 = (3.0 * dp / s - 2.0 * a - b) / s;
                     let c3 = (a + b - 2.0 * dp / s) / (s * s);
@@ -485,14 +486,12 @@ impl<'p> Solver<'p> {
                 return (Status::Limit, f64::NAN);
             }
         }
-        let guess = state.predict(theta, n, self.opts.max_step);
-        let delta = g.deltas(|p| self.pos[p]);
-        let ddelta = g.deltas(|p| self.vel[p]);
-        let nc = g.closures.len();
-        let solve = |guess: &[f64], opts: &NewtonOptions| g.solve(&delta[..nc], Some(&ddelta[..nc]), guess, opts);
-        let jump = |out: &GroupSolve, guess: &[f64]| {
-            (0..n).map(|k| wrap_angle(out.phi[k] - guess[k]).abs()).fold(0.0, f64::max)
-        };
+        let guess = state.predict(theta, g, self.opts.max_step);
+        let anchors: Vec<Xy> = g.anchors.iter().map(|&a| self.pos[a]).collect();
+        let anchor_vel: Vec<Xy> = g.anchors.iter().map(|&a| self.vel[a]).collect();
+        let solve = |guess: &[f64], opts: &NewtonOptions| g.solve(&anchors, Some(&anchor_vel), guess, opts);
+        let jump =
+            |out: &GroupSolve, guess: &[f64]| (0..n).map(|k| g.gap(k, out.phi[k], guess[k]).abs()).fold(0.0, f64::max);
         let mut out: GroupSolve = solve(&guess[..n], &self.step_newton);
         self.nit += out.nit;
         let near_dead = !(state.det.abs() >= NEAR_DEAD);
@@ -507,7 +506,7 @@ impl<'p> Solver<'p> {
         if near_dead && out.status == Status::Converged && out.det * sign < 0.0 {
             // near a dead point both branches are close: the prediction reflected through
             // the solution found starts Newton on the other one
-            let mirror: Vec<f64> = (0..n).map(|k| guess[k] - wrap_angle(out.phi[k] - guess[k])).collect();
+            let mirror: Vec<f64> = (0..n).map(|k| guess[k] - g.gap(k, out.phi[k], guess[k])).collect();
             let again = solve(&mirror, &near_newton);
             self.nit += again.nit;
             if again.status == Status::Converged && again.det * sign > 0.0 && jump(&again, &guess[..n]) <= JUMP {
@@ -526,19 +525,16 @@ impl<'p> Solver<'p> {
         if status != Status::Converged {
             return (status, out.det);
         }
-        let anchors: Vec<Xy> = g.anchors.iter().map(|&a| self.pos[a]).collect();
         let pos = &mut self.pos;
         g.place(&out.phi[..n], &anchors, |p, xy| pos[p] = xy);
-        let pos = &self.pos;
         let vel = &mut self.vel;
-        let anchor_vel: Vec<Xy> = g.anchors.iter().map(|&a| vel[a]).collect();
-        g.place_velocity(&out.dphi[..n], |p| pos[p], &anchor_vel, |p, v| vel[p] = v);
+        g.place_velocity(&out.phi[..n], &out.dphi[..n], &anchors, &anchor_vel, |p, v| vel[p] = v);
         if self.need_acc {
-            let dd2 = g.deltas(|p| self.acc[p]);
-            let ddphi = g.second(&out.phi[..n], &out.dphi[..n], &dd2[..nc]).unwrap_or([f64::NAN; MAX]);
             let anchor_acc: Vec<Xy> = g.anchors.iter().map(|&a| self.acc[a]).collect();
+            let k = [&anchors[..], &anchor_vel[..], &anchor_acc[..]];
+            let ddphi = g.second(&out.phi[..n], &out.dphi[..n], k).unwrap_or([f64::NAN; MAX]);
             let acc = &mut self.acc;
-            g.place_acceleration(&out.dphi[..n], &ddphi[..n], |p| pos[p], &anchor_acc, |p, w| acc[p] = w);
+            g.place_acceleration(&out.phi[..n], &out.dphi[..n], &ddphi[..n], k, |p, w| acc[p] = w);
         }
         for nd in &g.nodes {
             self.pst[nd.point] = Status::Converged;
@@ -808,7 +804,8 @@ impl Plan {
         let (limit, none) = (Status::Limit.code(), Status::NotAssemblable.code());
         let (np, ns) = (self.points.len(), self.steps.len());
         let hopts = HomotopyOptions::default();
-        if self.ops.iter().any(|o| matches!(o, Op::Group(g) if g.n() > CLASSIFIED_GROUP)) {
+        // (groups with sliders: their assemblies are not enumerated; LIMIT stays)
+        if self.ops.iter().any(|o| matches!(o, Op::Group(g) if g.n() > CLASSIFIED_GROUP || g.has_slides())) {
             return Ok(());
         }
         for (k, &t) in theta.iter().enumerate() {

@@ -91,21 +91,14 @@ pub struct Tracer<'s> {
 impl<'s> Tracer<'s> {
     /// The chain of every non-ground link over the ground points.
     pub fn new(scene: &'s Scene) -> Result<Self, Error> {
-        let Some(pivoted) = scene.input.filter(|_| scene.slots.is_empty() && scene.prismatic.is_empty()) else {
-            return Err(Error::scene(
-                "trace",
-                "tracing circuits through dead points is not available yet for scenes with slots or prismatic pairs",
-            ));
-        };
         let links: Vec<usize> = (0..scene.links.len()).filter(|&l| l != scene.ground).collect();
-        let pts: Vec<&[usize]> = links.iter().map(|&l| scene.links[l].points.as_slice()).collect();
         let mut known = vec![false; scene.names.len()];
         for &p in &scene.links[scene.ground].points {
             known[p] = true;
         }
-        let chain = Group::tree(&links, &pts, &known, &scene.xy, 1)
+        let chain = Group::tree(scene, &links, &known, true)
             .ok_or_else(|| Error::scene("trace", "the links do not form one connected linkage over the ground"))?;
-        let input = links.iter().position(|&l| l == pivoted.link).expect("the input is not ground");
+        let input = chain.input.expect("a chain has an input column");
         Ok(Tracer { chain, input, plan: scene.plan(None)?, scene })
     }
 
@@ -117,17 +110,12 @@ impl<'s> Tracer<'s> {
         self.chain.anchors.iter().map(|&p| self.scene.xy[p]).collect()
     }
 
-    fn delta(&self) -> Vec<Xy> {
-        let d = self.chain.deltas(|p| self.scene.xy[p]);
-        d[..self.chain.closures.len()].to_vec()
-    }
-
     /// F and dF at rotations x.
     fn eval(&self, x: &[f64], delta: &[Xy]) -> (DVector<f64>, DMatrix<f64>) {
         let m = 2 * self.chain.closures.len();
         let mut f = DVector::zeros(m);
         let mut j = DMatrix::zeros(m, self.n());
-        self.chain.closure_terms(x, delta, |r, v| f[r] = v, |r, c, v| j[(r, c)] = v);
+        self.chain.closure_terms(x, delta, |r, v| f[r] = v, |r, c, v| j[(r, c)] += v);
         (f, j)
     }
 
@@ -218,14 +206,28 @@ impl<'s> Tracer<'s> {
         self.plan.dets_at(&self.positions(x)).0
     }
 
+    /// The input at unknowns x: an angle, or a linear input's displacement (scene units).
     fn theta(&self, x: &[f64]) -> f64 {
-        self.scene.theta0 + x[self.input]
+        if self.chain.is_angle(self.input) {
+            self.scene.theta0 + x[self.input]
+        } else {
+            x[self.input] * self.plan.scale
+        }
+    }
+
+    /// `theta - target`, wrapped to (-pi, pi] for an angle input.
+    fn offset(&self, theta: f64, target: f64) -> f64 {
+        if self.chain.is_angle(self.input) {
+            wrap_angle(theta - target)
+        } else {
+            theta - target
+        }
     }
 
     /// Rotations of an assembly given by its positions (solving frame), polished by Newton
     /// at its input angle.
     fn start(&self, pos: &[Xy], delta: &[Xy]) -> Option<DVector<f64>> {
-        let x = DVector::from_vec(self.chain.rotations_from(|p| pos[p]));
+        let x = DVector::from_vec(self.chain.unknowns_from(|p| pos[p]));
         let mut e = DVector::zeros(self.n());
         e[self.input] = 1.0;
         self.correct(&x, &e, delta).map(|(y, _)| y)
@@ -248,7 +250,7 @@ impl<'s> Tracer<'s> {
         poll: &Poll<'_>,
     ) -> Result<(Trace, Vec<Vec<Xy>>), Error> {
         let mut crossings = Vec::new();
-        let delta = self.delta();
+        let delta = self.anchors();
         let x0 = self
             .start(pos, &delta)
             .ok_or_else(|| Error::scene("trace", "the given pose is not an assembly of the scene"))?;
@@ -284,8 +286,10 @@ impl<'s> Tracer<'s> {
                 out.turning_points.push(tp);
             }
             if let Some(w) = watch {
-                let (wa, wb) = (wrap_angle(self.theta(x.as_slice()) - w), wrap_angle(self.theta(y.as_slice()) - w));
-                if wa != 0.0 && wa * wb <= 0.0 && (wa - wb).abs() < std::f64::consts::PI {
+                let (wa, wb) = (self.offset(self.theta(x.as_slice()), w), self.offset(self.theta(y.as_slice()), w));
+                // (an angle's wrap from pi to -pi is no crossing)
+                let wrapped = self.chain.is_angle(self.input) && (wa - wb).abs() >= std::f64::consts::PI;
+                if wa != 0.0 && wa * wb <= 0.0 && !wrapped {
                     if let Some(p) = self.crossing(&x, &t, h, w, &delta) {
                         crossings.push(p);
                     }
@@ -294,11 +298,11 @@ impl<'s> Tracer<'s> {
             travelled += h;
             // back at the start (all rotations equal modulo 2 pi)?
             if travelled > 4.0 * opts.step {
-                let gap = wrapped_gap(&y, &x0);
+                let gap = self.wrapped_gap(&y, &x0);
                 if gap < h {
-                    let unwrapped = unwrap_like(&x0, &y);
+                    let unwrapped = self.unwrap_like(&x0, &y);
                     if let Some((z, _)) = self.correct(&unwrapped, &t, &delta) {
-                        if wrapped_gap(&z, &x0) < 1e-9 {
+                        if self.wrapped_gap(&z, &x0) < 1e-9 {
                             self.record(&mut out, z.as_slice(), self.det(z.as_slice()))?;
                             out.closed = true;
                             break;
@@ -363,7 +367,7 @@ impl<'s> Tracer<'s> {
     /// The point of the step from x along t (length h) where the input angle is `target`
     /// modulo 2 pi, by bisection; positions in the solving frame.
     fn crossing(&self, x: &DVector<f64>, t: &DVector<f64>, h: f64, target: f64, delta: &[Xy]) -> Option<Vec<Xy>> {
-        let g = |y: &DVector<f64>| wrap_angle(self.theta(y.as_slice()) - target);
+        let g = |y: &DVector<f64>| self.offset(self.theta(y.as_slice()), target);
         let (mut lo, mut hi) = (0.0, h);
         let g0 = g(x);
         let mut y = x.clone();
@@ -387,9 +391,20 @@ impl<'s> Tracer<'s> {
         let mut e = DVector::zeros(self.n());
         e[self.input] = 1.0;
         let mut z = y.clone();
-        z[self.input] -= g(&y);
+        let unit = if self.chain.is_angle(self.input) { 1.0 } else { self.plan.scale };
+        z[self.input] -= g(&y) / unit;
         let (z, _) = self.correct(&z, &e, delta)?;
         Some(self.positions(z.as_slice()))
+    }
+
+    /// Largest |a_k - b_k|, angles wrapped.
+    fn wrapped_gap(&self, a: &DVector<f64>, b: &DVector<f64>) -> f64 {
+        (0..a.len()).map(|k| self.chain.gap(k, a[k], b[k]).abs()).fold(0.0, f64::max)
+    }
+
+    /// `a` with its angles shifted by whole turns to lie next to `b`.
+    fn unwrap_like(&self, a: &DVector<f64>, b: &DVector<f64>) -> DVector<f64> {
+        DVector::from_iterator(a.len(), (0..a.len()).map(|k| b[k] + self.chain.gap(k, a[k], b[k])))
     }
 
     /// Circuits through the assemblies at `theta`: each traced once; the assemblies a
@@ -453,7 +468,11 @@ impl<'s> Tracer<'s> {
             let net = if tr.closed { tr.theta[tr.theta.len() - 1] - tr.theta[0] } else { f64::NAN };
             circuits.push(Circuit {
                 assemblies: members,
-                turning_points: tr.turning_points.iter().map(|&a| wrap_angle(a)).collect(),
+                turning_points: tr
+                    .turning_points
+                    .iter()
+                    .map(|&a| if self.plan.linear { a } else { wrap_angle(a) })
+                    .collect(),
                 net_turn: net,
                 range: (lo, hi),
                 trace: tr,
@@ -462,16 +481,6 @@ impl<'s> Tracer<'s> {
         }
         Ok((found, circuits))
     }
-}
-
-/// Largest |wrap(a_i - b_i)|.
-fn wrapped_gap(a: &DVector<f64>, b: &DVector<f64>) -> f64 {
-    a.iter().zip(b.iter()).map(|(x, y)| wrap_angle(x - y).abs()).fold(0.0, f64::max)
-}
-
-/// `a` shifted by whole turns, component by component, to lie next to `b`.
-fn unwrap_like(a: &DVector<f64>, b: &DVector<f64>) -> DVector<f64> {
-    DVector::from_iterator(a.len(), a.iter().zip(b.iter()).map(|(x, y)| y + wrap_angle(x - y)))
 }
 
 /// Largest distance between corresponding points (NaN-free points only).

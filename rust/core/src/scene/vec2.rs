@@ -21,12 +21,6 @@ pub(crate) fn dot(a: Xy, b: Xy) -> f64 {
     a[0] * b[0] + a[1] * b[1]
 }
 
-/// `v` turned by the rotation whose (cos, sin) is `cs`.
-#[inline]
-pub(crate) fn turn(cs: Xy, v: Xy) -> Xy {
-    [cs[0] * v[0] - cs[1] * v[1], cs[1] * v[0] + cs[0] * v[1]]
-}
-
 /// `v` turned by +90 degrees.
 #[inline]
 pub(crate) fn perp(v: Xy) -> Xy {
