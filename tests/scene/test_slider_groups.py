@@ -65,7 +65,11 @@ def test_slot_group_matches_the_numpy_reference_and_keeps_every_constraint():
     sw = sc.sweep(outputs="all")
     ok = sw.success
     assert 30 < ok.sum() < 361  # a rocking crank: LIMIT past its two dead points
-    assert set(sw.status[~ok]) == {pk.Status.LIMIT}
+    # past its dead points the crank finds no assembly at all (the independent scan below
+    # agrees): NOT_ASSEMBLABLE, not LIMIT
+    assert set(sw.status[~ok]) == {pk.Status.NOT_ASSEMBLABLE}
+    for t in sw.theta[~ok][::20]:
+        assert triad_assemblies_by_scanning(d, t) == []
     # the reference marches one way only and has no LIMIT (past a dead point it fails):
     # forward from the drawn angle it meets the first dead point, backward (the angles
     # reversed, from the drawn angle + 360 deg) the other
@@ -186,3 +190,119 @@ def test_slider_assemblies_lie_on_their_circuits(name):
     a = sc.assemblies()
     cs = sc.circuits()
     assert sum(len(c.assemblies) for c in cs) == len(a)
+
+
+def triad_assemblies_by_scanning(d, theta):
+    """Every assembly of the slot triad at crank angle ``theta``, independently: for a
+    slot position b (B = (b, -1)), C is on the circle about A (radius |AC|) at |BC| from
+    B (two intersections), E follows rigidly from B and C, and |O4 E| must equal the
+    rocker's length: one scalar equation per branch in b, whose roots are found by a
+    dense scan and bisection."""
+    p = {n: np.asarray(v, dtype=float) for n, v in d["points"].items()}
+    a = np.array([math.cos(theta), math.sin(theta)])
+    r_ac, r_bc = np.linalg.norm(p["C"] - p["A"]), np.linalg.norm(p["C"] - p["B"])
+    r4 = np.linalg.norm(p["E"] - p["O4"])
+    # E in T's frame (origin B, x axis towards C)
+    u0 = (p["C"] - p["B"]) / r_bc
+    be = p["E"] - p["B"]
+    e_local = np.array([np.dot(be, u0), u0[0] * be[1] - u0[1] * be[0]])
+
+    def residual(b, side):
+        bb = np.array([b, -1.0])
+        d_ab = np.linalg.norm(a - bb)
+        x = (d_ab**2 + r_bc**2 - r_ac**2) / (2 * d_ab)
+        h2 = r_bc**2 - x**2
+        if h2 < 0:
+            return math.nan
+        w = (a - bb) / d_ab
+        c = bb + x * w + side * math.sqrt(h2) * np.array([-w[1], w[0]])
+        u = (c - bb) / r_bc
+        e = bb + e_local[0] * u + e_local[1] * np.array([-u[1], u[0]])
+        return np.linalg.norm(e - p["O4"]) - r4
+
+    roots = []
+    grid = np.linspace(-20.0, 20.0, 40001)
+    for side in (1.0, -1.0):
+        f = np.array([residual(b, side) for b in grid])
+        for k in np.flatnonzero(np.isfinite(f[:-1]) & np.isfinite(f[1:]) & (f[:-1] * f[1:] < 0)):
+            lo, hi = grid[k], grid[k + 1]
+            for _ in range(200):
+                mid = 0.5 * (lo + hi)
+                if residual(lo, side) * residual(mid, side) <= 0:
+                    hi = mid
+                else:
+                    lo = mid
+            roots.append(0.5 * (lo + hi))
+    return sorted(roots)
+
+
+@pytest.mark.parametrize("deg", [60.0, 10.0, 200.0, 300.0])
+def test_slot_group_assemblies_are_every_real_solution(deg):
+    # the homotopy takes the slot's displacement as one more unknown (linear in the loop
+    # equations: the guide here is ground); its real roots, polished, are the assemblies
+    d = slot_triad()
+    sc = pk.Scene(d)
+    theta = math.radians(deg)
+    found = sc.assemblies(theta)
+    want = triad_assemblies_by_scanning(d, theta)
+    got = sorted(float(a["B"][0]) for a in found)
+    assert len(got) == len(want)
+    np.testing.assert_allclose(got, want, atol=1e-9)
+    assert all(c >= len(want) for (c,) in found.complex_counts)
+
+
+def prismatic_triad():
+    """The slot triad with its slot turned into a prismatic pair on a rocking guide: link
+    T (B, C, E) translates along the line G1-G2 of link 'arm' pivoted at ground O5, so
+    T keeps the arm's rotation: a Newton group whose slide turns with an unknown rotation
+    (a bilinear term of the loop equations). Dimensions chosen here."""
+    d = slot_triad()
+    d["points"].update({"O5": [2.0, -3.0], "G1": [2.0, -1.0], "G2": [3.0, -1.0]})
+    d["links"] = {
+        "ground": ["O2", "O4", "O5"],
+        "crank": ["O2", "A"],
+        "rod": ["A", "C"],
+        "tri": ["B", "C", "E"],
+        "rocker": ["O4", "E"],
+        "arm": ["O5", "G1", "G2"],
+    }
+    del d["slots"]
+    d["prismatic"] = {"slide": {"link": "tri", "guide": "arm", "line": ["G1", "G2"]}}
+    return d
+
+
+def test_prismatic_group_turning_with_its_guide_matches_the_reference():
+    d = prismatic_triad()
+    sc = pk.Scene(d)
+    assert [s.kind for s in sc.plan().steps] == ["group"]
+    sw = sc.sweep(outputs="all")
+    fwd, back = scene_sweep(d, sw.theta), scene_sweep(d, sw.theta[::-1])
+    np.testing.assert_array_equal(fwd.success | back.success[::-1], sw.success)
+    size = size_of(sc)
+    for ref, idx in [(fwd, np.flatnonzero(fwd.success)), (back, np.flatnonzero(back.success))]:
+        mine = idx if ref is fwd else len(sw.theta) - 1 - idx
+        for n in sw.points:
+            np.testing.assert_allclose(sw.points[n][mine], ref.points[n][idx], atol=1e-10 * size, err_msg=n)
+
+
+def test_prismatic_group_assemblies_keep_the_pair_and_lie_on_the_traced_circuit():
+    d = prismatic_triad()
+    sc = pk.Scene(d)
+    theta = math.radians(60.0)
+    found = sc.assemblies(theta)
+    assert len(found) >= 1
+    p0 = {n: np.asarray(v) for n, v in d["points"].items()}
+    drawn_turn = p0["C"] - p0["B"]
+    for a in found:
+        a = {n: np.asarray(v) for n, v in a.items()}
+        # T keeps the arm's rotation, and B stays on the arm's line G1-G2
+        arm, tri = a["G2"] - a["G1"], a["C"] - a["B"]
+        turn_arm = math.atan2(arm[1], arm[0])
+        turn_tri = math.atan2(tri[1], tri[0]) - math.atan2(drawn_turn[1], drawn_turn[0])
+        assert abs(math.remainder(turn_tri - turn_arm, math.tau)) < 1e-12
+        rel_b = a["B"] - a["G1"]
+        assert abs(arm[0] * rel_b[1] - arm[1] * rel_b[0]) < 1e-12 * size_of(sc)
+    # the drawn pose is one of them
+    assert any(max(np.abs(np.asarray(a[n]) - p0[n]).max() for n in p0) < 1e-9 for a in found)
+    (c,) = sc.circuits(theta)
+    assert len(c.assemblies) == len(found)

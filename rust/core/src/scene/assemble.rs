@@ -4,11 +4,14 @@
 //! runs with independent random gammas merged and polished by Newton.
 
 use super::dyad::DyadOut;
+use super::group::Group;
 use super::plan::{Op, Plan};
 use super::vec2::{perp, Xy};
 use crate::error::{finite, try_grow, Error};
 use crate::interrupt::{Interrupt, Poll};
-use crate::solve::homotopy::{unit_circle_solutions_polled, HomotopyOptions};
+use crate::solve::homotopy::{quadric_solutions_polled, unit_circle_solutions_polled, HomotopyOptions};
+use crate::solve::newton::NewtonOptions;
+use crate::Status;
 
 /// One real assembly.
 #[derive(Clone, Debug, PartialEq)]
@@ -166,19 +169,17 @@ impl Walk<'_> {
         {
             {
                 let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
-                let Some((a, b)) = g.linear_form(&anchors) else {
-                    return Err(Error::scene(
-                        "assemblies",
-                        "every assembly of a Newton group with slots or prismatic pairs is not available yet \
-                         (its loop equations are bilinear in the displacements)",
-                    ));
+                let (real, count, failed) = match g.linear_form(&anchors) {
+                    Some((a, b)) => {
+                        let sol = unit_circle_solutions_polled(&a, &b, &self.opts, &self.poll)?;
+                        (sol.real, sol.complex.len(), sol.failed)
+                    }
+                    None => self.slider_group(g, &anchors)?,
                 };
-                let sol = unit_circle_solutions_polled(&a, &b, &self.opts, &self.poll)?;
-                self.out.complex_counts[self.group_slot[i]].push(sol.complex.len());
-                self.out.failed_paths += sol.failed;
+                self.out.complex_counts[self.group_slot[i]].push(count);
+                self.out.failed_paths += failed;
                 // each solution's elbows (the joints' assembly modes) label it
-                let mut real: Vec<(String, f64, Vec<f64>)> = sol
-                    .real
+                let mut real: Vec<(String, f64, Vec<f64>)> = real
                     .into_iter()
                     .map(|phi| {
                         let mut at = pos.to_vec();
@@ -203,6 +204,40 @@ impl Walk<'_> {
                 Ok(())
             }
         }
+    }
+
+    /// Every real assembly of a group with sliders: the homotopy's finite roots, the nearly
+    /// real ones polished by the group's own Newton (kept where it converges next to the
+    /// root); with the number of distinct finite roots and the failed paths.
+    fn slider_group(&self, g: &Group, anchors: &[Xy]) -> Result<(Vec<Vec<f64>>, usize, usize), Error> {
+        let (a, b, quads) = g.homotopy_form(anchors);
+        let roots = quadric_solutions_polled(&a, &b, &quads, &self.opts, &self.poll)?;
+        let tight = NewtonOptions { tol: 1e-14, max_iter: 50, ..NewtonOptions::default() };
+        let n = g.n();
+        let mut real: Vec<Vec<f64>> = Vec::new();
+        let mut complex = 0;
+        for z in &roots.complex {
+            let zmax = z.iter().map(|v| v.norm()).fold(1.0, f64::max);
+            let imag = z.iter().map(|v| v.im.abs()).fold(0.0, f64::max);
+            let polished = (imag <= 1e-6 * zmax)
+                .then(|| {
+                    let guess = g.unknowns_of_root(z);
+                    let out = g.solve(anchors, None, &guess, &tight);
+                    let near = (0..n).all(|k| g.gap(k, out.phi[k], guess[k]).abs() <= 1e-4);
+                    (out.status == Status::Converged && near).then(|| out.phi[..n].to_vec())
+                })
+                .flatten();
+            match polished {
+                Some(x) => {
+                    if !real.iter().any(|r| (0..n).all(|k| g.gap(k, r[k], x[k]).abs() <= 1e-9)) {
+                        real.push(x);
+                    }
+                }
+                None => complex += 1,
+            }
+        }
+        let count = complex + real.len();
+        Ok((real, count, roots.failed))
     }
 
     fn emit(&mut self, pos: &[Xy], dets: &[f64], labels: &[String]) -> Result<(), Error> {

@@ -26,6 +26,7 @@ use nalgebra::{SMatrix, SVector};
 use super::slide::{cdiv, cmul};
 use super::vec2::{dot, perp, sub, Xy};
 use super::{LinearKind, Scene};
+use crate::solve::homotopy::Quadric;
 use crate::solve::newton::{self, hadamard_ratio, NewtonOptions, System};
 use crate::{wrap_angle, Status};
 
@@ -576,6 +577,95 @@ impl Group {
             b[2 * c + 1] = -d[1];
         }
         Some((a, b))
+    }
+
+    /// The closures of a group with sliders as `A z = b` with quadrics, for the homotopy:
+    /// z holds each rotation column's (cos, sin) (cosines first, as in
+    /// [`Group::linear_form`]), then per displacement column either (s cos, s sin) of its
+    /// guide's unknown rotation, parallel to that (cos, sin) (a bilinear quadric), or s
+    /// itself where its guide's rotation is known.
+    pub(super) fn homotopy_form(
+        &self,
+        anchors: &[Xy],
+    ) -> (nalgebra::DMatrix<f64>, nalgebra::DVector<f64>, Vec<Quadric>) {
+        let (nr, n) = (self.nrot, self.n());
+        // where each slide column's variables start, and its guide's rotation column
+        let mut at = vec![0usize; n];
+        let mut next = 2 * nr;
+        let mut quads: Vec<Quadric> = (0..nr).map(|r| Quadric::Circle { c: r, s: nr + r }).collect();
+        for (k, r) in self.readers.iter().enumerate().skip(nr) {
+            let Reader::Slide { term, .. } = r else { unreachable!("columns after the rotations slide") };
+            at[k] = next;
+            match term.turn {
+                Turn::Col(g) => {
+                    // (e, f) = s (c, s_g): e s_g = f c
+                    quads.push(Quadric::Bilinear { a: next, b: nr + g, c: next + 1, d: g });
+                    next += 2;
+                }
+                Turn::Known(..) => next += 1,
+            }
+        }
+        let m = 2 * self.closures.len();
+        let mut a = nalgebra::DMatrix::zeros(m, next);
+        let mut b = nalgebra::DVector::zeros(m);
+        for (c, cl) in self.closures.iter().enumerate() {
+            let mut rhs = sub(anchors[cl.plus], anchors[cl.minus]);
+            let (rx, ry) = (2 * c, 2 * c + 1);
+            for t in &cl.terms {
+                match t.turn {
+                    Turn::Col(g) => {
+                        let v = t.v;
+                        a[(rx, g)] += v[0];
+                        a[(rx, nr + g)] -= v[1];
+                        a[(ry, g)] += v[1];
+                        a[(ry, nr + g)] += v[0];
+                        if let Some((k, d)) = t.slide {
+                            let (e, f) = (at[k], at[k] + 1);
+                            a[(rx, e)] += d[0];
+                            a[(rx, f)] -= d[1];
+                            a[(ry, e)] += d[1];
+                            a[(ry, f)] += d[0];
+                        }
+                    }
+                    Turn::Known(ia, ib) => {
+                        let mm = sub(anchors[ib], anchors[ia]);
+                        let w = cmul(mm, t.v);
+                        rhs = [rhs[0] + w[0], rhs[1] + w[1]];
+                        if let Some((k, d)) = t.slide {
+                            let md = cmul(mm, d);
+                            a[(rx, at[k])] += md[0];
+                            a[(ry, at[k])] += md[1];
+                        }
+                    }
+                }
+            }
+            b[rx] = -rhs[0];
+            b[ry] = -rhs[1];
+        }
+        (a, b, quads)
+    }
+
+    /// The unknowns (real parts) from a root `z` of [`Group::homotopy_form`].
+    pub(super) fn unknowns_of_root(&self, z: &[nalgebra::Complex<f64>]) -> Vec<f64> {
+        let nr = self.nrot;
+        let mut x: Vec<f64> = (0..nr).map(|r| z[nr + r].re.atan2(z[r].re)).collect();
+        let mut next = 2 * nr;
+        for r in self.readers.iter().skip(nr) {
+            let Reader::Slide { term, .. } = r else { unreachable!("columns after the rotations slide") };
+            match term.turn {
+                Turn::Col(g) => {
+                    // s = (s cos, s sin) . (cos, sin)
+                    let (sin, cos) = x[g].sin_cos();
+                    x.push(z[next].re * cos + z[next + 1].re * sin);
+                    next += 2;
+                }
+                Turn::Known(..) => {
+                    x.push(z[next].re);
+                    next += 1;
+                }
+            }
+        }
+        x
     }
 
     /// The elbow signs of the group's joints at positions `pos`: "+" / "-" per joint.

@@ -804,8 +804,7 @@ impl Plan {
         let (limit, none) = (Status::Limit.code(), Status::NotAssemblable.code());
         let (np, ns) = (self.points.len(), self.steps.len());
         let hopts = HomotopyOptions::default();
-        // (groups with sliders: their assemblies are not enumerated; LIMIT stays)
-        if self.ops.iter().any(|o| matches!(o, Op::Group(g) if g.n() > CLASSIFIED_GROUP || g.has_slides())) {
+        if self.ops.iter().any(|o| matches!(o, Op::Group(g) if g.n() > CLASSIFIED_GROUP)) {
             return Ok(());
         }
         for (k, &t) in theta.iter().enumerate() {

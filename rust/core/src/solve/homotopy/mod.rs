@@ -165,26 +165,9 @@ pub fn unit_circle_solutions_polled(
         return Err(Error::invalid("a, b", "must be finite", v));
     }
     opts.check()?;
-    let red = Reduced::new(a, b)?;
-
-    let mut rng = SplitMix64(opts.seed);
-    let mut out = Solutions::default();
-    let mut roots: Vec<Vec<C>> = Vec::new(); // t of the merged roots
-    for _ in 0..opts.runs {
-        let theta = std::f64::consts::TAU * rng.uniform();
-        let gamma = C::new(theta.cos(), theta.sin());
-        let run = red.run(gamma, opts, poll)?;
-        out.paths += run.paths;
-        out.failed += run.failed;
-        out.infinite += run.infinite;
-        out.per_run_found.push(run.roots.len());
-        out.per_run_failed.push(run.failed);
-        out.per_run_jumps.push(run.jumps);
-        out.steps += run.steps;
-        for t in run.roots {
-            insert_unique(&mut roots, t);
-        }
-    }
+    let circles: Vec<Quadric> = (0..n).map(|j| Quadric::Circle { c: j, s: n + j }).collect();
+    let red = Reduced::new(a, b, circles)?;
+    let (roots, mut out) = red.track_all(opts, poll)?;
 
     let mut real: Vec<Vec<f64>> = Vec::new();
     for t in &roots {
@@ -211,10 +194,80 @@ pub fn unit_circle_solutions_polled(
     Ok(out)
 }
 
+/// One quadric of a system the homotopy solves, on the unknowns `z`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Quadric {
+    /// `z_c^2 + z_s^2 = 1`: a link's (cos, sin).
+    Circle { c: usize, s: usize },
+    /// `z_a z_b = z_c z_d`: a slider's (s cos, s sin) parallel to its guide's (cos, sin).
+    Bilinear { a: usize, b: usize, c: usize, d: usize },
+}
+
+/// Finite complex solutions of a general system: the distinct roots `z` and the paths'
+/// accounting (see [`Solutions`] for the fields' meaning).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Roots {
+    /// Distinct finite complex roots `z` (one entry per unknown of `A`), unpolished.
+    pub complex: Vec<Vec<Complex<f64>>>,
+    /// Paths tracked, over all runs (`runs * 2^N`, N the number of quadrics).
+    pub paths: usize,
+    /// Paths that ended neither at a verified finite root nor at infinity.
+    pub failed: usize,
+    /// Paths classified as diverging to infinity.
+    pub infinite: usize,
+}
+
+/// All finite complex solutions of `A z = b` (`a` is L x D, D - L = N quadrics) with the
+/// `quadrics`, by the same total-degree homotopy as [`unit_circle_solutions`]; the roots
+/// are left to the caller to classify and polish (a slider group's real assemblies are
+/// polished by its own Newton). Errors as [`unit_circle_solutions`].
+pub fn quadric_solutions_polled(
+    a: &DMatrix<f64>,
+    b: &DVector<f64>,
+    quadrics: &[Quadric],
+    opts: &HomotopyOptions,
+    poll: &Poll<'_>,
+) -> Result<Roots, Error> {
+    let (l, d) = (a.nrows(), a.ncols());
+    let n = quadrics.len();
+    if n == 0 || n > MAX_LINKS {
+        return Err(Error::invalid("quadrics", "must number 1..=16 (2^N paths)", n));
+    }
+    if d != l + n {
+        return Err(Error::Shape { name: "a columns".into(), got: d, expected: l + n });
+    }
+    if b.len() != l {
+        return Err(Error::Shape { name: "b".into(), got: b.len(), expected: l });
+    }
+    let inside = |q: &Quadric| match *q {
+        Quadric::Circle { c, s } => c < d && s < d,
+        Quadric::Bilinear { a, b, c, d: e } => [a, b, c, e].iter().all(|&i| i < d),
+    };
+    if !quadrics.iter().all(inside) {
+        return Err(Error::invalid("quadrics", "must index the unknowns of a", format!("{d} unknowns")));
+    }
+    if let Some(v) = a.iter().chain(b.iter()).find(|v| !v.is_finite()) {
+        return Err(Error::invalid("a, b", "must be finite", v));
+    }
+    opts.check()?;
+    let red = Reduced::new(a, b, quadrics.to_vec())?;
+    let (roots, stats) = red.track_all(opts, poll)?;
+    Ok(Roots {
+        complex: roots.iter().map(|t| red.z_of(t)).collect(),
+        paths: stats.paths,
+        failed: stats.failed,
+        infinite: stats.infinite,
+    })
+}
+
 /// The system after eliminating the linear part: `z = P (x0, x)` with `P = [z0 | K]`.
 struct Reduced {
+    /// Number of quadrics (and of path coordinates t).
     n: usize,
-    /// 2N x (N + 1), row major: column 0 is z0, columns 1..=N are K.
+    /// Number of unknowns z (2N for unit circles alone).
+    d: usize,
+    quads: Vec<Quadric>,
+    /// D x (N + 1), row major: column 0 is z0, columns 1..=N are K.
     p: Vec<f64>,
     /// Row-scaled `A` and `b` (same solutions), for the real polish.
     a: DMatrix<f64>,
@@ -264,11 +317,12 @@ struct Work {
 }
 
 impl Reduced {
-    fn new(a: &DMatrix<f64>, b: &DVector<f64>) -> Result<Self, Error> {
-        let n = a.nrows();
+    fn new(a: &DMatrix<f64>, b: &DVector<f64>, quads: Vec<Quadric>) -> Result<Self, Error> {
+        let (l, d) = (a.nrows(), a.ncols());
+        let n = d - l;
         let mut a_s = a.clone();
         let mut b_s = b.clone();
-        for i in 0..n {
+        for i in 0..l {
             let s = a.row(i).amax();
             if s == 0.0 {
                 return Err(Error::invalid("a", "must have full row rank", format!("row {i} is zero")));
@@ -282,8 +336,8 @@ impl Reduced {
         }
         // Pad to square so the SVD returns a full V^T: its N rows of zero singular value
         // span the null space of A.
-        let mut m = DMatrix::<f64>::zeros(2 * n, 2 * n);
-        m.rows_mut(0, n).copy_from(&a_s);
+        let mut m = DMatrix::<f64>::zeros(d, d);
+        m.rows_mut(0, l).copy_from(&a_s);
         // bounded iterations (plain `svd` iterates until convergence)
         let svd = m
             .try_svd(true, true, 5.0 * f64::EPSILON, 10_000)
@@ -292,10 +346,10 @@ impl Reduced {
             return Err(Error::invalid("a", "must have a computable SVD", "SVD failed"));
         };
         let sv = &svd.singular_values;
-        let mut order: Vec<usize> = (0..2 * n).collect();
+        let mut order: Vec<usize> = (0..d).collect();
         order.sort_by(|&i, &j| sv[j].total_cmp(&sv[i]));
         let smax = sv[order[0]];
-        let smin = sv[order[n - 1]];
+        let smin = sv[order[l - 1]];
         if smin.is_nan() || smin <= 1e-10 * smax {
             return Err(Error::invalid(
                 "a",
@@ -303,10 +357,10 @@ impl Reduced {
                 format!("sigma_min / sigma_max = {:e}", smin / smax),
             ));
         }
-        let mut z0 = vec![0.0; 2 * n];
-        for &k in &order[..n] {
+        let mut z0 = vec![0.0; d];
+        for &k in &order[..l] {
             let mut ub = 0.0;
-            for i in 0..n {
+            for i in 0..l {
                 ub += u[(i, k)] * b_s[i];
             }
             let coef = ub / sv[k];
@@ -315,20 +369,20 @@ impl Reduced {
             }
         }
         let cols = n + 1;
-        let mut p = vec![0.0; 2 * n * cols];
-        for r in 0..2 * n {
+        let mut p = vec![0.0; d * cols];
+        for r in 0..d {
             p[r * cols] = z0[r];
-            for (c, &k) in order[n..].iter().enumerate() {
+            for (c, &k) in order[l..].iter().enumerate() {
                 p[r * cols + 1 + c] = vt[(k, r)];
             }
         }
-        Ok(Self { n, p, a: a_s, b: b_s })
+        Ok(Self { n, d, quads, p, a: a_s, b: b_s })
     }
 
     /// z = z0 + K t.
     fn z_of(&self, t: &[C]) -> Vec<C> {
         let cols = self.n + 1;
-        (0..2 * self.n)
+        (0..self.d)
             .map(|r| {
                 let row = &self.p[r * cols..(r + 1) * cols];
                 let mut s = C::new(row[0], 0.0);
@@ -340,6 +394,30 @@ impl Reduced {
             .collect()
     }
 
+    /// Every run (one gamma each), the roots t merged: the distinct roots and the paths'
+    /// accounting (the caller fills in the real roots).
+    fn track_all(&self, opts: &HomotopyOptions, poll: &Poll<'_>) -> Result<(Vec<Vec<C>>, Solutions), Error> {
+        let mut rng = SplitMix64(opts.seed);
+        let mut out = Solutions::default();
+        let mut roots: Vec<Vec<C>> = Vec::new(); // t of the merged roots
+        for _ in 0..opts.runs {
+            let theta = std::f64::consts::TAU * rng.uniform();
+            let gamma = C::new(theta.cos(), theta.sin());
+            let run = self.run(gamma, opts, poll)?;
+            out.paths += run.paths;
+            out.failed += run.failed;
+            out.infinite += run.infinite;
+            out.per_run_found.push(run.roots.len());
+            out.per_run_failed.push(run.failed);
+            out.per_run_jumps.push(run.jumps);
+            out.steps += run.steps;
+            for t in run.roots {
+                insert_unique(&mut roots, t);
+            }
+        }
+        Ok((roots, out))
+    }
+
     /// One full tracking of the 2^N paths with one gamma; returns the distinct roots.
     fn run(&self, gamma: C, opts: &HomotopyOptions, poll: &Poll<'_>) -> Result<RunResult, Error> {
         let n = self.n;
@@ -349,7 +427,7 @@ impl Reduced {
             m,
             jac: vec![C::default(); m * m],
             rhs: vec![C::default(); m],
-            w: vec![C::default(); 2 * n],
+            w: vec![C::default(); self.d],
         };
         let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0, jumps: 0, steps: 0 };
         // root index reached by each path (None: infinite or failed)
@@ -433,7 +511,7 @@ impl Reduced {
     fn eval(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, dtau: bool) {
         let n = self.n;
         let m = work.m;
-        for r in 0..2 * n {
+        for r in 0..self.d {
             let row = &self.p[r * m..(r + 1) * m];
             let mut s = C::default();
             for k in 0..m {
@@ -444,19 +522,33 @@ impl Reduced {
         let x0 = x[0];
         let g_w = gamma * (1.0 - tau);
         for j in 0..n {
-            let (c, s) = (work.w[j], work.w[n + j]);
-            let f = c * c + s * s - x0 * x0;
             let g = x[j + 1] * x[j + 1] - x0 * x0;
+            let row_of = |i: usize| &self.p[i * m..(i + 1) * m];
+            let f = match self.quads[j] {
+                Quadric::Circle { c: ic, s: is } => {
+                    let (c, s) = (work.w[ic], work.w[is]);
+                    let (rc, rs) = (row_of(ic), row_of(is));
+                    let row = &mut work.jac[j * m..(j + 1) * m];
+                    let (c2, s2) = (c * (2.0 * tau), s * (2.0 * tau));
+                    for k in 0..m {
+                        row[k] = c2 * rc[k] + s2 * rs[k];
+                    }
+                    row[0] -= x0 * (2.0 * tau) + g_w * x0 * 2.0;
+                    c * c + s * s - x0 * x0
+                }
+                Quadric::Bilinear { a, b, c, d } => {
+                    let (wa, wb, wc, wd) = (work.w[a], work.w[b], work.w[c], work.w[d]);
+                    let (ra, rb, rc, rd) = (row_of(a), row_of(b), row_of(c), row_of(d));
+                    let row = &mut work.jac[j * m..(j + 1) * m];
+                    for k in 0..m {
+                        row[k] = (wa * rb[k] + wb * ra[k] - wc * rd[k] - wd * rc[k]) * tau;
+                    }
+                    row[0] -= g_w * x0 * 2.0;
+                    wa * wb - wc * wd
+                }
+            };
             work.rhs[j] = if dtau { f - gamma * g } else { g_w * g + f * tau };
-            let rc = &self.p[j * m..(j + 1) * m];
-            let rs = &self.p[(n + j) * m..(n + j + 1) * m];
-            let row = &mut work.jac[j * m..(j + 1) * m];
-            let (c2, s2) = (c * (2.0 * tau), s * (2.0 * tau));
-            for k in 0..m {
-                row[k] = c2 * rc[k] + s2 * rs[k];
-            }
-            row[0] -= x0 * (2.0 * tau) + g_w * x0 * 2.0;
-            row[j + 1] += g_w * x[j + 1] * 2.0;
+            work.jac[j * m + j + 1] += g_w * x[j + 1] * 2.0;
         }
         work.jac[n * m..(n + 1) * m].copy_from_slice(patch);
         work.rhs[n] = if dtau {
@@ -594,15 +686,26 @@ impl Reduced {
         for _ in 0..60 {
             let z = self.z_of(&t);
             let mut res = 0.0_f64;
+            let row_of = |i: usize| &self.p[i * cols + 1..(i + 1) * cols];
             for j in 0..n {
-                let (c, s) = (z[j], z[n + j]);
-                rhs[j] = -(c * c + s * s - 1.0);
-                res = res.max(rhs[j].norm());
-                let rc = &self.p[j * cols + 1..(j + 1) * cols];
-                let rs = &self.p[(n + j) * cols + 1..(n + j + 1) * cols];
-                for k in 0..n {
-                    jac[j * n + k] = c * (2.0 * rc[k]) + s * (2.0 * rs[k]);
+                match self.quads[j] {
+                    Quadric::Circle { c: ic, s: is } => {
+                        let (c, s) = (z[ic], z[is]);
+                        rhs[j] = -(c * c + s * s - 1.0);
+                        let (rc, rs) = (row_of(ic), row_of(is));
+                        for k in 0..n {
+                            jac[j * n + k] = c * (2.0 * rc[k]) + s * (2.0 * rs[k]);
+                        }
+                    }
+                    Quadric::Bilinear { a, b, c, d } => {
+                        rhs[j] = -(z[a] * z[b] - z[c] * z[d]);
+                        let (ra, rb, rc, rd) = (row_of(a), row_of(b), row_of(c), row_of(d));
+                        for k in 0..n {
+                            jac[j * n + k] = z[a] * rb[k] + z[b] * ra[k] - z[c] * rd[k] - z[d] * rc[k];
+                        }
+                    }
                 }
+                res = res.max(rhs[j].norm());
             }
             if !res.is_finite() || !lu_solve(&mut jac, n, &mut rhs) {
                 return None;
