@@ -105,7 +105,7 @@ def closed_form_batch(
 
 _I8: TypeAlias = npt.NDArray[np.int8]
 _Assemblies: TypeAlias = tuple[
-    list[tuple[_F64, str, float, list[float]]], list[list[int]], int, int
+    list[tuple[_F64, str, float, list[float]]], list[list[int]], list[list[int]], int, int
 ]
 _Trace: TypeAlias = tuple[_F64, _F64, _F64, list[float], bool]
 

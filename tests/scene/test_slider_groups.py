@@ -80,7 +80,9 @@ def test_slot_group_matches_the_numpy_reference_and_keeps_every_constraint():
     for ref, idx in [(fwd, np.flatnonzero(fwd.success)), (back, np.flatnonzero(back.success))]:
         mine = idx if ref is fwd else len(sw.theta) - 1 - idx
         for n in sw.points:
-            np.testing.assert_allclose(sw.points[n][mine], ref.points[n][idx], atol=1e-10 * size, err_msg=n)
+            np.testing.assert_allclose(
+                sw.points[n][mine], ref.points[n][idx], atol=1e-10 * size, err_msg=n
+            )
     p = {n: sw.points[n][ok] for n in sw.points}
     drawn = {n: np.asarray(v) for n, v in d["points"].items()}
     for a, b in [("O2", "A"), ("A", "C"), ("B", "C"), ("C", "E"), ("B", "E"), ("O4", "E")]:
@@ -122,7 +124,11 @@ def test_slot_group_trace_keeps_the_constraints_and_finds_its_dead_points():
     size = size_of(sc)
     pts = {n: tr.points[n] for n in tr.points}
     np.testing.assert_allclose(pts["B"][:, 1], -1.0, atol=1e-9 * size)
-    np.testing.assert_allclose(np.linalg.norm(pts["A"] - pts["C"], axis=1), math.dist((0.5, 3**0.5 / 2), (1.5, 1.2)), atol=1e-9 * size)
+    np.testing.assert_allclose(
+        np.linalg.norm(pts["A"] - pts["C"], axis=1),
+        math.dist((0.5, 3**0.5 / 2), (1.5, 1.2)),
+        atol=1e-9 * size,
+    )
     # at each turning point the plan's conditioning vanishes: a sweep just inside it is
     # nearly singular
     for t in tr.turning_points:
@@ -146,7 +152,11 @@ def test_hydraulic_boom_is_one_circuit_whose_turning_points_are_the_stroke_ends(
     # the line O-C1, the two assemblies of one circuit joined at those two dead points
     sc = pk.scenes.load("hydraulic-boom")
     p = {n: np.asarray(v) for n, v in sc.points.items()}
-    oc, oe, ce = (np.linalg.norm(p["C1"] - p["O"]), np.linalg.norm(p["E"] - p["O"]), np.linalg.norm(p["E"] - p["C1"]))
+    oc, oe, ce = (
+        np.linalg.norm(p["C1"] - p["O"]),
+        np.linalg.norm(p["E"] - p["O"]),
+        np.linalg.norm(p["E"] - p["C1"]),
+    )
     hi, lo = oc + oe - ce, abs(oe - oc) - ce
     (c,) = sc.circuits()
     assert len(c.assemblies) == 2 and not c.full_turn
@@ -282,7 +292,9 @@ def test_prismatic_group_turning_with_its_guide_matches_the_reference():
     for ref, idx in [(fwd, np.flatnonzero(fwd.success)), (back, np.flatnonzero(back.success))]:
         mine = idx if ref is fwd else len(sw.theta) - 1 - idx
         for n in sw.points:
-            np.testing.assert_allclose(sw.points[n][mine], ref.points[n][idx], atol=1e-10 * size, err_msg=n)
+            np.testing.assert_allclose(
+                sw.points[n][mine], ref.points[n][idx], atol=1e-10 * size, err_msg=n
+            )
 
 
 def test_prismatic_group_assemblies_keep_the_pair_and_lie_on_the_traced_circuit():

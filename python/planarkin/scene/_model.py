@@ -517,20 +517,25 @@ class Scene:
         )
 
     def _assemblies(self, theta: float, raw: tuple) -> Assemblies:
-        items, counts, failed, continua = raw
-        return Assemblies([self._assembly(*a) for a in items], theta, counts, failed, continua)
+        items, counts, paths, failed, continua = raw
+        found = [self._assembly(*a) for a in items]
+        return Assemblies(found, theta, counts, failed, continua, paths=paths)
 
     def assemblies(
         self, theta: float | None = None, *, seed: int = SEED, runs: int = 2
     ) -> Assemblies:
         """Every real assembly at input angle ``theta`` (radians; default the drawn angle).
 
-        Dyad steps contribute both sides; a group's solutions come from a total-degree
-        homotopy on its loop equations (linear in the links' (cos, sin), with the unit
-        circles), tracked ``runs`` times with independent random gammas (``seed``) and
-        merged, then polished by Newton. ``complex_counts`` on the result is the number of
-        finite complex solutions of each group (a self-check: 6 for a Stephenson triad,
-        16 or 18 for the double butterfly's group)."""
+        Dyad steps contribute both sides; a group's solutions come from a homotopy on its
+        loop equations (linear in the links' (cos, sin), with the unit circles; a slider's
+        displacement is one more unknown), tracked ``runs`` times with independent random
+        gammas (``seed``) and merged, then polished by Newton. Revolute groups start from
+        the linear-product start system of the loop equations in isotropic coordinates
+        (C(N, N/2) paths for N links: 20 for the double butterfly's six, where total degree
+        would track 64); groups with sliders from total degree. ``complex_counts`` on the
+        result is the number of finite complex solutions of each group (a self-check: 6
+        for a Stephenson triad, 16 or 18 for the double butterfly's group), and ``paths``
+        the paths tracked for it."""
         t = self.input_angle if theta is None else as_float("theta", theta)
         raw = self._core.assemblies(t, as_u64("seed", seed), as_i64("runs", runs))
         return self._assemblies(t, raw)

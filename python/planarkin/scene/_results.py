@@ -219,21 +219,31 @@ class Assembly(dict):
 class Assemblies(list):
     """Every real assembly at one input angle (a list of :class:`Assembly`), with the
     number of finite complex solutions each group step has (``complex_counts``: one list
-    per group step, one entry per homotopy call), the homotopy paths that failed, and
+    per group step, one entry per homotopy call), the paths tracked for each
+    (``paths``, the same shape: all runs together), the homotopy paths that failed, and
     ``continua``: branches where a dyad's two known points coincide with equal links, so
     its point can be anywhere on a circle (not listed: no finite set of assemblies)."""
 
     theta: float
     complex_counts: list[list[int]]
+    paths: list[list[int]]
     failed_paths: int
     continua: int
 
     def __init__(
-        self, items, theta: float, complex_counts, failed_paths: int, continua: int
-    ) -> None:  # noqa: ANN001, E501
+        self,
+        items,  # noqa: ANN001
+        theta: float,
+        complex_counts,  # noqa: ANN001
+        failed_paths: int,
+        continua: int,
+        *,
+        paths: list[list[int]] | None = None,
+    ) -> None:
         super().__init__(items)
         self.theta = theta
         self.complex_counts = complex_counts
+        self.paths = [[] for _ in complex_counts] if paths is None else paths
         self.failed_paths = failed_paths
         self.continua = continua
 

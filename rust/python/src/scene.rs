@@ -245,7 +245,7 @@ impl PyPlan {
 }
 
 type AssemblyOut<'py> = (Arr2<'py, f64>, String, f64, Vec<f64>);
-type AssembliesOut<'py> = (Vec<AssemblyOut<'py>>, Vec<Vec<usize>>, usize, usize);
+type AssembliesOut<'py> = (Vec<AssemblyOut<'py>>, Vec<Vec<usize>>, Vec<Vec<usize>>, usize, usize);
 type TraceOut<'py> = (Arr1<'py, f64>, Arr3<'py, f64>, Arr1<'py, f64>, Vec<f64>, bool);
 type CircuitOut<'py> = (Vec<usize>, Vec<f64>, f64, (f64, f64), TraceOut<'py>);
 
@@ -264,7 +264,7 @@ fn assemblies_out(py: Python<'_>, a: Assemblies) -> PyResult<AssembliesOut<'_>> 
         .into_iter()
         .map(|x| Ok((grid(py, x.points.len(), 2, flat("assembly points", &x.points)?), x.label, x.det, x.step_det)))
         .collect::<PyResult<_>>()?;
-    Ok((list, a.complex_counts, a.failed_paths, a.continua))
+    Ok((list, a.complex_counts, a.paths, a.failed_paths, a.continua))
 }
 
 fn trace_out(py: Python<'_>, t: Trace, np: usize) -> PyResult<TraceOut<'_>> {

@@ -436,6 +436,7 @@ impl Kept {
             "theta": theta,
             "assemblies": self.assembly_list(&a),
             "complex_counts": a.complex_counts,
+            "paths": a.paths,
             "failed_paths": a.failed_paths,
             "continua": a.continua,
         }))

@@ -28,6 +28,9 @@ pub struct Assembly {
     pub label: String,
 }
 
+/// A group's real solutions, with its finite complex roots, paths tracked and failed.
+type Solved = (Vec<Vec<f64>>, usize, usize, usize);
+
 /// All real assemblies at one input angle, with the group steps' complex solution counts.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Assemblies {
@@ -35,6 +38,8 @@ pub struct Assemblies {
     /// For each group step (in plan order): the finite complex solutions found, one entry
     /// per homotopy call (a group below branching dyads is solved once per branch).
     pub complex_counts: Vec<Vec<usize>>,
+    /// For each group step: the homotopy paths tracked, one entry per call (all runs).
+    pub paths: Vec<Vec<usize>>,
     /// Homotopy paths that failed over all calls (0 when nothing was lost in tracking).
     pub failed_paths: usize,
     /// Branches where a dyad's known points coincide with equal links: a continuum of
@@ -79,7 +84,11 @@ impl Plan {
             poll: Poll::new(interrupt),
             u: [c, s],
             s: if self.linear { theta / self.scale } else { theta },
-            out: Assemblies { complex_counts: vec![Vec::new(); groups], ..Default::default() },
+            out: Assemblies {
+                complex_counts: vec![Vec::new(); groups],
+                paths: vec![Vec::new(); groups],
+                ..Default::default()
+            },
             group_slot,
         };
         let mut pos = vec![[f64::NAN; 2]; self.npoints];
@@ -169,14 +178,15 @@ impl Walk<'_> {
         {
             {
                 let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
-                let (real, count, failed) = match g.linear_form(&anchors) {
+                let (real, count, paths, failed) = match g.linear_form(&anchors) {
                     Some((a, b)) => {
                         let sol = unit_circle_solutions_polled(&a, &b, &self.opts, &self.poll)?;
-                        (sol.real, sol.complex.len(), sol.failed)
+                        (sol.real, sol.complex.len(), sol.paths, sol.failed)
                     }
                     None => self.slider_group(g, &anchors)?,
                 };
                 self.out.complex_counts[self.group_slot[i]].push(count);
+                self.out.paths[self.group_slot[i]].push(paths);
                 self.out.failed_paths += failed;
                 // each solution's elbows (the joints' assembly modes) label it
                 let mut real: Vec<(String, f64, Vec<f64>)> = real
@@ -208,8 +218,8 @@ impl Walk<'_> {
 
     /// Every real assembly of a group with sliders: the homotopy's finite roots, the nearly
     /// real ones polished by the group's own Newton (kept where it converges next to the
-    /// root); with the number of distinct finite roots and the failed paths.
-    fn slider_group(&self, g: &Group, anchors: &[Xy]) -> Result<(Vec<Vec<f64>>, usize, usize), Error> {
+    /// root); with the number of distinct finite roots, the paths tracked and those failed.
+    fn slider_group(&self, g: &Group, anchors: &[Xy]) -> Result<Solved, Error> {
         let (a, b, quads) = g.homotopy_form(anchors);
         let roots = quadric_solutions_polled(&a, &b, &quads, &self.opts, &self.poll)?;
         let tight = NewtonOptions { tol: 1e-14, max_iter: 50, ..NewtonOptions::default() };
@@ -237,7 +247,7 @@ impl Walk<'_> {
             }
         }
         let count = complex + real.len();
-        Ok((real, count, roots.failed))
+        Ok((real, count, roots.paths, roots.failed))
     }
 
     fn emit(&mut self, pos: &[Xy], dets: &[f64], labels: &[String]) -> Result<(), Error> {

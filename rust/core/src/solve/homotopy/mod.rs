@@ -109,7 +109,8 @@ pub struct Solutions {
     /// (to ~1e-15 rad at simple roots; a double root, at a dead point, is resolved only
     /// to ~1e-8 and may be listed twice, about that far apart).
     pub real: Vec<Vec<f64>>,
-    /// Paths tracked, over all runs (`runs * 2^N`).
+    /// Paths tracked, over all runs: `runs * C(N, N/2)` for loop equations (the
+    /// isotropic start system), `runs * 2^N` otherwise (total degree).
     pub paths: usize,
     /// Paths that ended neither at a verified finite root nor at infinity, over all runs.
     pub failed: usize,
@@ -148,6 +149,18 @@ pub fn unit_circle_solutions_polled(
     opts: &HomotopyOptions,
     poll: &Poll<'_>,
 ) -> Result<Solutions, Error> {
+    circle_solutions(a, b, opts, poll, true)
+}
+
+/// [`unit_circle_solutions_polled`], with the isotropic start system where `a` has the
+/// loop equations' form and `isotropic` allows it, else the total-degree one.
+pub(crate) fn circle_solutions(
+    a: &DMatrix<f64>,
+    b: &DVector<f64>,
+    opts: &HomotopyOptions,
+    poll: &Poll<'_>,
+    isotropic: bool,
+) -> Result<Solutions, Error> {
     let n = a.nrows();
     if n == 0 {
         return Err(Error::invalid("a", "must have at least one row", "0 rows"));
@@ -165,8 +178,11 @@ pub fn unit_circle_solutions_polled(
         return Err(Error::invalid("a, b", "must be finite", v));
     }
     opts.check()?;
-    let circles: Vec<Quadric> = (0..n).map(|j| Quadric::Circle { c: j, s: n + j }).collect();
-    let red = Reduced::new(a, b, circles)?;
+    let iso = if isotropic { Reduced::isotropic(a, b, opts.seed)? } else { None };
+    let red = match iso {
+        Some(red) => red,
+        None => Reduced::new(a, b, (0..n).map(|j| Quadric::Circle { c: j, s: n + j }).collect())?,
+    };
     let (roots, mut out) = red.track_all(opts, poll)?;
 
     let mut real: Vec<Vec<f64>> = Vec::new();
@@ -272,6 +288,29 @@ struct Reduced {
     /// Row-scaled `A` and `b` (same solutions), for the real polish.
     a: DMatrix<f64>,
     b: DVector<f64>,
+    /// The isotropic form with its linear-product start system, for loop equations.
+    iso: Option<Iso>,
+}
+
+/// Loop equations in isotropic coordinates (Wampler): a closure's two rows are one complex
+/// equation sum_j u_j e_j = beta in e_j = c_j + i s_j, and its conjugate in
+/// ebar_j = c_j - i s_j, so e = e0 + K t and ebar = conj(e0) + conj(K) u with t, u of
+/// C = N/2 coordinates each, and the circles are the N bilinear equations e_j ebar_j = 1.
+/// Their two-homogeneous Bezout number, C(N, N/2) (20 for the double butterfly's six
+/// links, against 2^6 = 64 for total degree), is the number of paths of the
+/// linear-product start system G_j = L_j(t) M_j(u) (random linear factors): a start point
+/// takes L_j = 0 for N/2 of the equations and M_j = 0 for the others.
+struct Iso {
+    c: usize,
+    /// N x (C + 1), row major: e_j = pe_j . (x0, t).
+    pe: Vec<C>,
+    /// N x (C + 1): ebar_j = pb_j . (x0, u).
+    pb: Vec<C>,
+    /// N x (C + 1): the start system's factors L_j = la_j . (x0, t), M_j = lb_j . (x0, u).
+    la: Vec<C>,
+    lb: Vec<C>,
+    /// Start points X = (x0, t, u), unit norm.
+    starts: Vec<Vec<C>>,
 }
 
 /// How one path ended.
@@ -376,11 +415,116 @@ impl Reduced {
                 p[r * cols + 1 + c] = vt[(k, r)];
             }
         }
-        Ok(Self { n, d, quads, p, a: a_s, b: b_s })
+        Ok(Self { n, d, quads, p, a: a_s, b: b_s, iso: None })
     }
 
-    /// z = z0 + K t.
+    /// The isotropic form of unit-circle loop equations `a z = b` whose rows pair as the x
+    /// and y parts of complex closures (as a group's `linear_form` writes them), with its
+    /// start system from `seed`; `None` for any other `a` (or N odd).
+    fn isotropic(a: &DMatrix<f64>, b: &DVector<f64>, seed: u64) -> Result<Option<Self>, Error> {
+        let n = a.nrows();
+        let paired = n.is_multiple_of(2)
+            && (0..n / 2).all(|c| {
+                (0..n).all(|k| a[(2 * c, n + k)] == -a[(2 * c + 1, k)] && a[(2 * c + 1, n + k)] == a[(2 * c, k)])
+            });
+        if !paired {
+            return Ok(None);
+        }
+        let circles: Vec<Quadric> = (0..n).map(|j| Quadric::Circle { c: j, s: n + j }).collect();
+        // the real reduction is kept for the real polish and the checks it makes
+        let mut red = Self::new(a, b, circles)?;
+        let nc = n / 2;
+        // complex rows, each scaled to unit max-norm
+        let mut u = nalgebra::DMatrix::<C>::zeros(n, n);
+        let mut beta = nalgebra::DVector::<C>::zeros(n);
+        for c in 0..nc {
+            let row: Vec<C> = (0..n).map(|k| C::new(a[(2 * c, k)], a[(2 * c + 1, k)])).collect();
+            let scale = row.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            for (k, v) in row.iter().enumerate() {
+                u[(c, k)] = v / scale;
+            }
+            beta[c] = C::new(b[2 * c], b[2 * c + 1]) / scale;
+        }
+        let Some(svd) = u.try_svd(true, true, 5.0 * f64::EPSILON, 10_000) else {
+            return Ok(None);
+        };
+        let (Some(uu), Some(vt)) = (svd.u.as_ref(), svd.v_t.as_ref()) else { return Ok(None) };
+        let sv = &svd.singular_values;
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by(|&i, &j| sv[j].total_cmp(&sv[i]));
+        if !(sv[order[nc - 1]] > 1e-10 * sv[order[0]]) {
+            return Ok(None);
+        }
+        // e0 = V S^-1 U^H beta (minimum norm), K = the null rows of V^H, conjugated
+        let mut e0 = vec![C::default(); n];
+        for &k in &order[..nc] {
+            let mut ub = C::default();
+            for i in 0..nc {
+                ub += uu[(i, k)].conj() * beta[i];
+            }
+            let coef = ub / sv[k];
+            for (r, er) in e0.iter_mut().enumerate() {
+                *er += coef * vt[(k, r)].conj();
+            }
+        }
+        let cols = nc + 1;
+        let mut pe = vec![C::default(); n * cols];
+        let mut pb = vec![C::default(); n * cols];
+        for r in 0..n {
+            pe[r * cols] = e0[r];
+            pb[r * cols] = e0[r].conj();
+            for (c, &k) in order[nc..].iter().enumerate() {
+                pe[r * cols + 1 + c] = vt[(k, r)].conj();
+                pb[r * cols + 1 + c] = vt[(k, r)];
+            }
+        }
+        let mut rng = SplitMix64(seed ^ 0x150_7407_1C00);
+        let mut draw = || C::new(2.0 * rng.uniform() - 1.0, 2.0 * rng.uniform() - 1.0);
+        let la: Vec<C> = (0..n * cols).map(|_| draw()).collect();
+        let lb: Vec<C> = (0..n * cols).map(|_| draw()).collect();
+        // start points: every choice of N/2 equations whose L vanishes (M for the rest)
+        let mut starts = Vec::new();
+        for mask in 0..(1usize << n) {
+            if mask.count_ones() as usize != nc {
+                continue;
+            }
+            let solve = |coef: &[C], rows: &mut dyn Iterator<Item = usize>| -> Option<Vec<C>> {
+                let mut m = vec![C::default(); nc * nc];
+                let mut rhs = vec![C::default(); nc];
+                for (i, j) in rows.enumerate() {
+                    rhs[i] = -coef[j * cols];
+                    m[i * nc..(i + 1) * nc].copy_from_slice(&coef[j * cols + 1..(j + 1) * cols]);
+                }
+                lu_solve(&mut m, nc, &mut rhs).then_some(rhs)
+            };
+            let t = solve(&la, &mut (0..n).filter(|j| mask >> j & 1 == 1));
+            let w = solve(&lb, &mut (0..n).filter(|j| mask >> j & 1 == 0));
+            let (Some(t), Some(w)) = (t, w) else { return Ok(None) };
+            let mut x: Vec<C> = std::iter::once(C::new(1.0, 0.0)).chain(t).chain(w).collect();
+            let norm = x.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+            for v in &mut x {
+                *v /= norm;
+            }
+            starts.push(x);
+        }
+        red.iso = Some(Iso { c: nc, pe, pb, la, lb, starts });
+        Ok(Some(red))
+    }
+
+    /// Paths of one run.
+    fn paths(&self) -> usize {
+        self.iso.as_ref().map_or(1usize << self.n, |iso| iso.starts.len())
+    }
+
+    /// z = z0 + K t (or, in isotropic form, c = (e + ebar) / 2, s = (e - ebar) / 2i).
     fn z_of(&self, t: &[C]) -> Vec<C> {
+        if let Some(iso) = &self.iso {
+            let (e, eb) = iso.e_ebar(C::new(1.0, 0.0), t);
+            let half = C::new(0.5, 0.0);
+            let c: Vec<C> = e.iter().zip(&eb).map(|(a, b)| (a + b) * half).collect();
+            let s: Vec<C> = e.iter().zip(&eb).map(|(a, b)| (a - b) * C::new(0.0, -0.5)).collect();
+            return c.into_iter().chain(s).collect();
+        }
         let cols = self.n + 1;
         (0..self.d)
             .map(|r| {
@@ -431,8 +575,8 @@ impl Reduced {
         };
         let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0, jumps: 0, steps: 0 };
         // root index reached by each path (None: infinite or failed)
-        let mut reached: Vec<Option<usize>> = Vec::with_capacity(1 << n);
-        for start in 0..(1usize << n) {
+        let mut reached: Vec<Option<usize>> = Vec::with_capacity(self.paths());
+        for start in 0..self.paths() {
             res.paths += 1;
             let end = match self.path(start, gamma, opts, &mut work, poll)? {
                 PathEnd::Root(t) => Some(insert_unique(&mut res.roots, t)),
@@ -482,12 +626,15 @@ impl Reduced {
     ) -> Result<PathEnd, Error> {
         let m = self.n + 1;
         let norm0 = 1.0 / (m as f64).sqrt();
-        let mut x: Vec<C> = (0..m)
-            .map(|k| {
-                let sign = if k > 0 && (start >> (k - 1)) & 1 == 1 { -1.0 } else { 1.0 };
-                C::new(sign * norm0, 0.0)
-            })
-            .collect();
+        let mut x: Vec<C> = match &self.iso {
+            Some(iso) => iso.starts[start].clone(),
+            None => (0..m)
+                .map(|k| {
+                    let sign = if k > 0 && (start >> (k - 1)) & 1 == 1 { -1.0 } else { 1.0 };
+                    C::new(sign * norm0, 0.0)
+                })
+                .collect(),
+        };
         let end = self.track(&mut x, gamma, opts, work, poll)?;
         // A path that stopped just short of tau = 1 usually sits by a singular root, where
         // Newton still converges (linearly): keep it if Newton verifies it.
@@ -509,6 +656,11 @@ impl Reduced {
     /// Homotopy residual (rows 0..N, plus the patch row N) into `work.rhs` and its
     /// Jacobian in X into `work.jac`; with `dtau`, `rhs` gets H_tau instead (patch row 0).
     fn eval(&self, x: &[C], tau: f64, gamma: C, patch: &[C], work: &mut Work, dtau: bool) {
+        if let Some(iso) = &self.iso {
+            iso.eval(x, tau, gamma, work, dtau);
+            Self::patch_row(self.n, x, patch, work, dtau);
+            return;
+        }
         let n = self.n;
         let m = work.m;
         for r in 0..self.d {
@@ -550,6 +702,12 @@ impl Reduced {
             work.rhs[j] = if dtau { f - gamma * g } else { g_w * g + f * tau };
             work.jac[j * m + j + 1] += g_w * x[j + 1] * 2.0;
         }
+        Self::patch_row(n, x, patch, work, dtau);
+    }
+
+    /// The patch row N of the homotopy's residual and Jacobian.
+    fn patch_row(n: usize, x: &[C], patch: &[C], work: &mut Work, dtau: bool) {
+        let m = work.m;
         work.jac[n * m..(n + 1) * m].copy_from_slice(patch);
         work.rhs[n] = if dtau {
             C::default()
@@ -687,7 +845,10 @@ impl Reduced {
             let z = self.z_of(&t);
             let mut res = 0.0_f64;
             let row_of = |i: usize| &self.p[i * cols + 1..(i + 1) * cols];
-            for j in 0..n {
+            if let Some(iso) = &self.iso {
+                res = iso.affine_terms(&t, &mut jac, &mut rhs);
+            }
+            for j in (0..n).filter(|_| self.iso.is_none()) {
                 match self.quads[j] {
                     Quadric::Circle { c: ic, s: is } => {
                         let (c, s) = (z[ic], z[is]);
@@ -779,6 +940,63 @@ impl Reduced {
                 v += self.a[(i, j)] * c + self.a[(i, n + j)] * s;
             }
             res = res.max(v.abs());
+        }
+        res
+    }
+}
+
+impl Iso {
+    /// e and ebar at projective coordinates (x0, t, u) = (`x0`, `tu`).
+    fn e_ebar(&self, x0: C, tu: &[C]) -> (Vec<C>, Vec<C>) {
+        let (nc, cols) = (self.c, self.c + 1);
+        let n = 2 * nc;
+        let dotp = |p: &[C], w: &[C]| p[0] * x0 + p[1..].iter().zip(w).map(|(a, b)| a * b).sum::<C>();
+        let e = (0..n).map(|j| dotp(&self.pe[j * cols..(j + 1) * cols], &tu[..nc])).collect();
+        let eb = (0..n).map(|j| dotp(&self.pb[j * cols..(j + 1) * cols], &tu[nc..])).collect();
+        (e, eb)
+    }
+
+    /// H = (1 - tau) gamma G + tau F (or H_tau with `dtau`) and its Jacobian in X, rows 0..N.
+    fn eval(&self, x: &[C], tau: f64, gamma: C, work: &mut Work, dtau: bool) {
+        let (nc, cols) = (self.c, self.c + 1);
+        let n = 2 * nc;
+        let m = work.m;
+        let (x0, tu) = (x[0], &x[1..]);
+        let (e, eb) = self.e_ebar(x0, tu);
+        let dotp = |p: &[C], w: &[C]| p[0] * x0 + p[1..].iter().zip(w).map(|(a, b)| a * b).sum::<C>();
+        let g_w = gamma * (1.0 - tau);
+        for j in 0..n {
+            let (pe, pb) = (&self.pe[j * cols..(j + 1) * cols], &self.pb[j * cols..(j + 1) * cols]);
+            let (la, lb) = (&self.la[j * cols..(j + 1) * cols], &self.lb[j * cols..(j + 1) * cols]);
+            let (l, mm) = (dotp(la, &tu[..nc]), dotp(lb, &tu[nc..]));
+            let f = e[j] * eb[j] - x0 * x0;
+            let g = l * mm;
+            work.rhs[j] = if dtau { f - gamma * g } else { g_w * g + f * tau };
+            let row = &mut work.jac[j * m..(j + 1) * m];
+            let (ft, gt) = (C::new(tau, 0.0), g_w);
+            row[0] = ft * (pe[0] * eb[j] + e[j] * pb[0] - x0 * 2.0) + gt * (la[0] * mm + l * lb[0]);
+            for k in 0..nc {
+                row[1 + k] = ft * pe[1 + k] * eb[j] + gt * la[1 + k] * mm;
+                row[1 + nc + k] = ft * e[j] * pb[1 + k] + gt * l * lb[1 + k];
+            }
+        }
+    }
+
+    /// Residuals -(e_j ebar_j - 1) into `rhs` and their Jacobian in (t, u) into `jac` at
+    /// affine `tu`; returns the largest residual.
+    fn affine_terms(&self, tu: &[C], jac: &mut [C], rhs: &mut [C]) -> f64 {
+        let (nc, cols) = (self.c, self.c + 1);
+        let n = 2 * nc;
+        let one = C::new(1.0, 0.0);
+        let (e, eb) = self.e_ebar(one, tu);
+        let mut res = 0.0_f64;
+        for j in 0..n {
+            rhs[j] = -(e[j] * eb[j] - one);
+            res = res.max(rhs[j].norm());
+            for k in 0..nc {
+                jac[j * n + k] = self.pe[j * cols + 1 + k] * eb[j];
+                jac[j * n + nc + k] = e[j] * self.pb[j * cols + 1 + k];
+            }
         }
         res
     }

@@ -274,7 +274,8 @@ fn homotopy_dyad_matches_circle_intersection() {
     let sol = solve(&a, &b);
     assert_eq!(sol.complex.len(), 2);
     assert_eq!(sol.real.len(), 2);
-    assert_eq!(sol.paths, 8);
+    // two runs of C(2, 1) = 2 paths (the isotropic start system; total degree: 2^2)
+    assert_eq!(sol.paths, 4);
     // closed form: J = P + a e +- h e_perp
     let u = sub(q, p);
     let d = (u[0] * u[0] + u[1] * u[1]).sqrt();
@@ -452,7 +453,8 @@ fn homotopy_path_jump_is_detected_and_retracked() {
         j = spread_joints(&mut rng, 1.0);
     }
     let (a, b) = butterfly_bar_ground(&j);
-    let sol = solve(&a, &b);
+    // (the total-degree start system: this geometry's jump is one of its paths)
+    let sol = circle_solutions(&a, &b, &HomotopyOptions::default(), &Poll::new(&Never), false).unwrap();
     assert_eq!(sol.per_run_jumps, vec![0, 1]);
     assert_eq!(sol.per_run_found, vec![16, 16]);
     assert_eq!(sol.complex.len(), 16);
@@ -552,7 +554,8 @@ fn homotopy_stops_when_interrupted() {
     let mut rng = SplitMix64(300);
     let (a, b) = butterfly_hinge_input(&joints(&mut rng, BUTTERFLY));
     let yes = || true;
-    let r = unit_circle_solutions_polled(&a, &b, &HomotopyOptions::default(), &Poll::new(&yes));
+    // (16 runs: enough steps that the poll, asked every 4096, is asked at all)
+    let r = unit_circle_solutions_polled(&a, &b, &HomotopyOptions::new(1, 16).unwrap(), &Poll::new(&yes));
     assert_eq!(r, Err(Error::Interrupted));
     let opts = HomotopyOptions::new(7, 1).unwrap();
     assert_eq!((opts.seed, opts.runs), (7, 1));
