@@ -899,6 +899,10 @@ impl<const N: usize> System<N> for At<'_> {
         1.0
     }
 
+    fn conditioned_step(&self, j: &SMatrix<f64, N, N>, f: &SVector<f64, N>) -> (f64, Option<SVector<f64, N>>) {
+        newton::hadamard_step(j, f)
+    }
+
     fn normalize(&self, x: &mut SVector<f64, N>) {
         for v in x.iter_mut().take(self.g.nrot) {
             *v = wrap_angle(*v);
@@ -944,7 +948,8 @@ fn solve_n<const N: usize>(
     let out = newton::solve(&sys, x0, opts, None);
     let mut phi = [f64::NAN; MAX];
     let mut dphi = [f64::NAN; MAX];
-    let det = hadamard_ratio(&out.jacobian);
+    // (the signed Hadamard ratio of the last Jacobian, from the last step's elimination)
+    let det = if out.conditioning.is_nan() { hadamard_ratio(&out.jacobian) } else { out.conditioning };
     if out.status == Status::Converged {
         for (k, (p, x)) in phi.iter_mut().zip(out.x.iter()).enumerate() {
             *p = if g.is_angle(k) { wrap_angle(*x) } else { *x };

@@ -37,6 +37,22 @@ pub trait System<const N: usize> {
     fn step(&self, j: &SMatrix<f64, N, N>, f: &SVector<f64, N>) -> Option<SVector<f64, N>> {
         eliminate(*j, -f, &mut 1.0)
     }
+
+    /// [`System::conditioning`] (its size; it may carry a sign) and [`System::step`]
+    /// together, for one Newton iteration. A system whose conditioning is the default
+    /// Hadamard ratio may override it with [`hadamard_step`]: one elimination gives both.
+    fn conditioned_step(&self, j: &SMatrix<f64, N, N>, f: &SVector<f64, N>) -> (f64, Option<SVector<f64, N>>) {
+        (self.conditioning(j), self.step(j, f))
+    }
+}
+
+/// The signed Hadamard ratio det J / prod(column norms) and the step J dx = -F from one
+/// elimination (bit for bit what [`hadamard_ratio`] and the default step give).
+pub fn hadamard_step<const N: usize>(j: &SMatrix<f64, N, N>, f: &SVector<f64, N>) -> (f64, Option<SVector<f64, N>>) {
+    let norms: f64 = j.column_iter().map(|c| c.norm()).product();
+    let mut det = 1.0;
+    let dx = eliminate(*j, -f, &mut det);
+    (if norms == 0.0 { 0.0 } else { det / norms }, dx)
 }
 
 /// Signed Hadamard ratio det J / prod(column norms), in [-1, 1]: its size is a scale-free
@@ -54,39 +70,53 @@ pub fn hadamard_ratio<const N: usize>(j: &SMatrix<f64, N, N>) -> f64 {
 /// Gaussian elimination with partial pivoting on the stack, for any N (nalgebra's LU needs
 /// `DimMin` bounds a generic const N cannot name). Multiplies `det` by the determinant;
 /// `None` on an exactly zero pivot.
-pub fn eliminate<const N: usize>(
-    mut a: SMatrix<f64, N, N>,
-    mut b: SVector<f64, N>,
-    det: &mut f64,
-) -> Option<SVector<f64, N>> {
+pub fn eliminate<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>, det: &mut f64) -> Option<SVector<f64, N>> {
+    // row-major rows on the stack: a row swap is a swap of two arrays, and the inner loops
+    // run over contiguous memory (the same operations, in the same order, as on `a`)
+    let mut m = [[0.0; N]; N];
+    for (i, row) in m.iter_mut().enumerate() {
+        for (c, v) in row.iter_mut().enumerate() {
+            *v = a[(i, c)];
+        }
+    }
+    let mut x = [0.0; N];
+    x.copy_from_slice(b.as_slice());
     for k in 0..N {
-        let p = (k..N).max_by(|&i, &j| a[(i, k)].abs().total_cmp(&a[(j, k)].abs()))?;
+        // the last row of largest |a_ik| (as `max_by` picks among equals)
+        let mut p = k;
+        for i in k + 1..N {
+            if m[i][k].abs().total_cmp(&m[p][k].abs()).is_ge() {
+                p = i;
+            }
+        }
         if p != k {
-            a.swap_rows(k, p);
-            b.swap_rows(k, p);
+            m.swap(k, p);
+            x.swap(k, p);
             *det = -*det;
         }
-        let pivot = a[(k, k)];
+        let pivot = m[k][k];
         *det *= pivot;
         if pivot == 0.0 {
             return None;
         }
-        for i in k + 1..N {
-            let m = a[(i, k)] / pivot;
+        let (top, rest) = m.split_at_mut(k + 1);
+        let rk = &top[k];
+        for (off, ri) in rest.iter_mut().enumerate() {
+            let f = ri[k] / pivot;
             for c in k..N {
-                a[(i, c)] -= m * a[(k, c)];
+                ri[c] -= f * rk[c];
             }
-            b[i] -= m * b[k];
+            x[k + 1 + off] -= f * x[k];
         }
     }
     for k in (0..N).rev() {
-        let mut s = b[k];
+        let mut s = x[k];
         for c in k + 1..N {
-            s -= a[(k, c)] * b[c];
+            s -= m[k][c] * x[c];
         }
-        b[k] = s / a[(k, k)];
+        x[k] = s / m[k][k];
     }
-    Some(b)
+    Some(SVector::<f64, N>::from_column_slice(&x))
 }
 
 /// Stopping criteria, validated once.
@@ -131,6 +161,9 @@ pub struct Outcome<const N: usize> {
     pub residual: f64,
     /// Jacobian at `x` (reused for velocities and predictors without re-evaluating).
     pub jacobian: SMatrix<f64, N, N>,
+    /// The system's conditioning of `jacobian` as its last step computed it (signed where
+    /// the system gives a sign, as [`hadamard_step`] does); NaN if no step was taken.
+    pub conditioning: f64,
 }
 
 /// Newton-Raphson from `x0`.
@@ -197,24 +230,34 @@ fn iterate<S: System<N>, const N: usize>(
             // max_iter is the caller's: the history grows fallibly
             let len = h.len() + 1;
             if let Err(e) = try_grow(h, 1, || format!("history of {len} Newton iterations")) {
-                return (Outcome { x, status: Status::MaxIterations, nit, residual, jacobian: j }, Some(e));
+                return (
+                    Outcome { x, status: Status::MaxIterations, nit, residual, jacobian: j, conditioning: f64::NAN },
+                    Some(e),
+                );
             }
             h.push(if finite { residual } else { f64::NAN });
         }
         if !finite {
-            return (Outcome { x, status: Status::NonFinite, nit, residual: f64::NAN, jacobian: j }, None);
+            return (
+                Outcome { x, status: Status::NonFinite, nit, residual: f64::NAN, jacobian: j, conditioning: f64::NAN },
+                None,
+            );
         }
-        let done = |status| (Outcome { x, status, nit, residual, jacobian: j }, None);
-        if sys.conditioning(&j) < opts.singular {
+        let (conditioning, dx) = sys.conditioned_step(&j, &f);
+        let done = |status| (Outcome { x, status, nit, residual, jacobian: j, conditioning }, None);
+        if conditioning.abs() < opts.singular {
             return done(Status::Singular);
         }
-        let Some(dx) = sys.step(&j, &f) else { return done(Status::Singular) };
+        let Some(dx) = dx else { return done(Status::Singular) };
         if residual < opts.tol {
             let step = dx.amax();
             if step < opts.tol {
                 // The correction is already computed: apply it (no further evaluation), so
                 // the answer's error is quadratic in it rather than of its size.
-                return (Outcome { x: x + dx, status: Status::Converged, nit, residual, jacobian: j }, None);
+                return (
+                    Outcome { x: x + dx, status: Status::Converged, nit, residual, jacobian: j, conditioning },
+                    None,
+                );
             }
             if step > 0.5 * last_small_step {
                 return done(Status::PrecisionLoss);
@@ -225,7 +268,7 @@ fn iterate<S: System<N>, const N: usize>(
             return done(Status::MaxIterations);
         }
         if let Some(Err(e)) = poll.map(Poll::tick) {
-            return (Outcome { x, status: Status::MaxIterations, nit, residual, jacobian: j }, Some(e));
+            return (Outcome { x, status: Status::MaxIterations, nit, residual, jacobian: j, conditioning }, Some(e));
         }
         x += dx;
         sys.normalize(&mut x);
