@@ -46,8 +46,9 @@ pub const MAX_SKETCH_POINTS: usize = 500;
 const FLAT: f64 = 1e-12;
 /// Lengths that agree to this (relative) are the same length.
 const SAME: f64 = 1e-9;
-/// Newton corrections (frame units: the sketch's size is 1 to 2) below this converge a
-/// continuation step; the last solve goes on to rounding.
+/// Newton corrections below this converge a continuation step (frame units: coordinates
+/// divided by the power of two at or below the largest link); the last solve goes on to
+/// rounding.
 const STEP_TOL: f64 = 1e-10;
 /// The final pose must meet every condition to this (frame units).
 const CLOSE_TOL: f64 = 1e-12;
