@@ -21,6 +21,7 @@ __all__ = [
     "set_simd",
     "simd_available",
     "simd_enabled",
+    "sketch",
     "sweep_batch",
     "transmission",
 ]
@@ -137,6 +138,18 @@ class Scene:
         list[tuple[list[int], list[float], float, tuple[float, float], _Trace]],
     ]: ...
     def plan(self, outputs: list[str] | None = None) -> Plan: ...
+
+def sketch(
+    points: list[tuple[str, tuple[float, float]]],
+    links: list[tuple[str, list[str]]],
+    ground: str,
+    input: tuple[str, str],
+    output: tuple[str, str] | None,
+    slots: list[tuple[str, tuple[str, str, tuple[str, str]]]],
+    prismatic: list[tuple[str, tuple[str, str, tuple[str, str]]]],
+    linear_input: tuple[str, str] | None,
+    lengths: list[tuple[str, str, float]],
+) -> tuple[list[tuple[float, float]], list[float]]: ...
 
 @final
 class Plan:

@@ -14,6 +14,7 @@ from ._core import (
     set_simd,
     simd_available,
     simd_enabled,
+    sketch,
     sweep_batch,
     transmission,
 )
@@ -27,6 +28,7 @@ __all__ = [
     "set_simd",
     "simd_available",
     "simd_enabled",
+    "sketch",
     "sweep_batch",
     "transmission",
 ]

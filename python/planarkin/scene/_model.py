@@ -33,6 +33,7 @@ KEYS = (
     "outputs",
     "slots",
     "prismatic",
+    "lengths",
 )
 REQUIRED = ("points", "links", "ground", "input")
 #: Default largest continuation step of a group (3 degrees).
@@ -101,6 +102,35 @@ def _joints(data: Mapping[str, Any], key: str, first: str) -> dict[str, Joint]:
     return out
 
 
+#: A sketch's length: two names (points of one link, or a point and a slot or prismatic
+#: pair) and a distance.
+Length = tuple[str, str, float]
+
+
+def _lengths(data: Mapping[str, Any]) -> tuple[Length, ...] | None:
+    """The ``lengths`` entries as (name, name, distance), or None when absent; their
+    meaning (names, signs, agreement) is the core's to check."""
+    v = data.get("lengths")
+    if v is None:
+        return None
+    _entry(
+        isinstance(v, (list, tuple)),
+        "lengths",
+        f"must be a list of [name, name, length], got {v!r}",
+    )
+    out = []
+    for k, e in enumerate(v):
+        ok = isinstance(e, (list, tuple)) and len(e) == 3
+        ok = ok and isinstance(e[0], str) and isinstance(e[1], str)
+        _entry(ok, f"lengths[{k}]", f"must be [name, name, length], got {e!r}")
+        try:
+            d = as_float("length", e[2])
+        except ValueError as err:
+            raise ValueError(f"lengths[{k}]: the {err}") from None
+        out.append((e[0], e[1], d))
+    return tuple(out)
+
+
 def _xy(name: str, v: object) -> tuple[float, float]:
     ok = isinstance(v, (list, tuple, np.ndarray)) and len(v) == 2
     _entry(ok, f"points.{name}", f"must be a pair [x, y], got {v!r}")
@@ -152,7 +182,7 @@ class Scene:
     (361, 2)
     """
 
-    __slots__ = ("_core", "_data", "_plans", "_theta")
+    __slots__ = ("_core", "_data", "_moved", "_plans", "_theta")
 
     def __init__(self, data: Mapping[str, Any]) -> None:
         _entry(isinstance(data, Mapping), "scene", f"must be a mapping, got {type(data).__name__}")
@@ -186,7 +216,8 @@ class Scene:
         for k in ("name", "description", "units"):
             v = data.get(k)
             _entry(v is None or isinstance(v, str), k, f"must be a string, got {v!r}")
-        self._core = _kernel.Scene(
+        lengths = _lengths(data)
+        args = (
             list(points.items()),
             [(n, list(v)) for n, v in lk.items()],
             data["ground"],
@@ -196,6 +227,14 @@ class Scene:
             list(prism.items()),
             inp if linear_in else None,
         )
+        moved = dict.fromkeys(points, 0.0)
+        if lengths is not None:
+            exact, dist = _kernel.sketch(*args, list(lengths))
+            points = {n: (x, y) for n, (x, y) in zip(points, exact, strict=True)}
+            moved = dict(zip(points, dist, strict=True))
+            args = (list(points.items()), *args[1:])
+        self._core = _kernel.Scene(*args)
+        self._moved = moved
         self._data: dict[str, Any] = {
             "name": data.get("name"),
             "description": data.get("description"),
@@ -208,6 +247,7 @@ class Scene:
             "outputs": None if outputs is None else tuple(outputs),
             "slots": slots,
             "prismatic": prism,
+            "lengths": lengths,
         }
         self._plans: dict[tuple[str, ...] | None, tuple[Plan, Any]] = {}
         self._theta: np.ndarray | None = None
@@ -256,6 +296,8 @@ class Scene:
                     n: {first: a, "guide": g, "line": list(line)}
                     for n, (a, g, line) in d[key].items()
                 }
+        if d["lengths"] is not None:
+            out["lengths"] = [[a, b, v] for a, b, v in d["lengths"]]
         return out
 
     def save(self, path: str | Path) -> Path:
@@ -329,6 +371,18 @@ class Scene:
         return dict(self._data["prismatic"])
 
     @property
+    def lengths(self) -> tuple[tuple[str, str, float], ...] | None:
+        """The sketch's lengths as given, (name, name, distance); None for a scene typed as
+        an exact pose."""
+        return self._data["lengths"]
+
+    @property
+    def moved(self) -> dict[str, float]:
+        """Point name -> how far it moved from the sketch to the exact pose (scene units;
+        0 for ground points and for a scene without ``lengths``)."""
+        return dict(self._moved)
+
+    @property
     def outputs(self) -> tuple[str, ...] | None:
         """The names requested by default (None: every point and link)."""
         return self._data["outputs"]
@@ -354,9 +408,11 @@ class Scene:
 
     def __repr__(self) -> str:
         d = self._data
+        a, b = self.input
+        drive = f"{a!r} at {b!r}" if self.input_kind == "angle" else f"{a} {b!r}"
         return (
             f"Scene({d['name']!r}: {len(d['points'])} points, {len(d['links'])} links, "
-            f"input {d['input']['link']!r} at {d['input']['pivot']!r})"
+            f"input {drive})"
         )
 
     def _repr_svg_(self) -> str:

@@ -3,7 +3,8 @@
 
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use planarkin_core::scene::{
-    Assemblies, LinearKind, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace, TraceOptions,
+    assemble_sketch, Assemblies, LinearKind, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace,
+    TraceOptions,
 };
 use planarkin_core::solve::homotopy::HomotopyOptions;
 use planarkin_core::NewtonOptions;
@@ -38,27 +39,7 @@ impl PyScene {
         prismatic: Vec<(String, Joint)>,
         linear_input: Option<Named>,
     ) -> PyResult<Self> {
-        let linear_input = match linear_input {
-            None => None,
-            Some((kind, name)) => Some((
-                match kind.as_str() {
-                    "slot" => LinearKind::Slot,
-                    "prismatic" => LinearKind::Prismatic,
-                    other => return Err(PyValueError::new_err(format!("input: unknown linear input kind {other:?}"))),
-                },
-                name,
-            )),
-        };
-        let spec = SceneSpec {
-            points: points.into_iter().map(|(n, (x, y))| (n, [x, y])).collect(),
-            links,
-            ground,
-            input,
-            output,
-            slots: slots.into_iter().map(|(n, j)| (n, j.into())).collect(),
-            prismatic: prismatic.into_iter().map(|(n, j)| (n, j.into())).collect(),
-            linear_input,
-        };
+        let spec = spec_of(points, links, ground, input, output, slots, prismatic, linear_input)?;
         Ok(Self { inner: Scene::new(spec).map_err(err)? })
     }
 
@@ -133,6 +114,66 @@ impl PyScene {
     fn plan(&self, outputs: Option<Vec<String>>) -> PyResult<PyPlan> {
         Ok(PyPlan { inner: self.inner.plan(outputs.as_deref()).map_err(err)? })
     }
+}
+
+/// The scene as the core takes it (a linear input's kind by name).
+#[allow(clippy::too_many_arguments)]
+fn spec_of(
+    points: Vec<(String, (f64, f64))>,
+    links: Vec<(String, Vec<String>)>,
+    ground: String,
+    input: Named,
+    output: Option<Named>,
+    slots: Vec<(String, Joint)>,
+    prismatic: Vec<(String, Joint)>,
+    linear_input: Option<Named>,
+) -> PyResult<SceneSpec> {
+    let linear_input = match linear_input {
+        None => None,
+        Some((kind, name)) => Some((
+            match kind.as_str() {
+                "slot" => LinearKind::Slot,
+                "prismatic" => LinearKind::Prismatic,
+                other => return Err(PyValueError::new_err(format!("input: unknown linear input kind {other:?}"))),
+            },
+            name,
+        )),
+    };
+    Ok(SceneSpec {
+        points: points.into_iter().map(|(n, (x, y))| (n, [x, y])).collect(),
+        links,
+        ground,
+        input,
+        output,
+        slots: slots.into_iter().map(|(n, j)| (n, j.into())).collect(),
+        prismatic: prismatic.into_iter().map(|(n, j)| (n, j.into())).collect(),
+        linear_input,
+    })
+}
+
+/// The exact points, in the order given, and how far each moved.
+type SketchOut = (Vec<(f64, f64)>, Vec<f64>);
+
+/// A sketch (the scene's arguments, its points roughly drawn) and its `lengths` ->
+/// (exact points in the given order, how far each moved).
+#[pyfunction]
+#[pyo3(signature = (points, links, ground, input, output, slots, prismatic, linear_input, lengths))]
+#[allow(clippy::too_many_arguments)]
+fn sketch(
+    py: Python<'_>,
+    points: Vec<(String, (f64, f64))>,
+    links: Vec<(String, Vec<String>)>,
+    ground: String,
+    input: Named,
+    output: Option<Named>,
+    slots: Vec<(String, Joint)>,
+    prismatic: Vec<(String, Joint)>,
+    linear_input: Option<Named>,
+    lengths: Vec<(String, String, f64)>,
+) -> PyResult<SketchOut> {
+    let spec = spec_of(points, links, ground, input, output, slots, prismatic, linear_input)?;
+    let s = Signals::detach(py, |signals| assemble_sketch(spec, &lengths, signals))?;
+    Ok((s.points.into_iter().map(|[x, y]| (x, y)).collect(), s.moved))
 }
 
 /// A compiled plan.
@@ -285,5 +326,6 @@ fn points_of(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<[f64; 2]
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_class::<PyPlan>()?;
+    m.add_function(wrap_pyfunction!(sketch, m)?)?;
     Ok(())
 }

@@ -4,8 +4,9 @@
 //! steps that the requested outputs need (dyads, rigid carries, Newton groups);
 //! [`Plan::sweep`] solves them over input angles, [`Plan::assemblies`] finds every
 //! assembly at one angle, and [`Tracer`] follows circuits through their dead points.
+//! [`assemble_sketch`] turns `lengths` and a rough drawing into the exact pose.
 //!
-//! Inside: `validate` and `plan` build; `sweep` (continuation) and `columns` (dyad-only
+//! Inside: `validate` and `plan` build (`sketch` assembles a sketch before); `sweep` (continuation) and `columns` (dyad-only
 //! plans, blocks of angles) solve, on `dyad` and `group`; `assemble` and `trace` branch
 //! and follow; `options` and `vec2` are the leaves they share.
 
@@ -16,6 +17,7 @@ mod eval;
 mod group;
 mod options;
 mod plan;
+mod sketch;
 mod slide;
 mod stroke;
 mod sweep;
@@ -28,6 +30,7 @@ use std::collections::HashMap;
 pub use assemble::{Assemblies, Assembly};
 pub use options::{SceneSweepOptions, SceneSweepOut};
 pub use plan::{Plan, StepInfo, StepKind};
+pub use sketch::{assemble_sketch, LengthSpec, Sketched, MAX_SKETCH_POINTS};
 pub use slide::{Prismatic, Slot};
 pub use trace::{Circuit, Trace, TraceOptions, Tracer};
 pub use vec2::Xy;

@@ -24,6 +24,15 @@ const DENSE_COLUMNS: usize = 600;
 const MAX_ENTRIES: usize = 1_000_000;
 
 pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
+    let sc = structure(spec)?;
+    rank_check(&sc)?;
+    Ok(sc)
+}
+
+/// Everything [`scene`] checks but the rank at the drawn pose: names, coordinates, links,
+/// joints, inputs and the Gruebler count. A sketch (whose pose is not yet an assembly) is
+/// checked by this before it is assembled.
+pub(super) fn structure(spec: SceneSpec) -> Result<Scene, Error> {
     let SceneSpec { points, links, ground, input, output, slots, prismatic, linear_input } = spec;
     if points.is_empty() {
         return Err(Error::scene("points", "the scene has no points"));
@@ -269,7 +278,7 @@ pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
         Linear { dir: unit(line.0, line.1), ..l }
     });
 
-    let sc = Scene {
+    Ok(Scene {
         names,
         drawn,
         xy,
@@ -284,9 +293,7 @@ pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
         prismatic: prism_list,
         linear,
         theta0,
-    };
-    rank_check(&sc)?;
-    Ok(sc)
+    })
 }
 
 /// The largest power of two at most `x` (> 0, finite; subnormal sizes included).
