@@ -377,6 +377,41 @@ def test_a_good_scene_file_opens(page, tmp_path):
     _assert_scene_state(page.state(), sc, sc.input_angle)
 
 
+def _sketched(name: str, shift: float) -> dict:
+    """A built-in as a sketch: its lengths from the exact drawing, its moving points
+    shifted by `shift` of its size (a fixed pattern)."""
+    data = pk.scenes.data(name)
+    pts = {n: np.asarray(v, dtype=float) for n, v in data["points"].items()}
+    ground = set(data["links"][data["ground"]])
+    size = max(np.ptp(np.array(list(pts.values())), axis=0))
+    lengths = []
+    for link in data["links"].values():
+        for i, a in enumerate(link):
+            for b in link[i + 1 :]:
+                lengths.append([a, b, float(np.linalg.norm(pts[a] - pts[b]))])
+    moved = {
+        n: (v if n in ground else v + shift * size * np.array([0.6, -0.8]) * (-1) ** k).tolist()
+        for k, (n, v) in enumerate(pts.items())
+    }
+    return {**data, "points": moved, "lengths": lengths}
+
+
+def test_a_sketch_file_opens_at_its_exact_pose(page, tmp_path):
+    # the module assembles a sketch as Python does: the same exact pose
+    data = _sketched("fourbar", 0.02)
+    path = tmp_path / "sketch.json"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    sc = pk.Scene(data)
+    page.open()
+    page.el("file").send_keys(str(path))
+    for _ in range(100):
+        if page.state()["scene"] == "sketch.json":
+            break
+        time.sleep(0.05)
+    assert page.message() == ""
+    _assert_scene_state(page.state(), sc, sc.input_angle)
+
+
 def test_assemblies_and_circuits_match_python(page):
     theta = math.radians(30)
     page.open("?scene=jansen&theta=30")

@@ -5,7 +5,16 @@ rigid groups compiled for the outputs asked for; ``builtin`` holds the classic o
 
 from . import builtin
 from ._model import FourBarView, Scene
-from ._results import Assemblies, Assembly, Circuit, Plan, SceneSweep, Step, Trace
+from ._results import (
+    Assemblies,
+    Assembly,
+    Circuit,
+    Plan,
+    SceneGradient,
+    SceneSweep,
+    Step,
+    Trace,
+)
 
 __all__ = [
     "Assemblies",
@@ -14,6 +23,7 @@ __all__ = [
     "FourBarView",
     "Plan",
     "Scene",
+    "SceneGradient",
     "SceneSweep",
     "Step",
     "Trace",

@@ -17,7 +17,16 @@ from .._args import as_angles, as_float, as_i64, as_u64
 from .._svg import picture
 from ..fourbar import LINKS, POINTS, FourBar
 from ._parse import check_depth, parse
-from ._results import Assemblies, Assembly, Circuit, Plan, SceneSweep, Step, Trace
+from ._results import (
+    Assemblies,
+    Assembly,
+    Circuit,
+    Plan,
+    SceneGradient,
+    SceneSweep,
+    Step,
+    Trace,
+)
 from ._toml import dumps as toml_dumps
 
 #: Keys a scene may have; the first five are required (``output`` is optional).
@@ -607,6 +616,42 @@ class Scene:
             closed=bool(closed),
             coords=coords,
         )
+
+    def gradient(self, free: Iterable[str], theta: object = None) -> SceneGradient:
+        """Exact derivatives of the sweep at ``theta`` (default as :meth:`sweep`) by the
+        drawn coordinates named in ``free`` ("A.x", "A.y", or "A" for both): every point's
+        position and the output angle, by implicit differentiation of the whole linkage
+        (one factorisation per input angle, reused for every coordinate). A drawn
+        coordinate moves the shapes of the links through its point (the drawing is its own
+        assembly), a ground pivot drawn there, and the drawn input angle. For synthesis:
+        the design variables are drawn coordinates. Scenes with slots, prismatic pairs or a
+        linear input are refused for now."""
+        names = list(self.points)
+        cols: list[tuple[int, int]] = []
+        labels: list[str] = []
+        for item in [free] if isinstance(free, str) else list(free):
+            _entry(isinstance(item, str), "free", f"must name coordinates like 'A.x', got {item!r}")
+            point, _, axis = item.partition(".")
+            _entry(point in self.points, "free", f"{item!r}: no point {point!r}")
+            _entry(axis in ("", "x", "y"), "free", f"{item!r}: the coordinate must be x or y")
+            for a in ("x", "y") if axis == "" else (axis,):
+                cols.append((names.index(point), "xy".index(a)))
+                labels.append(f"{point}.{a}")
+        _entry(len(set(cols)) == len(cols), "free", "names a coordinate twice")
+        sw = self.sweep(theta, outputs="all")
+        n, p = len(sw.theta), len(names)
+        raw = self._core.pose_gradient(np.ascontiguousarray(sw.coords.reshape(n * p, 2)), cols)
+        g = raw.reshape(n, p, 2, len(cols))
+        out = None
+        o = self.output
+        if o is not None and "link" in self._data["output"]:
+            link, pivot = o
+            tip = next(q for q in self._data["links"][link] if q != pivot)
+            i, j = names.index(pivot), names.index(tip)
+            d = sw.coords[:, j] - sw.coords[:, i]
+            dd = g[:, j] - g[:, i]  # (N, 2, F)
+            out = (d[:, 0, None] * dd[:, 1] - d[:, 1, None] * dd[:, 0]) / (d**2).sum(1)[:, None]
+        return SceneGradient(free=tuple(labels), sweep=sw, point_array=g, output=out)
 
     def trace(
         self,

@@ -297,3 +297,29 @@ class Circuit:
             f"Circuit({len(self.assemblies)} assemblies, {len(self.turning_points)} turning "
             f"points, {'full turn' if self.full_turn else 'rocking'})"
         )
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SceneGradient:
+    """Exact derivatives of a sweep by free drawn coordinates (``Scene.gradient``): each
+    point's (x, y) and the output angle, by implicit differentiation of the whole linkage
+    at every solved input angle (one factorisation per angle for all the coordinates).
+    NaN where the sweep did not converge or the linkage is singular."""
+
+    #: The free coordinates, as given: "A.x", "A.y".
+    free: tuple[str, ...]
+    #: The sweep the derivatives are taken along (every point reported).
+    sweep: SceneSweep
+    #: (N, P, 2, F): d(point p, x or y) / d(free f), points in ``sweep.point_names`` order.
+    point_array: np.ndarray
+    #: (N, F): d(output angle) / d(free f); None when the scene has no angle output.
+    output: np.ndarray | None
+
+    @cached_property
+    def points(self) -> dict[str, np.ndarray]:
+        """Point name -> (N, 2, F) derivatives (views)."""
+        return {n: self.point_array[:, j] for j, n in enumerate(self.sweep.point_names)}
+
+    def __repr__(self) -> str:
+        n, p, _, f = self.point_array.shape
+        return f"SceneGradient({n} angles, {p} points, by {f} coordinates: {', '.join(self.free)})"

@@ -88,6 +88,11 @@
     }
     setMessage("");
     S.info = info;
+    if (data && data.lengths) {
+      // a sketch: the core assembled the exact pose, which is drawn, edited and saved
+      S.sceneData = { ...data, points: Object.fromEntries(info.names.map((n, i) => [n, info.drawn[i]])) };
+      S.sceneRaw = null;
+    }
     const [path, nums] = call({ op: "path" });
     const np = info.names.length;
     S.path = { ...path, pts: nums.subarray(path.offset, path.offset + path.n * np * 2) };
@@ -113,6 +118,8 @@
     const names = Object.keys(S.sceneData.points);
     const shown = shownPoints();
     const data = { ...S.sceneData, points: {} };
+    // a dragged point redraws the linkage: its lengths now come from the drawing
+    delete data.lengths;
     names.forEach((n, k) => (data.points[n] = k === i ? [x, y] : shown[k].slice()));
     if (loadScene(data, null, S.name)) {
       S.theta = S.info.input_angle;

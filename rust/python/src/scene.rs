@@ -86,6 +86,37 @@ impl PyScene {
         trace_out(py, t, self.inner.point_names().len())
     }
 
+    /// Derivatives of solved poses by the free drawn coordinates: `points` (N * P, 2) holds
+    /// N poses of every point; the result (N * P, 2 * F) holds d(point, x or y) / d(free)
+    /// for each, NaN for a pose that is not finite or singular.
+    fn pose_gradient<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'py, f64>,
+        free: Vec<(usize, usize)>,
+    ) -> PyResult<Arr2<'py, f64>> {
+        let np = self.inner.point_names().len();
+        let pts = points_of("points", &points)?;
+        if np > 0 && pts.len() % np != 0 {
+            return Err(PyValueError::new_err(format!("points must hold whole poses of {np} points")));
+        }
+        let nf = free.len();
+        if nf == 0 || np == 0 {
+            return Ok(grid(py, pts.len(), 2 * nf, Vec::new()));
+        }
+        let out = py.detach(|| -> PyResult<Vec<f64>> {
+            let mut out = zeros("pose gradients", pts.len() * 2 * nf)?;
+            for (pose, o) in pts.chunks(np).zip(out.chunks_mut(np * 2 * nf)) {
+                match self.inner.pose_gradient(pose, &free).map_err(err)? {
+                    Some(g) => o.copy_from_slice(&g),
+                    None => o.fill(f64::NAN),
+                }
+            }
+            Ok(out)
+        })?;
+        Ok(grid(py, pts.len(), 2 * nf, out))
+    }
+
     /// Circuits at `theta`: (assemblies as in `assemblies`, counts, failed,
     /// [(assembly indices, turning points, net turn, (lo, hi), trace)]).
     #[pyo3(signature = (theta, seed, runs, step, max_points))]

@@ -9,7 +9,8 @@
 use std::f64::consts::TAU;
 
 use planarkin_core::scene::{
-    LinearKind, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace, TraceOptions,
+    assemble_sketch, LengthSpec, LinearKind, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace,
+    TraceOptions,
 };
 use planarkin_core::solve::homotopy::HomotopyOptions;
 use planarkin_core::{Never, NewtonOptions};
@@ -18,8 +19,20 @@ use serde_json::{json, Map, Value};
 use crate::json::{pair, status_name};
 
 /// The keys a scene may have (Python's `planarkin.scene._model.KEYS`), and the required.
-const KEYS: [&str; 11] =
-    ["name", "description", "units", "points", "links", "ground", "input", "output", "outputs", "slots", "prismatic"];
+const KEYS: [&str; 12] = [
+    "name",
+    "description",
+    "units",
+    "points",
+    "links",
+    "ground",
+    "input",
+    "output",
+    "outputs",
+    "slots",
+    "prismatic",
+    "lengths",
+];
 const REQUIRED: [&str; 4] = ["points", "links", "ground", "input"];
 /// Python's `SEED` (the homotopy's random gammas) and default `runs`.
 const SEED: u64 = 0x5EED_2026;
@@ -170,8 +183,31 @@ fn joints(d: &Map<String, Value>, key: &str, first: &str) -> Result<Joints, Stri
     Ok(out)
 }
 
-/// What the file gives beyond the core's spec: the `outputs` names and a linear output.
-type Extra = (Option<Vec<String>>, Option<(LinearKind, String)>);
+/// What the file gives beyond the core's spec: the `outputs` names, a linear output, and a
+/// sketch's `lengths`.
+type Extra = (Option<Vec<String>>, Option<(LinearKind, String)>, Option<Vec<LengthSpec>>);
+
+/// A sketch's `lengths` as (name, name, distance) (Python's `_lengths`); their meaning is the
+/// core's to check.
+fn lengths(d: &Map<String, Value>) -> Result<Option<Vec<LengthSpec>>, String> {
+    let v = match d.get("lengths") {
+        None | Some(Value::Null) => return Ok(None),
+        Some(v) => v,
+    };
+    let list = v
+        .as_array()
+        .ok_or_else(|| entry("lengths", format!("must be a list of [name, name, length], got {}", repr(v))))?;
+    let mut out = Vec::with_capacity(list.len());
+    for (k, e) in list.iter().enumerate() {
+        let t = e.as_array().filter(|t| t.len() == 3 && t[0].is_string() && t[1].is_string());
+        let t =
+            t.ok_or_else(|| entry(&format!("lengths[{k}]"), format!("must be [name, name, length], got {}", repr(e))))?;
+        let length = coordinate("length", &t[2]).map_err(|m| format!("lengths[{k}]: the {m}"))?;
+        let name = |i: usize| t[i].as_str().expect("checked above").to_owned();
+        out.push((name(0), name(1), length));
+    }
+    Ok(Some(out))
+}
 
 /// The scene file's data as the core's spec (and what it does not take), checked as
 /// Python's `Scene.__init__` checks it before calling the core.
@@ -259,7 +295,7 @@ fn spec(data: &Value) -> Result<(SceneSpec, Extra), String> {
         prismatic: prismatic.into_iter().map(|(n, j)| (n, j.into())).collect(),
         linear_input,
     };
-    Ok((spec, (outputs, linear_output)))
+    Ok((spec, (outputs, linear_output, lengths(d)?)))
 }
 
 /// `np.linspace(lo, hi, n)`, bit for bit: `lo + i * step`, the last value `hi`.
@@ -273,7 +309,14 @@ fn linspace(lo: f64, hi: f64, n: usize) -> Vec<f64> {
 impl Kept {
     /// Validates a scene (the file format's data) as `pk.Scene(data)` does.
     pub(crate) fn new(data: &Value) -> Result<Kept, String> {
-        let (spec, (outputs, linear_output)) = spec(data)?;
+        let (mut spec, (outputs, linear_output, lengths)) = spec(data)?;
+        if let Some(l) = lengths {
+            // a sketch: the core assembles the exact pose, which is what is drawn and saved
+            let exact = assemble_sketch(spec.clone(), &l, &Never).map_err(|e| e.to_string())?;
+            for (p, xy) in spec.points.iter_mut().zip(exact.points) {
+                p.1 = xy;
+            }
+        }
         let scene = Scene::new(spec).map_err(|e| e.to_string())?;
         // names checked, as Python does; the stroke is found on this plan, as Python's is
         let outputs_plan = match outputs {

@@ -14,6 +14,7 @@ mod assemble;
 mod columns;
 mod dyad;
 mod eval;
+mod gradient;
 mod group;
 mod options;
 mod plan;
@@ -28,6 +29,7 @@ mod vec2;
 use std::collections::HashMap;
 
 pub use assemble::{Assemblies, Assembly};
+pub use gradient::Free;
 pub use options::{SceneSweepOptions, SceneSweepOut};
 pub use plan::{Plan, StepInfo, StepKind};
 pub use sketch::{assemble_sketch, LengthSpec, Sketched, MAX_SKETCH_POINTS};
