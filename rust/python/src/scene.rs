@@ -104,16 +104,8 @@ impl PyScene {
         if nf == 0 || np == 0 {
             return Ok(grid(py, pts.len(), 2 * nf, Vec::new()));
         }
-        let out = py.detach(|| -> PyResult<Vec<f64>> {
-            let mut out = zeros("pose gradients", pts.len() * 2 * nf)?;
-            for (pose, o) in pts.chunks(np).zip(out.chunks_mut(np * 2 * nf)) {
-                match self.inner.pose_gradient(pose, &free).map_err(err)? {
-                    Some(g) => o.copy_from_slice(&g),
-                    None => o.fill(f64::NAN),
-                }
-            }
-            Ok(out)
-        })?;
+        let mut out = zeros("pose gradients", pts.len() * 2 * nf)?;
+        py.detach(|| self.inner.poses_gradient(&pts, &free, &mut out)).map_err(err)?;
         Ok(grid(py, pts.len(), 2 * nf, out))
     }
 

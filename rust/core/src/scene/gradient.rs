@@ -11,7 +11,7 @@
 //! the shapes of the links through it (the drawing is its own assembly), the ground pivots
 //! drawn on it, and the drawn input angle.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 use super::vec2::{perp, sub, Xy};
 use super::Scene;
@@ -20,13 +20,57 @@ use crate::error::Error;
 /// A free design variable: a point's drawn x (0) or y (1).
 pub type Free = (usize, usize);
 
+/// What the differentiation needs of a scene, built once for many poses.
+struct Layout {
+    /// The moving links (column blocks of 3: tx, ty, phi).
+    moving: Vec<usize>,
+    /// Column block of each link (usize::MAX for ground).
+    block: Vec<usize>,
+    /// Per row pair: (point, link, owner link or usize::MAX for ground).
+    rows: Vec<(usize, usize, usize)>,
+    /// Per point: the moving link its position is read through (None: a ground point).
+    owner: Vec<Option<usize>>,
+    /// Per point and coordinate: its column among the free ones.
+    fcol: Vec<[Option<usize>; 2]>,
+}
+
 impl Scene {
     /// Derivatives of every point of a solved pose with respect to the `free` drawn
     /// coordinates: `out[(p * 2 + k) * F + f]` = d(point p, coordinate k) / d(free f).
-    /// `pos` holds every point's position (scene units) at input angle `theta`. `None` where
+    /// `pos` holds every point's position (scene units) at its input angle. `None` where
     /// the pose is not finite or the linkage is singular there (a dead point). Scenes with
     /// slots, prismatic pairs or a linear input are refused.
     pub fn pose_gradient(&self, pos: &[Xy], free: &[Free]) -> Result<Option<Vec<f64>>, Error> {
+        let layout = self.layout(free)?;
+        let np = self.names.len();
+        if pos.len() != np {
+            return Err(Error::Shape { name: "pos".into(), got: pos.len(), expected: np });
+        }
+        let mut out = vec![0.0; np * 2 * free.len()];
+        Ok(self.gradient_into(&layout, pos, free.len(), &mut out).then_some(out))
+    }
+
+    /// [`Scene::pose_gradient`] of N poses (`poses` holds N * P points) into `out`
+    /// (N * P * 2 * F values), NaN for a pose that is not finite or singular; the layout is
+    /// built once.
+    pub fn poses_gradient(&self, poses: &[Xy], free: &[Free], out: &mut [f64]) -> Result<(), Error> {
+        let layout = self.layout(free)?;
+        let (np, nf) = (self.names.len(), free.len());
+        if np == 0 || nf == 0 {
+            return Ok(());
+        }
+        if poses.len() % np != 0 || out.len() != poses.len() * 2 * nf {
+            return Err(Error::Shape { name: "poses".into(), got: poses.len(), expected: out.len() / (2 * nf) });
+        }
+        for (pose, o) in poses.chunks(np).zip(out.chunks_mut(np * 2 * nf)) {
+            if !self.gradient_into(&layout, pose, nf, o) {
+                o.fill(f64::NAN);
+            }
+        }
+        Ok(())
+    }
+
+    fn layout(&self, free: &[Free]) -> Result<Layout, Error> {
         if !self.slots.is_empty() || !self.prismatic.is_empty() || self.input.is_none() {
             return Err(Error::scene(
                 "gradient",
@@ -34,87 +78,90 @@ impl Scene {
             ));
         }
         let np = self.names.len();
-        if pos.len() != np {
-            return Err(Error::Shape { name: "pos".into(), got: pos.len(), expected: np });
+        let mut fcol = vec![[None; 2]; np];
+        for (f, &(p, k)) in free.iter().enumerate() {
+            if p >= np || k > 1 {
+                return Err(Error::invalid("free", "must name a point's x (0) or y (1)", format!("({p}, {k})")));
+            }
+            fcol[p][k] = Some(f);
         }
-        if let Some(&(p, k)) = free.iter().find(|&&(p, k)| p >= np || k > 1) {
-            return Err(Error::invalid("free", "must name a point's x (0) or y (1)", format!("({p}, {k})")));
-        }
-        if pos.iter().any(|p| !(p[0].is_finite() && p[1].is_finite())) {
-            return Ok(None);
-        }
-        // solving frame: positions and drawn coordinates divided by the scale (derivatives
-        // of lengths by lengths are scale-free)
-        let at: Vec<Xy> = pos.iter().map(|&p| self.to_frame(p)).collect();
-        let xi = &self.xy;
         let moving: Vec<usize> = (0..self.links.len()).filter(|&l| l != self.ground).collect();
-        let col = |l: usize| 3 * moving.iter().position(|&m| m == l).expect("a moving link");
-        let n = 3 * moving.len();
-        // each link's first point and rotation from the drawn pose
-        let origin = |l: usize| self.links[l].points[0];
-        let rot = |l: usize| {
-            let pts = &self.links[l].points;
-            let (a, b) = (pts[0], pts[1]);
-            let (d, e) = (sub(at[b], at[a]), sub(xi[b], xi[a]));
-            d[1].atan2(d[0]) - e[1].atan2(e[0])
-        };
-        let phi: Vec<f64> = (0..self.links.len()).map(|l| if l == self.ground { 0.0 } else { rot(l) }).collect();
-        let turn = |l: usize, v: Xy| {
-            let (sn, cs) = phi[l].sin_cos();
-            [cs * v[0] - sn * v[1], sn * v[0] + cs * v[1]]
-        };
-        let on_ground: Vec<bool> = (0..np).map(|p| self.links[self.ground].points.contains(&p)).collect();
-
-        // rows: per point, each moving link through it against its owner (the ground, or
-        // its first moving link); then the input's rotation
-        let mut rows: Vec<(usize, usize, usize)> = Vec::new(); // (point, link, owner or MAX for ground)
-        for (p, &ground) in on_ground.iter().enumerate() {
+        let mut block = vec![usize::MAX; self.links.len()];
+        for (i, &l) in moving.iter().enumerate() {
+            block[l] = 3 * i;
+        }
+        let mut rows = Vec::new();
+        let mut owner = vec![None; np];
+        for p in 0..np {
+            let on_ground = self.point_links[p].contains(&self.ground);
             let links: Vec<usize> = self.point_links[p].iter().copied().filter(|&l| l != self.ground).collect();
-            let (owner, rest) = if ground { (usize::MAX, &links[..]) } else { (links[0], &links[1..]) };
-            for &l in rest {
-                rows.push((p, l, owner));
+            let first = if on_ground { usize::MAX } else { links[0] };
+            if !on_ground {
+                owner[p] = Some(first);
+            }
+            for &l in links.iter().skip(usize::from(!on_ground)) {
+                rows.push((p, l, first));
             }
         }
-        let m = 2 * rows.len() + 1;
+        let (m, n) = (2 * rows.len() + 1, 3 * moving.len());
         if m != n {
             return Err(Error::scene("gradient", format!("{m} equations for {n} unknowns: not one degree of freedom")));
         }
+        Ok(Layout { moving, block, rows, owner, fcol })
+    }
+
+    /// One pose into `out`; false where it is not finite or singular.
+    fn gradient_into(&self, lay: &Layout, pos: &[Xy], nf: usize, out: &mut [f64]) -> bool {
+        if pos.iter().any(|p| !(p[0].is_finite() && p[1].is_finite())) {
+            return false;
+        }
+        // solving frame: positions and drawn coordinates divided by the scale (derivatives
+        // of lengths by lengths are scale-free)
+        let xi = &self.xy;
+        let at = |p: usize| self.to_frame(pos[p]);
+        let origin = |l: usize| self.links[l].points[0];
+        // each moving link's rotation from the drawn pose, as (cos, sin)
+        let mut cs = vec![[1.0, 0.0]; self.links.len()];
+        for &l in &lay.moving {
+            let pts = &self.links[l].points;
+            let (a, b) = (pts[0], pts[1]);
+            let (d, e) = (sub(at(b), at(a)), sub(xi[b], xi[a]));
+            let (sn, c) = (d[1].atan2(d[0]) - e[1].atan2(e[0])).sin_cos();
+            cs[l] = [c, sn];
+        }
+        let turn = |l: usize, v: Xy| [cs[l][0] * v[0] - cs[l][1] * v[1], cs[l][1] * v[0] + cs[l][0] * v[1]];
+        let n = 3 * lay.moving.len();
         let mut gx = DMatrix::<f64>::zeros(n, n);
-        let mut gxi = DMatrix::<f64>::zeros(n, free.len());
-        let fcol = |p: usize, k: usize| free.iter().position(|&f| f == (p, k));
-        // d pos_l(p): t_l + R(phi_l) (xi_p - xi_o), into row r with sign sg
+        let mut gxi = DMatrix::<f64>::zeros(n, nf);
+        // d pos_l(p) = d t_l + perp(R w) d phi_l + R d w, w = xi_p - xi_o, into row r, sign sg
         let body = |r: usize, p: usize, l: usize, sg: f64, gx: &mut DMatrix<f64>, gxi: &mut DMatrix<f64>| {
-            let c = col(l);
-            let w = turn(l, sub(xi[p], xi[origin(l)]));
-            let pw = perp(w);
+            let c = lay.block[l];
+            let pw = perp(turn(l, sub(xi[p], xi[origin(l)])));
             for k in 0..2 {
                 gx[(r + k, c + k)] += sg;
                 gx[(r + k, c + 2)] += sg * pw[k];
             }
-            // R(phi) e_j for the drawn coordinate j of p (+) and of the link's origin (-);
-            // nothing for the origin itself (its drawn vector is 0)
             if p == origin(l) {
-                return;
+                return; // its drawn vector is 0
             }
             for (q, sq) in [(p, 1.0), (origin(l), -1.0)] {
                 for j in 0..2 {
-                    if let Some(f) = fcol(q, j) {
+                    if let Some(f) = lay.fcol[q][j] {
                         let mut e = [0.0; 2];
-                        e[j] = 1.0;
+                        e[j] = sg * sq;
                         let re = turn(l, e);
-                        for k in 0..2 {
-                            gxi[(r + k, f)] += sg * sq * re[k];
-                        }
+                        gxi[(r, f)] += re[0];
+                        gxi[(r + 1, f)] += re[1];
                     }
                 }
             }
         };
-        for (i, &(p, l, owner)) in rows.iter().enumerate() {
+        for (i, &(p, l, owner)) in lay.rows.iter().enumerate() {
             let r = 2 * i;
             body(r, p, l, 1.0, &mut gx, &mut gxi);
             if owner == usize::MAX {
                 for k in 0..2 {
-                    if let Some(f) = fcol(p, k) {
+                    if let Some(f) = lay.fcol[p][k] {
                         gxi[(r + k, f)] -= 1.0;
                     }
                 }
@@ -123,57 +170,57 @@ impl Scene {
             }
         }
         // the input: phi_in + theta0(xi) - theta = 0 (theta0 the drawn input angle)
-        let input = self.input.expect("checked above");
-        let r = m - 1;
-        gx[(r, col(input.link) + 2)] = 1.0;
+        let input = self.input.expect("checked by the layout");
+        let r = n - 1;
+        gx[(r, lay.block[input.link] + 2)] = 1.0;
         let d = sub(xi[input.tip], xi[input.pivot]);
         let d2 = d[0] * d[0] + d[1] * d[1];
         let dtheta = [-d[1] / d2, d[0] / d2];
         for (q, sq) in [(input.tip, 1.0), (input.pivot, -1.0)] {
             for (k, dt) in dtheta.iter().enumerate() {
-                if let Some(f) = fcol(q, k) {
+                if let Some(f) = lay.fcol[q][k] {
                     gxi[(r, f)] += sq * dt;
                 }
             }
         }
-        let lu = gx.lu();
-        let Some(dx) = lu.solve(&(-gxi)) else { return Ok(None) };
-        if !dx.iter().all(|v| v.is_finite()) {
-            return Ok(None);
+        gxi.neg_mut();
+        if !gx.lu().solve_mut(&mut gxi) || !gxi.iter().all(|v| v.is_finite()) {
+            return false;
         }
+        let dx = gxi;
         // the points: through their owner (ground points move only with their own drawing)
-        let nf = free.len();
-        let mut out = vec![0.0; np * 2 * nf];
-        for p in 0..np {
-            if on_ground[p] {
+        for (p, owner) in lay.owner.iter().enumerate() {
+            let o = &mut out[p * 2 * nf..(p + 1) * 2 * nf];
+            let Some(l) = *owner else {
+                o.fill(0.0);
                 for k in 0..2 {
-                    if let Some(f) = fcol(p, k) {
-                        out[(p * 2 + k) * nf + f] = 1.0;
+                    if let Some(f) = lay.fcol[p][k] {
+                        o[k * nf + f] = 1.0;
                     }
                 }
                 continue;
-            }
-            let l = self.point_links[p].iter().copied().find(|&l| l != self.ground).expect("a moving point");
-            let c = col(l);
+            };
+            let c = lay.block[l];
             let pw = perp(turn(l, sub(xi[p], xi[origin(l)])));
             for f in 0..nf {
-                let dxf = DVector::from_fn(3, |i, _| dx[(c + i, f)]);
-                let (q, j) = free[f];
-                let mut e = [0.0; 2];
-                if p != origin(l) {
-                    if q == p {
-                        e[j] += 1.0;
-                    }
-                    if q == origin(l) {
-                        e[j] -= 1.0;
-                    }
-                }
-                let re = turn(l, e);
                 for k in 0..2 {
-                    out[(p * 2 + k) * nf + f] = dxf[k] + pw[k] * dxf[2] + re[k];
+                    o[k * nf + f] = dx[(c + k, f)] + pw[k] * dx[(c + 2, f)];
+                }
+            }
+            if p != origin(l) {
+                for (q, sq) in [(p, 1.0), (origin(l), -1.0)] {
+                    for j in 0..2 {
+                        if let Some(f) = lay.fcol[q][j] {
+                            let mut e = [0.0; 2];
+                            e[j] = sq;
+                            let re = turn(l, e);
+                            o[f] += re[0];
+                            o[nf + f] += re[1];
+                        }
+                    }
                 }
             }
         }
-        Ok(Some(out))
+        true
     }
 }
