@@ -59,7 +59,7 @@ impl Scene {
         if np == 0 || nf == 0 {
             return Ok(());
         }
-        if poses.len() % np != 0 || out.len() != poses.len() * 2 * nf {
+        if !poses.len().is_multiple_of(np) || out.len() != poses.len() * 2 * nf {
             return Err(Error::Shape { name: "poses".into(), got: poses.len(), expected: out.len() / (2 * nf) });
         }
         for (pose, o) in poses.chunks(np).zip(out.chunks_mut(np * 2 * nf)) {
@@ -92,12 +92,12 @@ impl Scene {
         }
         let mut rows = Vec::new();
         let mut owner = vec![None; np];
-        for p in 0..np {
+        for (p, own) in owner.iter_mut().enumerate() {
             let on_ground = self.point_links[p].contains(&self.ground);
             let links: Vec<usize> = self.point_links[p].iter().copied().filter(|&l| l != self.ground).collect();
             let first = if on_ground { usize::MAX } else { links[0] };
             if !on_ground {
-                owner[p] = Some(first);
+                *own = Some(first);
             }
             for &l in links.iter().skip(usize::from(!on_ground)) {
                 rows.push((p, l, first));
