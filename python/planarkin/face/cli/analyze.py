@@ -612,14 +612,15 @@ def scene_table(s: dict) -> str:
     for i, st in enumerate(s["plan"]):
         rows.append((f"plan step {i + 1}", f"{st['kind']}: {', '.join(st['points'])} "
                      f"(angles of {', '.join(st['unknowns'])})"))  # fmt: skip
+    what = "input angles" if s["input_kind"] == "angle" else "input values"
     rows += [
-        ("converged", f"{s['converged']} of {s['angles']} input angles"),
+        ("converged", f"{s['converged']} of {s['angles']} {what}"),
         ("statuses", ", ".join(f"{k}={v}" for k, v in s["statuses"].items())),
         (
             "Newton iterations",
             f"{s['nit_total']} total"
             + (
-                f", {s['nit_mean_converged']:.3f} per solved angle"
+                f", {s['nit_mean_converged']:.3f} per solved {what.removeprefix('input ')[:-1]}"
                 if s["nit_mean_converged"] is not None
                 else ""
             ),
