@@ -89,3 +89,22 @@ def test_free_names_are_checked():
 def test_slider_scenes_are_refused_with_a_message():
     with pytest.raises(ValueError, match="slots or prismatic pairs are not available yet"):
         pk.scenes.load("slider-crank").gradient(["A"])
+
+
+def test_relative_gradient_holds_the_input_rotation_from_the_drawn_pose():
+    # moving the crank tip's drawing turns the drawn input angle: at a fixed rotation from
+    # the drawn pose, the sweep's angles move with it (central differences of that)
+    data = pk.scenes.data("stephenson3")
+    sc = pk.Scene(data)
+    rotation = np.radians(np.arange(-40.0, 41.0, 10.0))
+    g = sc.gradient(["j6", "j1"], sc.input_angle + rotation, relative=True)  # j6: the crank tip
+    for f, label in enumerate(g.free):
+        p, axis = label.split(".")
+        k = "xy".index(axis)
+        sweeps = []
+        for h in (H, -H):
+            moved = pk.Scene(redrawn(data, {(p, k): h}))
+            sweeps.append(moved.sweep(moved.input_angle + rotation, outputs="all"))
+        for n in g.points:
+            fd = (sweeps[0].points[n] - sweeps[1].points[n]) / (2 * H)
+            np.testing.assert_allclose(g.points[n][:, :, f], fd, rtol=1e-6, atol=1e-6, err_msg=n)

@@ -617,7 +617,9 @@ class Scene:
             coords=coords,
         )
 
-    def gradient(self, free: Iterable[str], theta: object = None) -> SceneGradient:
+    def gradient(
+        self, free: Iterable[str], theta: object = None, *, relative: bool = False
+    ) -> SceneGradient:
         """Exact derivatives of the sweep at ``theta`` (default as :meth:`sweep`) by the
         drawn coordinates named in ``free`` ("A.x", "A.y", or "A" for both): every point's
         position and the output angle, by implicit differentiation of the whole linkage
@@ -625,7 +627,12 @@ class Scene:
         coordinate moves the shapes of the links through its point (the drawing is its own
         assembly), a ground pivot drawn there, and the drawn input angle. For synthesis:
         the design variables are drawn coordinates. Scenes with slots, prismatic pairs or a
-        linear input are refused for now."""
+        linear input are refused for now.
+
+        ``relative=True`` holds the input at its rotation from the drawn pose rather than at
+        its absolute angle, as synthesis measures its inputs: the change of the drawn input
+        angle with the design is then not counted (``theta`` is still absolute, at this
+        drawing)."""
         names = list(self.points)
         cols: list[tuple[int, int]] = []
         labels: list[str] = []
@@ -640,7 +647,8 @@ class Scene:
         _entry(len(set(cols)) == len(cols), "free", "names a coordinate twice")
         sw = self.sweep(theta, outputs="all")
         n, p = len(sw.theta), len(names)
-        raw = self._core.pose_gradient(np.ascontiguousarray(sw.coords.reshape(n * p, 2)), cols)
+        pts = np.ascontiguousarray(sw.coords.reshape(n * p, 2))
+        raw = self._core.pose_gradient(pts, cols, bool(relative))
         g = raw.reshape(n, p, 2, len(cols))
         out = None
         o = self.output

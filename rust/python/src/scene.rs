@@ -94,6 +94,7 @@ impl PyScene {
         py: Python<'py>,
         points: PyReadonlyArray2<'py, f64>,
         free: Vec<(usize, usize)>,
+        relative: bool,
     ) -> PyResult<Arr2<'py, f64>> {
         let np = self.inner.point_names().len();
         let pts = points_of("points", &points)?;
@@ -105,7 +106,7 @@ impl PyScene {
             return Ok(grid(py, pts.len(), 2 * nf, Vec::new()));
         }
         let mut out = zeros("pose gradients", pts.len() * 2 * nf)?;
-        py.detach(|| self.inner.poses_gradient(&pts, &free, &mut out)).map_err(err)?;
+        py.detach(|| self.inner.poses_gradient(&pts, &free, relative, &mut out)).map_err(err)?;
         Ok(grid(py, pts.len(), 2 * nf, out))
     }
 

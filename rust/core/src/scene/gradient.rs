@@ -32,6 +32,8 @@ struct Layout {
     owner: Vec<Option<usize>>,
     /// Per point and coordinate: its column among the free ones.
     fcol: Vec<[Option<usize>; 2]>,
+    /// The input is held at its rotation from the drawn pose (not at its absolute angle).
+    relative: bool,
 }
 
 impl Scene {
@@ -41,7 +43,7 @@ impl Scene {
     /// the pose is not finite or the linkage is singular there (a dead point). Scenes with
     /// slots, prismatic pairs or a linear input are refused.
     pub fn pose_gradient(&self, pos: &[Xy], free: &[Free]) -> Result<Option<Vec<f64>>, Error> {
-        let layout = self.layout(free)?;
+        let layout = self.layout(free, false)?;
         let np = self.names.len();
         if pos.len() != np {
             return Err(Error::Shape { name: "pos".into(), got: pos.len(), expected: np });
@@ -52,9 +54,10 @@ impl Scene {
 
     /// [`Scene::pose_gradient`] of N poses (`poses` holds N * P points) into `out`
     /// (N * P * 2 * F values), NaN for a pose that is not finite or singular; the layout is
-    /// built once.
-    pub fn poses_gradient(&self, poses: &[Xy], free: &[Free], out: &mut [f64]) -> Result<(), Error> {
-        let layout = self.layout(free)?;
+    /// built once. With `relative`, the input is held at its rotation from the drawn pose
+    /// (as synthesis measures it), so the drawn input angle's own change does not count.
+    pub fn poses_gradient(&self, poses: &[Xy], free: &[Free], relative: bool, out: &mut [f64]) -> Result<(), Error> {
+        let layout = self.layout(free, relative)?;
         let (np, nf) = (self.names.len(), free.len());
         if np == 0 || nf == 0 {
             return Ok(());
@@ -70,7 +73,7 @@ impl Scene {
         Ok(())
     }
 
-    fn layout(&self, free: &[Free]) -> Result<Layout, Error> {
+    fn layout(&self, free: &[Free], relative: bool) -> Result<Layout, Error> {
         if !self.slots.is_empty() || !self.prismatic.is_empty() || self.input.is_none() {
             return Err(Error::scene(
                 "gradient",
@@ -107,7 +110,7 @@ impl Scene {
         if m != n {
             return Err(Error::scene("gradient", format!("{m} equations for {n} unknowns: not one degree of freedom")));
         }
-        Ok(Layout { moving, block, rows, owner, fcol })
+        Ok(Layout { moving, block, rows, owner, fcol, relative })
     }
 
     /// One pose into `out`; false where it is not finite or singular.
@@ -176,7 +179,7 @@ impl Scene {
         let d = sub(xi[input.tip], xi[input.pivot]);
         let d2 = d[0] * d[0] + d[1] * d[1];
         let dtheta = [-d[1] / d2, d[0] / d2];
-        for (q, sq) in [(input.tip, 1.0), (input.pivot, -1.0)] {
+        for (q, sq) in [(input.tip, 1.0), (input.pivot, -1.0)].into_iter().filter(|_| !lay.relative) {
             for (k, dt) in dtheta.iter().enumerate() {
                 if let Some(f) = lay.fcol[q][k] {
                     gxi[(r, f)] += sq * dt;
