@@ -23,7 +23,7 @@ if TYPE_CHECKING:
 
 #: The choices the kernel accepts (the command line offers them; the core checks them).
 MODES = ("open", "crossed")
-PREDICTORS = ("previous", "tangent", "quadratic")
+PREDICTORS = ("previous", "tangent", "quadratic", "closed-form")
 METHODS = ("newton", "closed-form")
 
 

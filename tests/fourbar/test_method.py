@@ -69,3 +69,47 @@ def test_method_is_validated():
         with pytest.raises(ValueError, match=r"^method "):
             call()
     assert math.isnan(fb.sweep(method="closed-form").summary().residual_max)
+
+
+# --- predictor="closed-form": every point from its own closed form, verified by Newton -----
+
+
+@pytest.mark.parametrize("r", LINKS)
+@pytest.mark.parametrize("mode", ["open", "crossed"])
+def test_closed_form_predictor_equals_the_reference_bit_for_bit(r, mode):
+    fb = pk.FourBar(*r)
+    t2 = np.append(pk.DEFAULT_THETA2, [np.nan, 1e6, -7.0])
+    s = fb.sweep(t2, mode=mode, predictor="closed-form", omega2=2.0)
+    ref = pk.reference.sweep(fb, t2, mode=mode, predictor="closed-form", omega2=2.0)
+    for name in ("theta3", "theta4", "status", "nit", "residual", "omega3", "omega4"):
+        np.testing.assert_array_equal(getattr(s, name), getattr(ref, name), err_msg=name)
+
+
+@pytest.mark.parametrize("r", LINKS)
+@pytest.mark.parametrize("mode", ["open", "crossed"])
+def test_closed_form_predictor_keeps_the_mode_and_the_closed_forms_statuses(r, mode):
+    # each point is the closed form of the mode, polished: within the Newton tolerance of
+    # it, and never the other mode; where the closed form has no assembly, neither has it
+    fb = pk.FourBar(*r)
+    s = fb.sweep(mode=mode, predictor="closed-form", tol=1e-12)
+    c3, c4 = fb.closed_form(s.theta2, mode)
+    cst = fb.closed_form_status(s.theta2, mode)
+    ok = s.success
+    np.testing.assert_array_equal(ok, cst == S.CONVERGED)
+    gap = np.angle(np.exp(1j * (s.theta3[ok] - c3[ok])))
+    assert np.max(np.abs(gap), initial=0.0) < 1e-11
+    sign = 1.0 if mode == "open" else -1.0
+    assert np.all(np.sin(s.theta4[ok] - s.theta3[ok]) * sign > 0)
+    # no point depends on another: a sweep of one angle gives the same point
+    for k in np.flatnonzero(ok)[::40]:
+        one = fb.sweep(s.theta2[k : k + 1], mode=mode, predictor="closed-form", tol=1e-12)
+        assert one.theta3[0] == s.theta3[k] and one.theta4[0] == s.theta4[k]
+
+
+def test_closed_form_predictor_batch_rows_equal_single_sweeps():
+    links = np.array(LINKS, dtype=float)
+    b = pk.sweep_batch(links, predictor="closed-form", threads=2)
+    for m, r in enumerate(LINKS):
+        s = pk.FourBar(*r).sweep(predictor="closed-form")
+        np.testing.assert_array_equal(b.theta3[m], s.theta3)
+        np.testing.assert_array_equal(b.status[m], s.status)

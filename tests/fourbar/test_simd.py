@@ -147,3 +147,20 @@ def test_toggles_and_indeterminate_positions():
             np.testing.assert_array_equal(a[2], b[2])
             np.testing.assert_array_equal(s.status, c.status)
             assert_close(a[0], b[0], 1e-6)  # at a toggle rounding moves angles by ~sqrt(eps)
+
+
+@pytest.mark.parametrize("mode", ["open", "crossed"])
+def test_closed_form_predictor_across_angles_agrees_with_the_scalar_path(mode):
+    # predictor="closed-form" on the SIMD path: the closed form at 4 angles at once, one
+    # Newton evaluation across them; statuses the scalar path's, angles within TOL
+    rng = np.random.default_rng(21)
+    t2 = _angles()
+    for r in _links(rng, 40):
+        fb = pk.FourBar(*r)
+        fast = fb.sweep(t2, mode=mode, predictor="closed-form", omega2=1.5)
+        with pk.use_simd(False):
+            slow = fb.sweep(t2, mode=mode, predictor="closed-form", omega2=1.5)
+        np.testing.assert_array_equal(fast.status, slow.status, err_msg=str(r))
+        assert_close(fast.theta3, slow.theta3)
+        assert_close(fast.theta4, slow.theta4)
+        np.testing.assert_array_equal(np.isnan(fast.omega3), np.isnan(slow.omega3))

@@ -36,7 +36,7 @@ def check_mode(mode: object) -> str:
 
 
 def check_predictor(predictor: object) -> str:
-    """'previous', 'tangent' or 'quadratic' (``Predictor::parse``)."""
+    """'previous', 'tangent', 'quadratic' or 'closed-form' (``Predictor::parse``)."""
     return _choice("predictor", predictor, PREDICTORS)
 
 

@@ -340,6 +340,8 @@ def sweep(
                 w3o[i], w4o[i] = w3, w4
                 if a3o is not None:
                     a3o[i], a4o[i] = _acceleration(r, t2, t3, t4, omega2, w3, w4, alpha2)
+            if predictor == "closed-form":
+                continue  # every point starts from its own closed form: no previous point
             v, a = _rates(r, t2, j, predictor)
             prev = (t2, (t3, t4), v, a)
         else:

@@ -7,7 +7,7 @@ use std::sync::atomic::AtomicBool;
 use crate::parallel::prelude::*;
 
 use super::model::{FourBar, Mode};
-use super::options::{check_len, BatchOut, Method, SweepOptions, SweepOut};
+use super::options::{check_len, BatchOut, Method, Predictor, SweepOptions, SweepOut};
 use super::row::{closed_form_trig, sin_cos_table, sweep_row};
 use super::simd;
 use crate::error::Error;
@@ -48,7 +48,7 @@ pub fn sweep_batch(
     if n == 0 {
         return Ok(());
     }
-    if opts.method == Method::Newton && crate::simd::enabled() {
+    if opts.method == Method::Newton && opts.predictor != Predictor::ClosedForm && crate::simd::enabled() {
         return simd::batch::sweep_batch(links, theta2, opts, out, threads, interrupt);
     }
     let trig = sin_cos_table(theta2)?;

@@ -15,16 +15,25 @@ pub enum Predictor {
     Tangent,
     /// Second order: adds dtheta2^2 / 2 * d2x/dtheta2^2 from the acceleration solve.
     Quadratic,
+    /// No continuation: every point starts from the requested mode's closed form at its own
+    /// crank angle and is verified (and polished) by Newton with the mode check. Points do
+    /// not depend on each other.
+    ClosedForm,
 }
 
 impl Predictor {
-    /// Parses "previous" / "tangent" / "quadratic".
+    /// Parses "previous" / "tangent" / "quadratic" / "closed-form".
     pub fn parse(s: &str) -> Result<Self, Error> {
         match s {
             "previous" => Ok(Predictor::Previous),
             "tangent" => Ok(Predictor::Tangent),
             "quadratic" => Ok(Predictor::Quadratic),
-            other => Err(Error::invalid("predictor", "must be 'previous', 'tangent' or 'quadratic'", quoted(other))),
+            "closed-form" => Ok(Predictor::ClosedForm),
+            other => Err(Error::invalid(
+                "predictor",
+                "must be 'previous', 'tangent', 'quadratic' or 'closed-form'",
+                quoted(other),
+            )),
         }
     }
 }

@@ -3,7 +3,7 @@
 //! crank-angle sines and cosines shared by every linkage of a batch.
 
 use super::model::{FourBar, Mode};
-use super::options::{Method, MotionOut, SweepOptions, SweepOut};
+use super::options::{Method, MotionOut, Predictor, SweepOptions, SweepOut};
 use super::{scalar, simd};
 use crate::error::{try_zeros, Error};
 use crate::interrupt::Poll;
@@ -45,6 +45,9 @@ pub(crate) fn sweep_row(
     match opts.method {
         Method::ClosedForm if vectorized => simd::closed_form::sweep(fb, theta2, trig, opts, out, motion, poll),
         Method::ClosedForm => scalar::closed_form_sweep(fb, theta2, trig, opts, out, motion, poll),
+        Method::Newton if vectorized && opts.predictor == Predictor::ClosedForm => {
+            simd::across::closed_form_predicted(fb, theta2, trig, guess, opts, out, motion, poll)
+        }
         Method::Newton if vectorized => simd::row::newton_row(fb, theta2, trig, guess, opts, out, motion, poll),
         Method::Newton => scalar::newton_sweep(fb, theta2, trig, guess, opts, out, motion, poll),
     }

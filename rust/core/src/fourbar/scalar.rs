@@ -27,6 +27,7 @@ impl Prev {
             Predictor::Previous => self.x,
             Predictor::Tangent => self.x + self.v * h,
             Predictor::Quadratic => self.x + self.v * h + self.a * (0.5 * h * h),
+            Predictor::ClosedForm => unreachable!("the closed-form predictor keeps no previous point"),
         }
     }
 }
@@ -51,6 +52,7 @@ pub(crate) fn newton_sweep(
             None if i == 0 => guess.map(Vector2::from),
             None => None,
         };
+        // (the closed-form predictor: every point from the mode's closed form)
         let (point, j) = if t2.is_finite() {
             let (s2, c2) = trig[i];
             let sys = fb.at_sin_cos(s2, c2);
@@ -69,6 +71,7 @@ pub(crate) fn newton_sweep(
             fill_motion(fb, t2, &point, converged, i, m, opts.newton.singular);
         }
         prev = match (converged, j) {
+            _ if opts.predictor == Predictor::ClosedForm => None,
             (true, Some((j, sc))) => {
                 let (v, a) = predictor_rates(fb, sc, &j, opts.predictor);
                 Some(Prev { theta2: t2, x: Vector2::new(point.theta3, point.theta4), v, a })

@@ -164,6 +164,7 @@ fn group_body<const AVX: bool>(
         // the previous converged point is always the previous angle's
         let h = if i > 0 { wrap_angle(t2 - theta2[i - 1]) } else { 0.0 };
         let start: [V; 2] = match opts.predictor {
+            Predictor::ClosedForm => unreachable!("the closed-form predictor sweeps on the scalar path"),
             Predictor::Previous => prev.x,
             Predictor::Tangent => {
                 [lanes!(|l| prev.x[0][l] + prev.v[0][l] * h), lanes!(|l| prev.x[1][l] + prev.v[1][l] * h)]
@@ -234,7 +235,7 @@ fn group_body<const AVX: bool>(
                     x = [wrap(x[0]), wrap(x[1])];
                 }
             } else {
-                let e = eval_lanes(&r, &scale, &r3r4, s2, c2, &x);
+                let e = eval_lanes(&r, &scale, &r3r4, &[s2; W], &[c2; W], &x);
                 let Eval { f1, f2, j: [j00, j01, j10, j11], residual, det, sin34, dx: [dx0, dx1], step } = e;
                 let small: M = lanes!(|l| residual[l] < tol);
                 let conv: M = lanes!(|l| small[l] & (step[l] < tol));

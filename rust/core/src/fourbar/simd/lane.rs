@@ -81,16 +81,16 @@ pub(crate) struct Eval {
 }
 
 /// The scalar `Loop::eval`, `newton::solve` and `cramer` lane by lane, in their
-/// operation order (with the polynomial sin/cos).
+/// operation order (with the polynomial sin/cos), at one crank angle per lane.
 #[inline(always)]
-pub(crate) fn eval_lanes(r: &[V; 4], scale: &V, r3r4: &V, s2: f64, c2: f64, x: &[V; 2]) -> Eval {
+pub(crate) fn eval_lanes(r: &[V; 4], scale: &V, r3r4: &V, s2: &V, c2: &V, x: &[V; 2]) -> Eval {
     let [r1, r2, r3, r4] = r;
     let sc3: [(f64, f64); W] = lanes!(|l| sin_cos(x[0][l]));
     let sc4: [(f64, f64); W] = lanes!(|l| sin_cos(x[1][l]));
     let (s3, c3): (V, V) = (lanes!(|l| sc3[l].0), lanes!(|l| sc3[l].1));
     let (s4, c4): (V, V) = (lanes!(|l| sc4[l].0), lanes!(|l| sc4[l].1));
-    let f1: V = lanes!(|l| r2[l] * c2 + r3[l] * c3[l] - r4[l] * c4[l] - r1[l]);
-    let f2: V = lanes!(|l| r2[l] * s2 + r3[l] * s3[l] - r4[l] * s4[l]);
+    let f1: V = lanes!(|l| r2[l] * c2[l] + r3[l] * c3[l] - r4[l] * c4[l] - r1[l]);
+    let f2: V = lanes!(|l| r2[l] * s2[l] + r3[l] * s3[l] - r4[l] * s4[l]);
     let j00: V = lanes!(|l| -r3[l] * s3[l]);
     let j01: V = lanes!(|l| r4[l] * s4[l]);
     let j10: V = lanes!(|l| r3[l] * c3[l]);

@@ -85,6 +85,7 @@ fn row_body<const AVX: bool>(
         } else if let Some((x, v, a)) = prev {
             let h = wrap_angle(t2 - theta2[i - 1]);
             let x0 = match opts.predictor {
+                Predictor::ClosedForm => unreachable!("the closed-form predictor sweeps on the scalar path"),
                 Predictor::Previous => x,
                 Predictor::Tangent => [x[0] + v[0] * h, x[1] + v[1] * h],
                 Predictor::Quadratic => {

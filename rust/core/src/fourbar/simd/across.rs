@@ -1,0 +1,148 @@
+//! `predictor = ClosedForm` on the SIMD path: every point from the requested mode's closed
+//! form at its own crank angle (4 angles per call of the closed-form kernel), then one
+//! Newton evaluation across 4 angles at once: a lane whose residual and correction are
+//! both below the tolerance, whose conditioning clears the threshold and whose mode is the
+//! one asked for is converged at once (the correction applied, as the scalar solve applies
+//! it). Any other point (no closed form, a non-finite angle, a lane that needs more
+//! Newton steps, the first point when a guess is given) is solved by the scalar
+//! `sweep_point` from the closed form, so statuses are the scalar path's.
+
+use super::closed_form::{closed_form_row, RowSpec};
+use super::lane::{eval_lanes, lanes, wrap, Eval, M, V, W};
+use crate::error::Error;
+use crate::fourbar::model::{FourBar, Point};
+use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut};
+use crate::fourbar::point::{fill_motion, sweep_point};
+use crate::interrupt::Poll;
+use crate::simd::math::SIN_COS_MAX;
+use crate::Status;
+
+const CONVERGED: i8 = Status::Converged as i8;
+
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn closed_form_predicted(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
+    #[cfg(target_arch = "x86_64")]
+    if crate::simd::available() {
+        // SAFETY: AVX2 and FMA checked at run time.
+        return unsafe { body_avx2(fb, theta2, trig, guess, opts, out, motion, poll) };
+    }
+    body(fb, theta2, trig, guess, opts, out, motion, poll)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn body_avx2(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
+    body(fb, theta2, trig, guess, opts, out, motion, poll)
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn body(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    mut motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
+    let n = theta2.len();
+    let spec = RowSpec { mode: opts.mode, singular: opts.newton.singular, nan_singular: false };
+    closed_form_row(fb, theta2, trig, spec, out.theta3, out.theta4, Some(&mut *out.status));
+    let r: [V; 4] = fb.unit_lengths().map(|v| [v; W]);
+    let scale: V = [fb.longest(); W];
+    let r3r4: V = lanes!(|l| r[2][l] * r[3][l]);
+    let (tol, singular, sign) = (opts.newton.tol, opts.newton.singular, opts.mode.sign());
+    // per point: solved here (true) or left to the scalar path
+    let mut fast = vec![false; n];
+    let mut i = 0;
+    while i + W <= n {
+        let idx: [usize; W] = lanes!(|l| i + l);
+        let cand: M = lanes!(|l| out.status[idx[l]] == CONVERGED && !(idx[l] == 0 && guess.is_some()));
+        if cand.iter().any(|&c| c) {
+            let x: [V; 2] = [lanes!(|l| out.theta3[idx[l]]), lanes!(|l| out.theta4[idx[l]])];
+            let (s2, c2): (V, V) = (lanes!(|l| trig[idx[l]].0), lanes!(|l| trig[idx[l]].1));
+            let Eval { f1, f2, residual, det, sin34, dx: [dx0, dx1], step, .. } =
+                eval_lanes(&r, &scale, &r3r4, &s2, &c2, &x);
+            let ok: M = lanes!(|l| {
+                let finite = f1[l].is_finite()
+                    & f2[l].is_finite()
+                    & (x[0][l].abs() <= SIN_COS_MAX)
+                    & (x[1][l].abs() <= SIN_COS_MAX);
+                cand[l]
+                    & finite
+                    & (det[l] != 0.0)
+                    & (fb.conditioning(sin34[l]) >= singular)
+                    & (residual[l] < tol)
+                    & (step[l] < tol)
+                    & (sin34[l] * sign > 0.0)
+            });
+            let t3 = wrap(lanes!(|l| x[0][l] + dx0[l]));
+            let t4 = wrap(lanes!(|l| x[1][l] + dx1[l]));
+            for l in (0..W).filter(|&l| ok[l]) {
+                let k = idx[l];
+                out.theta3[k] = t3[l];
+                out.theta4[k] = t4[l];
+                out.nit[k] = 0;
+                out.residual[k] = residual[l];
+                fast[k] = true;
+            }
+        }
+        i += W;
+    }
+    for (k, &t2) in theta2.iter().enumerate() {
+        poll.tick()?;
+        let point = if fast[k] {
+            Point {
+                theta3: out.theta3[k],
+                theta4: out.theta4[k],
+                status: Status::Converged,
+                nit: 0,
+                residual: out.residual[k],
+            }
+        } else if t2.is_finite() {
+            let (s2, c2) = trig[k];
+            let sys = fb.at_sin_cos(s2, c2);
+            let start = if k == 0 { guess.map(nalgebra::Vector2::from) } else { None };
+            let p = sweep_point(fb, &sys, start, opts, poll)?.0;
+            out.theta3[k] = p.theta3;
+            out.theta4[k] = p.theta4;
+            out.status[k] = p.status.code();
+            out.nit[k] = p.nit;
+            out.residual[k] = p.residual;
+            p
+        } else {
+            let p = Point::failed(Status::NonFinite, 0, f64::NAN);
+            out.theta3[k] = p.theta3;
+            out.theta4[k] = p.theta4;
+            out.status[k] = p.status.code();
+            out.nit[k] = 0;
+            out.residual[k] = f64::NAN;
+            p
+        };
+        if let Some(m) = motion.as_mut() {
+            fill_motion(fb, t2, &point, point.status == Status::Converged, k, m, opts.newton.singular);
+        }
+    }
+    Ok(())
+}
