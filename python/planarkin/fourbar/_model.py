@@ -160,8 +160,9 @@ class FourBar:
         point whose continuation fails, starts from the closed form of ``mode``, so a
         sweep never follows the other assembly mode. ``"closed-form"`` starts every point
         from the closed form of ``mode`` at its own angle and verifies it by Newton (with
-        the mode check): no continuation, the points independent of each other. ``omega2`` fills omega3/omega4,
-        and ``alpha2`` (with omega2) alpha3/alpha4.
+        the mode check): no continuation, the points independent of each other (on the
+        SIMD path, 4 angles at a time). ``omega2`` fills omega3/omega4, and ``alpha2``
+        (with omega2) alpha3/alpha4.
 
         ``method="closed-form"`` solves every point by the four-bar's closed form instead:
         the same statuses and velocities, no iterations (``nit`` 0, ``residual`` NaN: not
