@@ -121,3 +121,41 @@ def test_scenes_lists_the_built_ins(capsys):
     out = capsys.readouterr().out
     for name in pk.scenes.names():
         assert name in out
+
+
+def _boom_stroke_ends() -> tuple[float, float]:
+    # the law of cosines' triangle O-C1-E flattens when |C1 E| = |O C1| + |O E| or
+    # |O E| - |O C1|: the extension is that length minus the drawn |C1 E|
+    p = {n: np.asarray(v) for n, v in pk.scenes.data("hydraulic-boom")["points"].items()}
+    oc, oe = np.linalg.norm(p["C1"] - p["O"]), np.linalg.norm(p["E"] - p["O"])
+    ce = np.linalg.norm(p["E"] - p["C1"])
+    return float(abs(oe - oc) - ce), float(oc + oe - ce)
+
+
+def test_circuits_of_a_linear_input_are_in_its_length_unit(tmp_path, capsys):
+    assert cli.main(["circuits", "hydraulic-boom", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    lo, hi = _boom_stroke_ends()
+    assert "at input = 0 mm" in out and "deg" not in out.split("\n")[2]
+    assert f"turning points (mm): {hi:.6g}, {lo:.6g}" in out
+    s = json.loads((tmp_path / "circuits.json").read_text())
+    (c,) = pk.scenes.load("hydraulic-boom").circuits(0.0)
+    assert s["input_kind"] == "displacement" and s["units"] == "mm"
+    (row,) = s["circuits"]
+    np.testing.assert_allclose(row["turning_points"], c.turning_points, rtol=0, atol=0)
+    np.testing.assert_allclose(sorted(row["turning_points"]), [lo, hi], rtol=0, atol=1e-6)
+    # the input moves between the stroke's ends (the turning points are its extremes)
+    np.testing.assert_allclose(row["input_range"], [lo, hi], rtol=0, atol=1e-6)
+
+
+def test_circuits_of_a_linear_input_out_of_its_stroke_names_the_reachable_range(tmp_path, capsys):
+    argv = ["circuits", "hydraulic-boom", "--theta", "1000", "--out", str(tmp_path)]
+    assert cli.main(argv) == 0
+    out = capsys.readouterr().out
+    assert "no assembly at input = 1000 mm" in out
+    s = json.loads((tmp_path / "circuits.json").read_text())
+    lo, hi = _boom_stroke_ends()
+    # the 801-value grid over four sizes each way brackets the stroke to a grid step
+    (near,) = [r for r in s["reachable"] if r[0] <= 0.0 <= r[1]]
+    step = 8 * 2000.0 / 800
+    assert lo <= near[0] < lo + step and hi - step < near[1] <= hi

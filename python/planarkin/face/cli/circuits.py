@@ -63,7 +63,12 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     )
     c.add_argument("scene", metavar="SCENE", help="a scene file (.json/.toml) or built-in name")
     c.add_argument(
-        "--theta", type=float, default=None, metavar="DEG", help="input angle (default: as drawn)"
+        "--theta",
+        type=float,
+        default=None,
+        metavar="DEG",
+        help="input angle in degrees, or for a linear input its displacement from the drawn "
+        "pose in the scene's length unit (default: as drawn)",
     )
     out_argument(c)
     figure_arguments(c, 150.0)
@@ -93,9 +98,25 @@ def reachable(sc: Scene, *, quiet: bool = False) -> list[tuple[float, float]]:
     return [(float(grid[i]), float(grid[j - 1])) for i, j in runs]
 
 
+def reachable_linear(sc: Scene, *, quiet: bool = False) -> list[tuple[float, float]]:
+    """A linear input's ranges (scene units, from the drawn pose) where ``sc`` has some
+    assembly, on a grid of 801 values over four sizes of the drawing each way."""
+    pts = np.array(list(sc.points.values()), dtype=float)
+    size = float(np.ptp(pts, axis=0).max())
+    grid = np.linspace(-4.0 * size, 4.0 * size, 801)
+    has = np.zeros(len(grid), dtype=bool)
+    with bar(len(grid), "circuits: reachable inputs", quiet=quiet, unit="value") as b:
+        for i, s in enumerate(grid):
+            has[i] = len(sc.assemblies(float(s))) > 0
+            b.update()
+    return [(float(grid[i]), float(grid[j - 1])) for i, j in true_runs(has)]
+
+
 def run(args: argparse.Namespace) -> int:
     """``planarkin circuits SCENE``: every assembly at an input angle, grouped by circuit."""
     sc = load_scene(args.scene)
+    if sc.input_kind == "displacement":
+        return run_linear(sc, args)
     theta = sc.input_angle if args.theta is None else math.radians(args.theta)
     if not math.isfinite(theta):
         raise ValueError(f"--theta must be finite, got {args.theta}")
@@ -178,3 +199,82 @@ def shown_range(c: Circuit, theta: float) -> tuple[float, float]:
     """A circuit's input range (radians, continuous) in the turn that holds ``theta``."""
     shift = math.tau * round((theta - math.radians(wrapped(theta))) / math.tau)
     return c.range[0] - shift, c.range[1] - shift
+
+
+def run_linear(sc: Scene, args: argparse.Namespace) -> int:
+    """``planarkin circuits`` for a scene driven by a slot or prismatic pair: the input is a
+    displacement from the drawn pose, in the scene's length unit (no wrapping)."""
+    unit = sc.units or "length units"
+    s = 0.0 if args.theta is None else float(args.theta)
+    if not math.isfinite(s):
+        raise ValueError(f"--theta must be finite, got {args.theta}")
+    finite("--dpi", args.dpi, positive=True)
+    figure = not args.no_figures
+    with bar(2 + figure, "circuits", quiet=args.quiet) as b:
+        t0 = time.perf_counter()
+        found = sc.circuits(s)
+        wall = time.perf_counter() - t0
+        b.update()
+        counts = sc.assemblies(s).complex_counts
+        b.update()
+        reach = None if found else reachable_linear(sc, quiet=args.quiet)
+        rows: list[dict[str, Any]] = []
+        for k, c in enumerate(found):
+            rows.append({
+                "circuit": k + 1,
+                "assemblies": [{"label": a.label, "det": a.det} for a in c.assemblies],
+                "full_turn": c.full_turn,
+                "turning_points": [float(v) for v in c.turning_points],
+                # the traced range, its turning points (refined by bisection) included
+                "input_range": [
+                    float(min([c.range[0], *c.turning_points])),
+                    float(max([c.range[1], *c.turning_points])),
+                ],
+                "closed": c.trace.closed,
+                "trace_points": len(c.trace),
+            })  # fmt: skip
+        summary = {
+            "scene": sc.name,
+            "input_kind": "displacement",
+            "units": sc.units,
+            "theta": s,
+            "assemblies": sum(len(c.assemblies) for c in found),
+            "group_complex_solutions": counts,
+            "circuits": rows,
+            "reachable": None if reach is None else [list(r) for r in reach],
+            "glossary": GLOSSARY,
+            "wall_time_s": wall,
+        }
+        out: Path = args.out
+        out.mkdir(parents=True, exist_ok=True)
+        (out / CIRCUITS_JSON).write_text(json_text(summary) + "\n", encoding="utf-8")
+        files = [CIRCUITS_JSON]
+        if figure:
+            name = figure_file(CIRCUITS_PNG, args.format)
+            circuits(sc, found, s, reachable=reach).savefig(out / name, dpi=args.dpi)
+            files.append(name)
+            b.update()
+    if args.json:
+        print(json_text(summary))
+        return 0
+    print(f"planarkin circuits: {sc.name or args.scene} at input = {s:.6g} {unit} "
+          "(a displacement from the drawn pose)")  # fmt: skip
+    if not found:
+        where = "; ".join(f"{a:.6g} to {b:.6g}" for a, b in reach or []) or "none found"
+        print(f"  no assembly at input = {s:.6g} {unit}: the linkage cannot be put together "
+              f"there; it has assemblies for inputs in ({unit}): {where}")  # fmt: skip
+    else:
+        n = sum(len(c.assemblies) for c in found)
+        print(f"  {plural(n, 'real assembly', 'real assemblies')} on "
+              f"{plural(len(rows), 'circuit')}"
+              + (f"; complex solutions of its groups: {counts}" if counts else ""))  # fmt: skip
+    for r in rows:
+        labels = ", ".join(f"{a['label']} (det {a['det']:+.3g})" for a in r["assemblies"])
+        lo, hi = r["input_range"]
+        tps = ", ".join(f"{v:.6g}" for v in r["turning_points"]) or "none"
+        print(f"  circuit {r['circuit']}: {labels}; input moves between {lo:.6g} and "
+              f"{hi:.6g} {unit}; turning points ({unit}): {tps}")  # fmt: skip
+    if found:
+        print("  " + "\n  ".join(textwrap.wrap(GLOSSARY, 88)))
+    print(f"  {1e3 * wall:.1f} ms; wrote {', '.join(str(out / f) for f in files)}")
+    return 0

@@ -25,13 +25,15 @@ COLUMNS = 3
 
 
 def output_angle(scene: Scene, points: dict[str, np.ndarray]) -> tuple[str, np.ndarray]:
-    """The output link's angle (the scene's ``output``, else the last link listed that is
-    neither ground nor the input: the far end of the chain, where circuits differ most)
-    from positions: (its name, angles in radians, unwrapped)."""
-    if scene.output is not None:
-        link, pivot = scene.output
+    """The output link's angle (the scene's angle ``output``, else the last link listed
+    that is neither ground nor the input: the far end of the chain, where circuits differ
+    most) from positions: (its name, angles in radians, unwrapped)."""
+    out = scene.output
+    if out is not None and out[0] in scene.links:
+        link, pivot = out
     else:
-        link = [k for k in scene.links if k not in (scene.ground, scene.input[0])][-1]
+        drive = scene.input[0] if scene.input_kind == "angle" else None
+        link = [k for k in scene.links if k not in (scene.ground, drive)][-1]
         pivot = scene.links[link][0]
     tip = next(p for p in scene.links[link] if p != pivot)
     d = np.asarray(points[tip]) - np.asarray(points[pivot])
@@ -60,15 +62,19 @@ def circuits(
     circuit there (the input cannot reach ``theta``), one panel saying so and naming the
     ``reachable`` input ranges (degrees) instead of an empty plot."""
     name = clean(scene.name, "scene")
-    at = wrapped(theta)
+    linear = scene.input_kind == "displacement"
+    unit = scene.units or "length"
+    at = theta if linear else wrapped(theta)
+    shown = f"s = {at:.4g} {unit}" if linear else f"θ = {at:.1f}°"
     if not found:
         fig = Figure(figsize=(7.0, 3.0), layout="constrained")
         ax = fig.subplots()
         ax.set_axis_off()
         where = _span(reachable) if reachable else "none found"
-        text = f"No assembly at θ = {at:.1f}°.\nThe input reaches θ in [deg]: {where}."
+        reach = f"s in [{unit}]" if linear else "θ in [deg]"
+        text = f"No assembly at {shown}.\nThe input reaches {reach}: {where}."
         ax.text(0.5, 0.5, text, ha="center", va="center", wrap=True, transform=ax.transAxes)
-        ax.set_title(f"{name}: no assembly at θ = {at:.1f}°")
+        ax.set_title(f"{name}: no assembly at {shown}")
         return fit_titles(fig)
     assemblies = [a for c in found for a in c.assemblies]
     ncol = max(1, min(COLUMNS, max(len(found), len(assemblies))))
@@ -81,7 +87,9 @@ def circuits(
     curves = []
     for c in found:
         link, out = output_angle(scene, c.trace.points)
-        if c.full_turn and c.trace.closed:  # one curve over (-180, 180]
+        if linear:  # displacements: no turns to wrap
+            curves.append((np.asarray(c.trace.theta), np.degrees(out), c))
+        elif c.full_turn and c.trace.closed:  # one curve over (-180, 180]
             x, y = on_wrapped_axis(c.trace.theta, np.degrees(out))
             curves.append((x, y, c))
         else:  # a continuous range, in the turn that holds theta
@@ -103,8 +111,11 @@ def circuits(
         ax.grid(True, alpha=0.3)
         if k % ncol == 0:
             ax.set_ylabel(f"angle of {clean(link, '?')} [deg]")
-        ax.set_xlabel("input θ [deg], continuous" if any(not c.full_turn for c in found)
-                      else "input θ [deg], in (-180, 180]")  # fmt: skip
+        if linear:
+            ax.set_xlabel(f"input s [{unit}] from the drawn pose")
+        else:
+            ax.set_xlabel("input θ [deg], continuous" if any(not c.full_turn for c in found)
+                          else "input θ [deg], in (-180, 180]")  # fmt: skip
     circuit_of = {id(a): k for k, c in enumerate(found) for a in c.assemblies}
     st = draw.Structure.of(scene)
     size = ground_size(scene)
@@ -121,7 +132,7 @@ def circuits(
                       color=cmap(k % 10))  # fmt: skip
     fig.suptitle(
         f"{name}: {len(assemblies)} assembl{'y' if len(assemblies) == 1 else 'ies'} at "
-        f"θ = {at:.1f}° on {len(found)} circuit{'' if len(found) == 1 else 's'} "
+        f"{shown} on {len(found)} circuit{'' if len(found) == 1 else 's'} "
         "(dots: turning points, where the input must reverse)"
     )
     return fit_titles(fig)
