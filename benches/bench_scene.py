@@ -127,8 +127,10 @@ def test_assemblies(benchmark):
     sc = pk.scenes.load("double-butterfly-2")
     a = benchmark(sc.assemblies)
     assert a.complex_counts == [[18]]
+    (paths,) = a.paths[0]
     record(benchmark, "scene_assemblies", f"sc.assemblies(): {len(a)} real of 18 complex "
-           "(2 homotopy runs x 64 paths)")  # fmt: skip
+           f"(2 homotopy runs, {paths} paths: the isotropic start system)",
+           paths=paths, finite=18 * 2)  # fmt: skip
 
 
 @pytest.mark.benchmark(group=CIRCUITS)
@@ -146,3 +148,45 @@ def test_circuits(benchmark):
     cs = benchmark(sc.circuits)
     record(benchmark, "scene_circuits", f"sc.circuits(): {len(cs)} circuit(s), "
            f"{sum(len(c.assemblies) for c in cs)} assemblies")  # fmt: skip
+
+
+# --- exact gradients by the drawn coordinates (synthesis) -----------------------------------
+
+GRADIENT = "scene: d(points)/d(drawn coordinates), double butterfly, 16 coordinates, 1001 angles"
+
+
+def _gradient_case():
+    sc = pk.scenes.load("double-butterfly-1")
+    d = sc.to_dict()
+    ground = set(d["links"][d["ground"]])
+    free = [p for p in d["points"] if p not in ground][:8]
+    theta = sc.input_angle + np.radians(np.linspace(-20.0, 20.0, 1001))
+    return sc, d, free, theta
+
+
+@pytest.mark.benchmark(group=GRADIENT)
+def test_gradient_exact(benchmark):
+    sc, _, free, theta = _gradient_case()
+    g = benchmark(sc.gradient, free, theta)
+    record(benchmark, "scene_gradient_exact", "sc.gradient(free, theta): implicit "
+           f"differentiation, its sweep included ({len(g.free)} coordinates)")  # fmt: skip
+
+
+@pytest.mark.benchmark(group=GRADIENT)
+def test_gradient_forward_differences(benchmark):
+    sc, d, free, theta = _gradient_case()
+    labels = [f"{p}.{a}" for p in free for a in "xy"]
+
+    def fd():
+        base = sc.sweep(theta, outputs="all")
+        out = []
+        for label in labels:
+            p, a = label.split(".")
+            pts = {n: list(v) for n, v in d["points"].items()}
+            pts[p]["xy".index(a)] += 1e-7
+            out.append(pk.Scene({**d, "points": pts}).sweep(theta, outputs="all"))
+        return base, out
+
+    benchmark(fd)
+    record(benchmark, "scene_gradient_fd", f"forward differences: 1 + {len(labels)} sweeps "
+           "of redrawn scenes")  # fmt: skip

@@ -23,7 +23,7 @@ def _check(t3, t4, tol=1e-8):
     return err
 
 
-@pytest.mark.parametrize("predictor", ["quadratic", "tangent", "previous"])
+@pytest.mark.parametrize("predictor", ["quadratic", "tangent", "previous", "closed-form"])
 def test_planarkin_sweep(benchmark, seed_fb, predictor):
     s = benchmark(seed_fb.sweep, predictor=predictor)
     assert s.summary().converged == 361
@@ -31,6 +31,7 @@ def test_planarkin_sweep(benchmark, seed_fb, predictor):
         "quadratic": "planarkin fb.sweep() (quadratic predictor, default)",
         "tangent": "planarkin fb.sweep(predictor='tangent')",
         "previous": "planarkin fb.sweep(predictor='previous') (plain Newton)",
+        "closed-form": "planarkin fb.sweep(predictor='closed-form') (across angles)",
     }[predictor]
     record(
         benchmark,

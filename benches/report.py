@@ -324,6 +324,28 @@ def scene_targets(bench: Bench) -> list[tuple[str, str, str, str]]:
                    "(RRPDyad)", sk, sl, 3)  # fmt: skip
     out += _faster("slider-crank faster than the NumPy closed form written as a user would",
                    sk, sn, 1)  # fmt: skip
+    row = bench.get("scene_assemblies")
+    if row and "paths" in row["extra_info"]:
+        paths, finite = row["extra_info"]["paths"], row["extra_info"]["finite"]
+        med = bench.median("scene_assemblies")
+        out.append(
+            (
+                "double butterfly assemblies: >= 60% of homotopy paths finite, <= 8 ms (issue 21)",
+                f"{finite} of {paths} paths finite, {_t(med)}",
+                f"{finite / paths:.0%}",
+                _verdict(finite / paths >= 0.6 and med is not None and med <= 8e-3),
+            )
+        )
+    ex, fd = bench.median("scene_gradient_exact"), bench.median("scene_gradient_fd")
+    if ex and fd:
+        out.append(
+            (
+                "exact gradients (16 coordinates x 1001 angles) vs forward differences",
+                f"{_t(ex)} vs {_t(fd)}",
+                f"{fd / ex:.1f}x faster",
+                "-",
+            )
+        )
     one, full = bench.median("scene_plan_first_dyad"), bench.median("scene_plan_all")
     if one and full:
         out.append(
@@ -354,7 +376,24 @@ def targets(bench: Bench, crit: dict, trade: dict) -> list[tuple[str, str, str, 
             f"{r:.2f}",
             r <= 1.0,
         )
+    across = bench.median("pk_sweep_closed-form")
+    if across and seed_np:
+        r = across / seed_np
+        add(
+            "seed sweep, across-angles option / NumPy closed form <= 0.5 (issue 21)",
+            f"{_t(across)} vs {_t(seed_np)}",
+            f"{r:.2f}",
+            r <= 0.5,
+        )
     pl = bench.median("pylinkage")
+    if across and pl:
+        r = pl / across
+        add(
+            "pylinkage + numba / seed sweep (across-angles option) >= 4 (issue 21)",
+            f"{_t(across)} vs {_t(pl)}",
+            f"{r:.2f}x faster",
+            r >= 4.0,
+        )
     if pk_sweep and pl:
         r = pl / pk_sweep
         add(
