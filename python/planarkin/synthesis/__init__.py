@@ -10,6 +10,7 @@ loop choice and generated output in closed form, SLSQP multistarts on the true l
 from . import ackermann
 from .driver import (
     StartResult,
+    SynthesisInterrupted,
     SynthesisResult,
     process_pool,
     run_start,
@@ -47,6 +48,7 @@ __all__ = [
     "Problem",
     "SeedPlan",
     "StartResult",
+    "SynthesisInterrupted",
     "SynthesisResult",
     "Template",
     "ackermann",

@@ -2,17 +2,19 @@
 the whole range on one branch, then SLSQP from each start (least squares, then a minimax
 polish on the dense grid), on any concurrent.futures.Executor. Gradients are forward
 finite differences of the Rust sweeps, all residuals and constraints of one candidate
-from one sweep per coordinate."""
+from one sweep per coordinate. Runs are collected by start index (never by the order in
+which workers finish); a time limit or Ctrl-C stops the search and keeps what finished."""
 
 from __future__ import annotations
 
 import math
 import os
 import signal
+import threading
 import time
 import warnings
 from collections.abc import Callable, Sequence
-from concurrent.futures import Executor, Future, ProcessPoolExecutor
+from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -22,11 +24,20 @@ from .problem import Problem
 
 #: forward-difference step on joint coordinates, relative to the box size
 FD_STEP = 1e-7
+#: seconds the running starts get, after the time limit, to hand back their iterate (they
+#: stop at their next SLSQP iteration) before an own process pool is terminated
+GRACE_S = 30.0
+#: what :attr:`StartResult.stopped` and :attr:`SynthesisResult.stopped` say
+TIME_LIMIT, INTERRUPTED = "time limit", "interrupted"
 
 
 @dataclass
 class StartResult:
-    """One SLSQP run: where it started and ended, scipy's status, and the true figures."""
+    """One SLSQP run: where it started and ended, scipy's status, and the true figures.
+    ``status``, ``message`` and ``success`` are scipy's, of the phase whose ``x`` this is
+    (99: stopped at the time limit, as scipy reports a callback's stop); ``fun`` is the
+    least-squares phase's final objective; ``feasible``: every constraint and bound holds
+    at ``x``, checked again here (not taken from scipy)."""
 
     x0: np.ndarray
     x: np.ndarray
@@ -41,6 +52,17 @@ class StartResult:
     phases: list[dict[str, Any]] = field(default_factory=list)
     #: the branch combination of the closed form (relative to the drawn pose)
     signs: tuple[int, int, int] = (1, 1, 1)
+    #: scipy's ``success`` for the phase whose ``x`` this is
+    success: bool = False
+    #: the start's index in the multistart (its results are collected by it)
+    index: int = 0
+    #: why the run stopped early ("" ran to scipy's own end; TIME_LIMIT)
+    stopped: str = ""
+
+    @property
+    def converged(self) -> bool:
+        """scipy reported success AND the constraints were verified to hold at ``x``."""
+        return self.success and self.feasible
 
 
 class _Cache:
@@ -104,11 +126,23 @@ def run_start(
     maxiter: int = 200,
     ftol: float = 1e-14,
     minimax: bool = True,
+    deadline: float | None = None,
+    index: int = 0,
 ) -> StartResult:
     """SLSQP from ``x0``: least squares on the objective's residuals at the design points,
     then (``minimax``) the largest true residual on the dense grid, both under the branch,
-    closed-form assemblability and link-length constraints and the box bounds."""
+    closed-form assemblability and link-length constraints and the box bounds. At
+    ``deadline`` (``time.time()`` seconds: it holds across processes) SLSQP stops at its
+    next iteration (status 99) and the iterate it reached is returned, verified like any
+    other (``stopped``); the minimax phase is skipped once it has passed."""
     from scipy.optimize import minimize  # imported here: the CLI's parser stays light
+
+    def late() -> bool:
+        return deadline is not None and time.time() >= deadline
+
+    def stop_at_deadline(intermediate_result: Any) -> None:
+        if late():
+            raise StopIteration
 
     sp = problem.space
     grid = problem.grid()
@@ -148,18 +182,19 @@ def run_start(
             bounds=bounds,
             constraints=[{"type": "ineq", "fun": cons_fun, "jac": cons_jac}],
             options={"maxiter": maxiter, "ftol": ftol},
+            callback=stop_at_deadline if deadline is not None else None,
         )
     x = np.clip(res.x, sp.lower, sp.upper)
-    phases.append(
-        {
-            "phase": "least-squares",
-            "status": int(res.status),
-            "message": str(res.message),
-            "nit": int(res.nit),
-        }
-    )
-    status, message, nit = int(res.status), str(res.message), int(res.nit)
-    if minimax and problem.objective == "true" and np.isfinite(problem.target.dense_in).all():
+    phases.append(_phase("least-squares", res))
+    status, message, nit, success = int(res.status), str(res.message), int(res.nit), res.success
+    stopped = TIME_LIMIT if int(res.status) == 99 else ""
+    if (
+        minimax
+        and not stopped
+        and not late()
+        and problem.objective == "true"
+        and np.isfinite(problem.target.dense_in).all()
+    ):
         d0 = cache.values(x)[1]
         t0 = max(float(np.max(np.abs(d0))), 1e-15)
         z0 = np.concatenate([x, [1.0]])
@@ -191,19 +226,20 @@ def run_start(
                 bounds=[*bounds, (0.0, 10.0)],
                 constraints=[{"type": "ineq", "fun": mm_cons, "jac": mm_jac}],
                 options={"maxiter": maxiter, "ftol": ftol},
+                callback=stop_at_deadline if deadline is not None else None,
             )
         x2 = np.clip(r2.x[:-1], sp.lower, sp.upper)
-        phases.append(
-            {
-                "phase": "minimax",
-                "status": int(r2.status),
-                "message": str(r2.message),
-                "nit": int(r2.nit),
-            }
-        )
+        phases.append(_phase("minimax", r2))
         f1, f2 = figures(problem, x), figures(problem, x2)
-        if f2["one_branch"] and f2["max_error"] <= f1["max_error"] and _feasible(problem, x2):
-            x, status, message, nit = x2, int(r2.status), str(r2.message), nit + int(r2.nit)
+        phases[-1]["kept"] = bool(
+            f2["one_branch"] and f2["max_error"] <= f1["max_error"] and _feasible(problem, x2)
+        )
+        if phases[-1]["kept"]:
+            x, status, message = x2, int(r2.status), str(r2.message)
+            nit, success = nit + int(r2.nit), r2.success
+            stopped = TIME_LIMIT if int(r2.status) == 99 else ""
+    if stopped:
+        message = f"{message} (stopped at the time limit)"
     fig = figures(problem, x)
     return StartResult(
         x0=x0,
@@ -218,7 +254,21 @@ def run_start(
         nit=nit,
         phases=phases,
         signs=problem.signs,
+        success=bool(success),
+        index=index,
+        stopped=stopped,
     )
+
+
+def _phase(name: str, res: Any) -> dict[str, Any]:
+    # scipy's words as scipy gave them (99 is scipy's code for a callback's stop)
+    return {
+        "phase": name,
+        "status": int(res.status),
+        "success": bool(res.success),
+        "message": str(res.message),
+        "nit": int(res.nit),
+    }
 
 
 def _feasible(problem: Problem, x: np.ndarray, tol: float = 1e-6) -> bool:
@@ -234,32 +284,85 @@ def sample_starts(
     n_keep: int,
     rng: np.random.Generator,
     sampler: Callable[[np.random.Generator], np.ndarray] | None = None,
+    *,
+    deadline: float | None = None,
+    progress: Callable[[int], object] | None = None,
 ) -> list[tuple[float, np.ndarray]]:
     """Random candidates in the box (or from ``sampler``) whose true linkage passes every
-    grid angle on one branch, ranked by the RMS residual at the design points."""
+    grid angle on one branch, ranked by the RMS residual at the design points (ties in
+    the order drawn). Screening ends early at ``deadline`` (``time.time()`` seconds);
+    ``progress(n)`` is told every :data:`SCREEN_CHUNK` candidates screened."""
+    return _screen(problem, n_samples, n_keep, rng, sampler, deadline, progress)[0]
+
+
+#: candidates screened between two calls of a screening progress callback
+SCREEN_CHUNK = 50
+
+
+def _screen(
+    problem: Problem,
+    n_samples: int,
+    n_keep: int,
+    rng: np.random.Generator,
+    sampler: Callable[[np.random.Generator], np.ndarray] | None,
+    deadline: float | None,
+    progress: Callable[[int], object] | None,
+) -> tuple[list[tuple[float, np.ndarray]], int]:
     sp = problem.space
     grid = problem.grid()
     lite = replace(problem, objective="true")
     found: list[tuple[float, np.ndarray]] = []
+    done = told = 0
     for _ in range(n_samples):
+        if deadline is not None and time.time() >= deadline:
+            break
         x = sampler(rng) if sampler is not None else rng.uniform(sp.lower, sp.upper)
         r, _, br, lc = lite.residuals(x, grid)
         if np.all(br > -1.0) and np.all(lc >= 0):
             found.append((float(np.sqrt(np.mean(r**2))), x))
+        done += 1
+        if progress is not None and done - told >= SCREEN_CHUNK:
+            progress(done - told)
+            told = done
+    if progress is not None and done > told:
+        progress(done - told)
     found.sort(key=lambda t: t[0])
-    return found[:n_keep]
+    return found[:n_keep], done
 
 
 @dataclass
 class SynthesisResult:
-    """The best run, every run, and how the search went."""
+    """The best run, every run that finished (by start index), and how the search went."""
 
-    best: StartResult
+    #: feasible before infeasible, then the smallest max_error, then the lowest index
+    #: (None: no start finished)
+    best: StartResult | None
     runs: list[StartResult]
+    #: starts planned (the given x0 and the candidates kept from screening)
     starts: int
+    #: candidates asked for (``samples``) and screened (fewer when stopped)
     sampled: int
     wall_s: float
     objective: str
+    screened: int = 0
+    #: "" (every start ran to its end), TIME_LIMIT or INTERRUPTED
+    stopped: str = ""
+    seed: int = 0
+
+    @property
+    def feasible(self) -> list[StartResult]:
+        """The runs whose constraints hold at their end, by start index."""
+        return [r for r in self.runs if r.feasible]
+
+
+class SynthesisInterrupted(KeyboardInterrupt):
+    """Ctrl-C during :func:`synthesize`: the workers are stopped, and ``result`` holds the
+    runs that had finished (``stopped`` is INTERRUPTED). A KeyboardInterrupt: code that
+    does not look for it stops as on any Ctrl-C."""
+
+    def __init__(self, result: SynthesisResult) -> None:
+        super().__init__("interrupted")
+        self.result = result
 
 
 def _signs(s: Sequence[int]) -> tuple[int, int, int]:
@@ -301,9 +404,47 @@ def stop_pool(ex: Executor) -> None:
         p.join(timeout=5)
 
 
-def _cancel(futures: Sequence[Future]) -> None:
-    for f in futures:
-        f.cancel()
+class _SigintDeferred:
+    """Ctrl-C held back (raised on exit) while starts are submitted: worker processes are
+    forked then, and one forked before its initializer ignores Ctrl-C would print a
+    traceback; the pool's own bookkeeping is never cut half way. Only in the main thread
+    (the only one Python delivers signals to)."""
+
+    def __enter__(self) -> None:
+        self.hits: list[int] = []
+        self.old: Any = None
+        self.own = threading.current_thread() is threading.main_thread()
+        if self.own:
+            self.old = signal.signal(signal.SIGINT, lambda sig, frame: self.hits.append(sig))
+
+    def __exit__(self, kind: object, *exc: object) -> None:
+        if self.own:
+            signal.signal(signal.SIGINT, self.old if self.old is not None else signal.SIG_DFL)
+            if self.hits and kind is None:
+                raise KeyboardInterrupt
+
+
+def _collect(f: Future, x0: np.ndarray, index: int, signs: tuple[int, int, int]) -> StartResult:
+    # a start that raised gets its status (-1) and message; the others go on
+    try:
+        r: StartResult = f.result()
+        return r
+    except Exception as e:  # noqa: BLE001 - any failure of one start is that start's status
+        what = " ".join(f"{type(e).__name__}: {e}".split())
+        return StartResult(
+            x0=x0,
+            x=x0,
+            fun=math.nan,
+            max_error=math.inf,
+            rms_error=math.inf,
+            min_abs_det=0.0,
+            feasible=False,
+            status=-1,
+            message=f"start failed: {what}",
+            nit=0,
+            signs=signs,
+            index=index,
+        )
 
 
 def synthesize(
@@ -314,68 +455,140 @@ def synthesize(
     seed: int = 0,
     x0: Sequence[np.ndarray] = (),
     executor: Executor | None = None,
+    workers: int | None = None,
     sampler: Callable[[np.random.Generator], np.ndarray] | None = None,
     maxiter: int = 200,
     minimax: bool = True,
     sign_combinations: Sequence[tuple[int, int, int]] = (),
-    progress: Callable[[], object] | None = None,
+    progress: Callable[[StartResult], object] | None = None,
+    screening: Callable[[int], object] | None = None,
+    time_limit: float | None = None,
 ) -> SynthesisResult:
     """Multistart SLSQP. ``starts`` runs: the given ``x0`` first, then the best of
     ``samples`` random candidates (``seed``); on ``executor`` (default
-    :func:`process_pool`: up to 2 workers; a dask.distributed Client's ``get_executor()``
-    works the same). On Ctrl-C the starts not yet run are cancelled and the default pool
-    is stopped at once (a caller's executor is the caller's to stop: :func:`stop_pool`).
+    :func:`process_pool` of ``workers`` processes, up to 2 by default; a
+    dask.distributed Client's ``get_executor()`` works the same). Runs are collected by
+    start index and ranked with ties broken by it, so the result does not depend on
+    which worker finishes first.
     ``sign_combinations`` (objectives on the seed's closed form): start i uses combination
-    i modulo their number, so the starts cover the branch combinations. ``progress()`` is
-    called once per start finished (a progress bar's update)."""
+    i modulo their number, so the starts cover the branch combinations.
+    ``progress(run)`` is called as each start finishes (in the order they finish: a
+    progress bar's update); ``screening(n)`` as candidates are screened.
+    ``time_limit`` (seconds from the call): screening ends, queued starts are cancelled,
+    running ones stop at their next iteration and hand back their iterate (an own pool is
+    terminated if they have not within :data:`GRACE_S`); the result says ``stopped``.
+    Ctrl-C cancels what has not run and stops the default pool at once (a caller's
+    executor is the caller's to stop: :func:`stop_pool`), then raises
+    :class:`SynthesisInterrupted` holding the runs that had finished."""
     if starts < 1:
         raise ValueError(f"starts must be >= 1, got {starts}")
     if samples < 0:
         raise ValueError(f"samples must be >= 0, got {samples}")
+    if workers is not None and workers < 1:
+        raise ValueError(f"workers must be >= 1, got {workers}")
+    if time_limit is not None and not (math.isfinite(time_limit) and time_limit > 0):
+        raise ValueError(f"time_limit must be finite and > 0 seconds, got {time_limit}")
     t0 = time.perf_counter()
-    rng = np.random.default_rng(seed)
+    deadline = None if time_limit is None else time.time() + time_limit
     xs = [np.asarray(x, dtype=np.float64) for x in x0][:starts]
-    need = starts - len(xs)
-    if need > 0:
-        found = sample_starts(problem, samples, need, rng, sampler)
-        xs += [x for _, x in found]
-    if not xs:
-        raise ValueError(
-            "no start: none of the random samples moves through the range on one branch "
-            "(raise samples or give x0)"
+    screened = 0
+    runs: dict[int, StartResult] = {}
+
+    def result(stopped: str) -> SynthesisResult:
+        done = [runs[i] for i in sorted(runs)]
+        if not stopped and any(r.stopped for r in done):
+            stopped = TIME_LIMIT
+        ranked = sorted(done, key=lambda r: (not r.feasible, r.max_error, r.index))
+        return SynthesisResult(
+            best=ranked[0] if ranked else None,
+            runs=done,
+            starts=len(xs),
+            sampled=samples,
+            wall_s=time.perf_counter() - t0,
+            objective=problem.objective,
+            screened=screened,
+            stopped=stopped,
+            seed=seed,
         )
+
+    def counted(n: int) -> None:
+        nonlocal screened
+        screened += n
+        if screening is not None:
+            screening(n)
+
+    need = starts - len(xs)
     own = executor is None
-    ex: Executor = process_pool() if executor is None else executor
-    futs: list[Future] = []
+    ex: Executor | None = executor
+    futs: dict[Future, int] = {}
+    pending: set[Future] = set()
+    stopped = ""
     try:
+        if need > 0:
+            rng = np.random.default_rng(seed)
+            found, _ = _screen(problem, samples, need, rng, sampler, deadline, counted)
+            xs += [x for _, x in found]
+        if not xs:
+            if deadline is not None and time.time() >= deadline:
+                return result(TIME_LIMIT)
+            raise ValueError(
+                "no start: none of the random samples moves through the range on one branch "
+                "(raise samples or give x0)"
+            )
         probs = [
             replace(problem, signs=_signs(sign_combinations[i % len(sign_combinations)]))
             if sign_combinations
             else problem
             for i in range(len(xs))
         ]
-        for p, x in zip(probs, xs, strict=True):
-            futs.append(ex.submit(run_start, p, x, maxiter=maxiter, minimax=minimax))
-        runs = []
-        for f in futs:
-            runs.append(f.result())
-            if progress is not None:
-                progress()
+        with _SigintDeferred():
+            if ex is None:
+                ex = process_pool(workers)
+            for i, (p, x) in enumerate(zip(probs, xs, strict=True)):
+                f = ex.submit(
+                    run_start, p, x, maxiter=maxiter, minimax=minimax, deadline=deadline, index=i
+                )
+                futs[f] = i
+        pending = set(futs)
+        give_up = math.inf
+        while pending:
+            timeout = None
+            if deadline is not None:
+                now = time.time()
+                if not stopped and now >= deadline:
+                    stopped = TIME_LIMIT
+                    for f in pending:
+                        f.cancel()  # the queued ones; running ones stop by themselves
+                    give_up = now + GRACE_S
+                if stopped and now >= give_up:
+                    break
+                timeout = (give_up if stopped else deadline) - now
+            done, pending = wait(pending, timeout=timeout, return_when=FIRST_COMPLETED)
+            for f in sorted(done, key=futs.__getitem__):
+                if f.cancelled():
+                    continue
+                i = futs[f]
+                runs[i] = _collect(f, xs[i], i, probs[i].signs)
+                if progress is not None:
+                    progress(runs[i])
+    except KeyboardInterrupt:
+        _abandon(futs, ex if own else None)
+        raise SynthesisInterrupted(result(INTERRUPTED)) from None
     except BaseException:
-        # Ctrl-C or a failed start: what has not run is not run; an own pool is stopped at
-        # once, a caller's executor is left to the caller
-        _cancel(futs)
-        if own:
-            stop_pool(ex)
+        # what has not run is not run; an own pool is stopped at once, a caller's
+        # executor is left to the caller
+        _abandon(futs, ex if own else None)
         raise
-    if own:
-        ex.shutdown()
-    ranked = sorted(runs, key=lambda r: (not r.feasible, r.max_error))
-    return SynthesisResult(
-        best=ranked[0],
-        runs=runs,
-        starts=len(xs),
-        sampled=samples,
-        wall_s=time.perf_counter() - t0,
-        objective=problem.objective,
-    )
+    if own and ex is not None:
+        if pending:
+            stop_pool(ex)  # starts that did not stop within the grace period
+        else:
+            ex.shutdown()
+    return result(stopped)
+
+
+def _abandon(futs: Sequence[Future] | dict[Future, int], own: Executor | None) -> None:
+    for f in futs:
+        f.cancel()
+    if own is not None:
+        stop_pool(own)

@@ -9,6 +9,7 @@ import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -91,9 +92,15 @@ class SeedPlan:
                     changed = True
 
     def _solve(
-        self, phi_in: np.ndarray, phi_out: np.ndarray, signs: Sequence[int]
-    ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray, tuple[int, int, int]]:
-        # a sign 0 takes the root nearest the drawn pose at the first sample
+        self,
+        phi_in: np.ndarray,
+        phi_out: np.ndarray,
+        signs: Sequence[int],
+        follow: tuple[Mapping[str, np.ndarray], np.ndarray] | None = None,
+    ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray, tuple[Any, Any, Any]]:
+        # a sign 0 takes the root nearest the drawn pose at the first sample; ``follow``
+        # (points and output rotation of a real linkage at each sample) takes, at each
+        # sample and in each loop, the root nearest it (the signs are then arrays)
         t, p0 = self.t, self.p0
         n = phi_in.shape[0]
         known: dict[str, np.ndarray] = {}
@@ -112,7 +119,15 @@ class SeedPlan:
             d = known[a] - known[b]
             c1, c2 = 2 * ra * d[:, 0], 2 * ra * d[:, 1]
             c3 = rb * rb - ra * ra - (d * d).sum(axis=1)
-            if sign == 0:
+            if follow is not None:
+                near = [
+                    np.linalg.norm(
+                        known[a] + ra * _unit(half_angle(c1, c2, c3, sg)[0]) - follow[0][x], axis=1
+                    )
+                    for sg in (1, -1)
+                ]
+                sign = np.where(near[0] <= near[1], 1, -1)  # type: ignore[assignment]
+            elif np.ndim(sign) == 0 and sign == 0:
                 sign = min(
                     (1, -1),
                     key=lambda sg: float(
@@ -135,7 +150,10 @@ class SeedPlan:
         c2 = w[:, 1] * h[0] - w[:, 0] * h[1]
         c3 = 0.5 * (length * length - (w * w).sum(axis=1) - h @ h)
         sign = signs[2]
-        if sign == 0:
+        if follow is not None:
+            off = [np.abs(_wrap(half_angle(c1, c2, c3, sg)[0] - follow[1])) for sg in (1, -1)]
+            sign = np.where(off[0] <= off[1], 1, -1)  # type: ignore[assignment]
+        elif np.ndim(sign) == 0 and sign == 0:
             sign = min((1, -1), key=lambda sg: abs(float(_wrap(half_angle(c1, c2, c3, sg)[0][0]))))
         th, rad = half_angle(c1, c2, c3, sign)
         rads.append(rad)
@@ -187,3 +205,38 @@ class SeedPlan:
             _, th1, _, _ = self._solve(pi, po - h, sg)
             k = _wrap(th2 - th1) / (2 * h)
         return Generated(th, rad, k, (int(sg[0]), int(sg[1]), int(sg[2])))
+
+    def follow(
+        self,
+        phi_in: object,
+        phi_out: object,
+        points: Mapping[str, object],
+        theta: object,
+    ) -> tuple[Generated, np.ndarray]:
+        """The generated output on a real linkage's own roots: at each input rotation
+        (``phi_in``, with prescribed outputs ``phi_out``), each loop takes the root nearest
+        the real linkage there (``points``: name -> (n, 2) positions of the dyads' joints;
+        ``theta``: (n,) its output rotation). Where the real linkage passes a loop's
+        turning point (a radicand touching zero: the split mechanism's own dead point) the
+        fixed signs of :meth:`generated` change root and stop describing it; this does
+        not. Returns the Generated (``signs``: the drawn pose's, absolute; ``k`` from the
+        same roots) and the (n, 3) absolute signs used at each input."""
+        pi = np.atleast_1d(np.asarray(phi_in, dtype=np.float64))
+        po = np.atleast_1d(np.asarray(phi_out, dtype=np.float64))
+        th_ref = np.atleast_1d(np.asarray(theta, dtype=np.float64))
+        if pi.shape != po.shape or pi.ndim != 1:
+            raise ValueError(f"phi_out must have the shape of phi_in {pi.shape}, got {po.shape}")
+        if th_ref.shape != pi.shape:
+            raise ValueError(f"theta must have the shape of phi_in {pi.shape}, got {th_ref.shape}")
+        ref: dict[str, np.ndarray] = {}
+        for x, _, _ in self.t.dyads:
+            if x not in points:
+                raise ValueError(f"points must give the dyad joint {x!r}")
+            ref[x] = np.asarray(points[x], dtype=np.float64).reshape(pi.size, 2)
+        _, th, rad, used = self._solve(pi, po, (0, 0, 0), (ref, th_ref))
+        signs = np.stack([np.broadcast_to(u, pi.shape) for u in used], axis=1)
+        h = 1e-6
+        th2 = self._solve(pi, po + h, tuple(signs.T))[1]  # type: ignore[arg-type]
+        th1 = self._solve(pi, po - h, tuple(signs.T))[1]  # type: ignore[arg-type]
+        k = _wrap(th2 - th1) / (2 * h)
+        return Generated(th, rad, k, self._drawn), signs.astype(np.int8)

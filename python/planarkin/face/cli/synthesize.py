@@ -1,14 +1,19 @@
 """``planarkin synthesize ackermann``: the seed's example 2 end to end (multistart SLSQP on
-the true error, verification, tolerance sensitivity, design.json, report.json, figures).
-Ctrl-C stops the worker processes at once."""
+the true error, verification, tolerance sensitivity, design.json, report.json, figures),
+with progress bars on a terminal. Ctrl-C stops the worker processes at once and
+``--time-limit`` stops the search; either way the best feasible design found so far is
+written and the report says why it stopped. A search with no feasible design writes
+nothing and exits 1. report.json records every option, the command that reproduces the
+run, and the versions it ran with."""
 
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import os
 import platform
+import shlex
+import sys
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -22,8 +27,8 @@ from ...synthesis import driver
 from ...synthesis.problem import OBJECTIVES, Problem
 from ...synthesis.verify import linear_sensitivity, tolerance_sensitivity, verify
 from ..figures import synthesis as synthesis_figures
-from ..progress import bar
-from ._common import figure_file, format_argument, quiet_argument
+from ..progress import bar, shown
+from ._common import figure_file, format_argument, json_text, quiet_argument
 
 PROBLEMS = ("ackermann",)
 #: defaults of the full run (the shipped design in examples/ackermann/ is this run's)
@@ -133,7 +138,20 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         metavar="N",
         help="SLSQP iterations per phase (default: %(default)s)",
     )
-    p.add_argument("--workers", type=int, default=None, help="worker processes (default: 2)")
+    p.add_argument(
+        "--time-limit",
+        type=float,
+        default=None,
+        metavar="SECONDS",
+        help="stop the search (screening and starts) after SECONDS and keep the best "
+        "feasible design found by then (default: none)",
+    )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        help="worker processes (default: 2); the result does not depend on it",
+    )
     p.add_argument(
         "--no-figures", action="store_true", help="write design.json and report.json only"
     )
@@ -155,6 +173,102 @@ def _check(args: argparse.Namespace) -> None:
         raise ValueError(f"--maxiter must be >= 1, got {args.maxiter}")
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be >= 1, got {args.workers}")
+    t = args.time_limit
+    if t is not None and not (math.isfinite(t) and t > 0):
+        raise ValueError(f"--time-limit must be finite and > 0 seconds, got {t}")
+
+
+#: the options that decide the result, as (flag, dest), in the order the command is written
+RESULT_FLAGS = (
+    ("--starts", "starts"),
+    ("--samples", "samples"),
+    ("--seed", "seed"),
+    ("--objective", "objective"),
+    ("--det-margin", "det_margin"),
+    ("--min-link", "min_link"),
+    ("--select", "select"),
+    ("--budget", "budget"),
+    ("--maxiter", "maxiter"),
+)
+
+
+def command_line(args: argparse.Namespace) -> str:
+    """The command that reproduces this run's files: every option that decides them
+    written out (so that a later change of a default does not change what it means)."""
+    words = ["planarkin", "synthesize", args.problem, "--out", str(args.out)]
+    for flag, dest in RESULT_FLAGS:
+        words += [flag, _word(getattr(args, dest))]
+    words.append("--tolerance" if args.tolerance else "--no-tolerance")
+    if args.time_limit is not None:
+        words += ["--time-limit", _word(args.time_limit)]
+    if args.no_figures:
+        words.append("--no-figures")
+    elif args.format != "png":
+        words += ["--format", args.format]
+    return shlex.join(words)
+
+
+def _word(v: object) -> str:
+    # repr: the shortest text that reads back to the same float
+    return repr(v) if isinstance(v, float) else str(v)
+
+
+def versions() -> dict[str, str]:
+    """What the run ran with: planarkin, NumPy, SciPy, Python and the platform."""
+    import scipy
+
+    from ... import __version__
+
+    return {
+        "planarkin": __version__,
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+        "python": platform.python_version(),
+        "platform": platform.platform(),
+        "machine": platform.machine(),
+    }
+
+
+class _Bars:
+    """Screening, then starts: done / total, the best feasible true error so far and the
+    time left (tqdm's estimate); one bar at a time, none in a pipe or with --quiet."""
+
+    def __init__(self, args: argparse.Namespace, scale_deg: float) -> None:
+        self.args, self.scale_deg = args, scale_deg
+        self.best = math.inf
+        self.screen = bar(args.samples, "synthesize: screening", quiet=args.quiet, unit="sample")
+        self.starts: Any = None
+
+    def screened(self, n: int) -> None:
+        self.screen.update(n)
+        if self.screen.n >= self.screen.total:
+            self._open_starts()
+
+    def _open_starts(self) -> None:
+        if self.starts is None:
+            self.screen.close()
+            self.starts = bar(
+                self.args.starts, "synthesize: starts", quiet=self.args.quiet, unit="start"
+            )
+            self.starts.set_postfix_str("best: none yet", refresh=True)
+
+    def finished(self, run: driver.StartResult) -> None:
+        self._open_starts()
+        if run.feasible and run.max_error < self.best:
+            self.best = run.max_error
+        shown = f"{self.best * self.scale_deg:.3g} deg" if math.isfinite(self.best) else "none yet"
+        self.starts.set_postfix_str(f"best: {shown}", refresh=False)
+        self.starts.update()
+
+    def close(self) -> None:
+        self.screen.close()
+        if self.starts is not None:
+            self.starts.close()
+        if shown(self.args.quiet):
+            # a bar cut short by Ctrl-C as it was drawn is not closed: clear its line, so
+            # that what the command prints next starts at the left margin
+            sys.stderr.write("\r\x1b[K")
+            sys.stderr.flush()
 
 
 def run(args: argparse.Namespace) -> int:
@@ -163,52 +277,115 @@ def run(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     problem = ak.problem(objective=args.objective, det_margin=args.det_margin)
     problem = replace(problem, space=ak.space(min_link=args.min_link))
-    # the command's own pool, so that Ctrl-C (KeyboardInterrupt here) stops its workers
-    # at once instead of waiting for the starts they run and have queued
-    executor = driver.process_pool(args.workers)
+    interrupted = False
+    bars = _Bars(args, math.degrees(problem.target.scale))
     try:
-        with bar(args.starts, "synthesize: starts", quiet=args.quiet, unit="start") as b:
-            res = driver.synthesize(
-                problem,
-                starts=args.starts,
-                samples=args.samples,
-                seed=args.seed,
-                sampler=ak.mirror_sampler(problem.space),
-                executor=executor,
-                maxiter=args.maxiter,
-                progress=b.update,
-            )
-    except BaseException:
-        driver.stop_pool(executor)
-        raise
-    executor.shutdown()
-    # verify every run on the true linkage, then choose
+        # the search owns its process pool: Ctrl-C stops its workers at once
+        res = driver.synthesize(
+            problem,
+            starts=args.starts,
+            samples=args.samples,
+            seed=args.seed,
+            sampler=ak.mirror_sampler(problem.space),
+            workers=args.workers,
+            maxiter=args.maxiter,
+            progress=bars.finished,
+            screening=bars.screened,
+            time_limit=args.time_limit,
+        )
+    except driver.SynthesisInterrupted as e:
+        res, interrupted = e.result, True
+    finally:
+        bars.close()
+    stop = _stop_words(res, args)
+    written = _finish(args, problem, res, stop, t0)
+    if interrupted:
+        what = (
+            f"wrote the best feasible design so far to {args.out}"
+            if written
+            else "no feasible design had been found; nothing written"
+        )
+        print(f"planarkin: interrupted: {_finished(res)}; {what}", file=sys.stderr)
+        return 130
+    if not written:
+        why = f"{stop}: {_finished(res)}" if stop else f"{_finished(res)}, none feasible"
+        more = "--starts, --samples" + (" or --time-limit" if stop else "")
+        print(
+            f"planarkin: no feasible design ({why}); nothing written (raise {more})",
+            file=sys.stderr,
+        )
+        return 1
+    return 0
+
+
+def _finished(res: driver.SynthesisResult) -> str:
+    """How far the search got, in words: "2 of 3 starts finished", "1 of 3 starts ran to
+    its end, 1 stopped at the limit, 1 not run", "while screening (50 of 300 candidates)"."""
+    if res.starts == 0:
+        if res.screened >= res.sampled:
+            return f"before any start ran ({res.screened} candidates screened)"
+        return f"while screening ({res.screened} of {res.sampled} candidates)"
+    n, total = len(res.runs), res.starts
+    cut = sum(1 for r in res.runs if r.stopped)
+    if not cut:
+        return f"{n} of {total} start{'' if total == 1 else 's'} finished"
+    words = [f"{n - cut} of {total} start{'' if total == 1 else 's'} ran to the end"]
+    words.append(f"{cut} stopped at the limit")
+    if total > n:
+        words.append(f"{total - n} not run")
+    return ", ".join(words)
+
+
+def _stop_words(res: driver.SynthesisResult, args: argparse.Namespace) -> str:
+    if res.stopped == driver.INTERRUPTED:
+        return "interrupted (Ctrl-C)"
+    if res.stopped == driver.TIME_LIMIT:
+        return f"stopped at the time limit ({args.time_limit:g} s)"
+    return ""
+
+
+def _finish(
+    args: argparse.Namespace,
+    problem: Problem,
+    res: driver.SynthesisResult,
+    stop: str,
+    t0: float,
+) -> bool:
+    """Verifies every finished run on the true linkage, chooses, and writes the design,
+    report and figures; False (nothing written) when no run is a feasible, verified
+    design."""
     truth = replace(problem, objective="true")
     grid = np.linspace(problem.target.dense_in[0], problem.target.dense_in[-1], 201)
     rows: list[tuple[driver.StartResult, dict[str, Any], float]] = []
+    if not any(r.feasible for r in res.runs):
+        return False
     with bar(len(res.runs), "synthesize: verify", quiet=args.quiet, unit="design") as b:
-        for r in res.runs:
-            v = verify(truth, r.x)
-            s = linear_sensitivity(truth.space.scene(r.x), grid, ak.right_steer(grid))
+        for r in res.runs:  # by start index
+            if r.feasible:
+                v = verify(truth, r.x)
+                s = linear_sensitivity(truth.space.scene(r.x), grid, ak.right_steer(grid))
+            else:
+                v, s = {}, math.nan
             rows.append((r, v, s))
             b.update()
     good = [
         row
         for row in rows
-        if row[1]["converged"] and row[1]["det_sign_changes"] == 0 and row[0].feasible
+        if row[0].feasible and row[1]["sweep_converged"] and row[1]["det_sign_changes"] == 0
     ]
     if not good:
-        raise ValueError("no start ended in a verified design (raise --starts or --samples)")
+        return False
     key = "true_max_error_deg_1001"
     within = [row for row in good if row[1][key] <= args.budget]
+    # ties go to the lower start index: the choice never depends on which worker finished
     if args.select == "robust" and within:
-        chosen = min(within, key=lambda row: row[2])
+        chosen = min(within, key=lambda row: (row[2], row[0].index))
         why = (
             f"the least tolerance-sensitive of {len(within)} verified designs within "
             f"{args.budget} deg"
         )
     else:
-        chosen = min(good, key=lambda row: row[1][key])
+        chosen = min(good, key=lambda row: (row[1][key], row[0].index))
         why = "the smallest true max error of the verified designs"
     best, v, sens = chosen
     sc = truth.space.scene(best.x)
@@ -223,9 +400,14 @@ def run(args: argparse.Namespace) -> int:
     sc = Scene.from_dict(d)
     report: dict[str, Any] = {
         "problem": "ackermann",
+        "command": command_line(args),
+        "stopped": stop or None,
+        "finished_starts": len(res.runs),
         "track_over_wheelbase": ak.TRACK,
         "inner_deg": ak.INNER_DEG,
         "outer_deg": ak.OUTER_DEG,
+        # scipy said it converged AND the design was verified feasible (never one alone)
+        "converged": bool(best.converged and v["sweep_converged"]),
         **v,
         "box": ak.BOX,
         "in_box": bool(v["max_abs_x"] <= ak.BOX + 1e-12 and v["max_abs_y"] <= ak.BOX + 1e-12),
@@ -235,28 +417,43 @@ def run(args: argparse.Namespace) -> int:
         "optimizer": {
             "method": "SLSQP (scipy), least squares then minimax polish",
             "gradients": "forward finite differences of the Rust scene sweeps (Python loop)",
+            "start": best.index,
             "status": best.status,
+            "success": best.success,
             "message": best.message,
             "nit": best.nit,
             "phases": best.phases,
             "feasible": best.feasible,
+            "converged": best.converged,
+            "stopped": best.stopped or None,
         },
         "det_margin": args.det_margin,
         "min_link": args.min_link,
         "starts": res.starts,
         "samples": res.sampled,
+        "screened": res.screened,
         "maxiter": args.maxiter,
         "seed": args.seed,
+        "time_limit_s": args.time_limit,
+        "options": _options(args),
         "runs": [
             {
-                "true_max_error_deg_1001": rv[key],
-                "min_abs_conditioning": rv["min_abs_conditioning"],
-                "linear_sensitivity_deg_per_unit": s,
+                "start": r.index,
+                # as the optimizer measured it: design points and its dense grid
+                "max_error_deg": r.max_error * math.degrees(problem.target.scale),
+                "true_max_error_deg_1001": rv.get(key),
+                "min_abs_conditioning": rv.get("min_abs_conditioning"),
+                "linear_sensitivity_deg_per_unit": s if r.feasible else None,
                 "status": r.status,
+                "success": r.success,
+                "message": r.message,
                 "feasible": r.feasible,
+                "converged": r.converged,
+                "stopped": r.stopped or None,
             }
             for r, rv, s in rows
         ],
+        "versions": versions(),
         "optimize_wall_s": res.wall_s,
         "cpu_count": os.cpu_count(),
         "machine": platform.machine(),
@@ -267,17 +464,45 @@ def run(args: argparse.Namespace) -> int:
     report["wall_s"] = time.perf_counter() - t0
     paths = write(args.out, truth, best.x, report, sc, figures=not args.no_figures, fmt=args.format)
     if args.json:
-        print(json.dumps(report, indent=2))
-    else:
+        print(json_text(_plain(report)))
+    elif res.stopped != driver.INTERRUPTED:
         print(
             f"planarkin synthesize ackermann: true max error {v[key]:.3g} deg (1001 points), "
             f"{v['true_max_error_deg']:.3g} deg (31 design points), generated "
-            f"{v['generated_max_error_deg']:.3g} deg; det sign changes {v['det_sign_changes']}, "
+            f"{_generated_words(v)}; det sign changes {v['det_sign_changes']}, "
             f"min conditioning {v['min_abs_conditioning']:.3g}, link ratio {v['link_ratio']:.3g}; "
             f"{res.starts} starts, {report['wall_s']:.1f} s"
         )
+        if stop:
+            print(f"  {stop}: {_finished(res)}; the best feasible design so far")
         print("  written: " + ", ".join(str(p) for p in paths))
-    return 0
+    return True
+
+
+def _generated_words(v: dict[str, Any]) -> str:
+    # the closed form on the linkage's own roots; with the drawn signs held fixed it can
+    # change root where the linkage passes a loop's turning point, and then describes
+    # another mechanism: said, not printed as this design's generated error
+    words = f"{v['generated_max_error_deg']:.3g} deg"
+    n = v["generated_root_changes"]
+    if n:
+        first = v["generated_root_changes_deg"][0]
+        words += (
+            f" (on the linkage's own roots; the drawn signs held fixed change root at {n} of "
+            f"{v['design_points']} design points from {first:.3g} deg and read "
+            f"{v['generated_fixed_signs_max_error_deg']:.3g} deg)"
+        )
+    return words
+
+
+def _options(args: argparse.Namespace) -> dict[str, Any]:
+    """Every option as parsed (defaults included)."""
+    out: dict[str, Any] = {}
+    for k, val in sorted(vars(args).items()):
+        if k in ("func", "command"):
+            continue
+        out[k] = str(val) if isinstance(val, Path) else val
+    return out
 
 
 def write(
@@ -294,7 +519,7 @@ def write(
     out.mkdir(parents=True, exist_ok=True)
     paths = [scene.save(out / DESIGN_JSON)]
     p = out / REPORT_JSON
-    p.write_text(json.dumps(report, indent=2, default=_json_default) + "\n", encoding="utf-8")
+    p.write_text(json_text(_plain(report)) + "\n", encoding="utf-8")
     paths.append(p)
     if figures:
         for name, make in FIGURES.items():
@@ -304,9 +529,12 @@ def write(
     return paths
 
 
-def _json_default(o: object) -> object:
+def _plain(o: object) -> object:
+    # arrays as lists; json_text then writes NaN and infinities as null (strict JSON)
+    if isinstance(o, dict):
+        return {k: _plain(v) for k, v in o.items()}
+    if isinstance(o, (list, tuple)):
+        return [_plain(v) for v in o]
     if isinstance(o, np.ndarray):
         return o.tolist()
-    if isinstance(o, (np.floating, np.integer)):
-        return o.item()
-    raise TypeError(f"not JSON serialisable: {type(o).__name__}")
+    return o
