@@ -143,7 +143,8 @@ def test_ctrl_c_stops_synthesis_workers_at_once(tmp_path):
         assert p.poll() is None
         out, err, _ = _interrupt(p, within=5.0)
         assert p.returncode == 130
-        assert err == "planarkin: interrupted\n", err
+        # one line: that it was interrupted, and what (if anything) was written
+        assert err.startswith("planarkin: interrupted") and err.count("\n") == 1, err
         assert not (tmp_path / "syn").exists()
         deadline = time.monotonic() + 5
         while time.monotonic() < deadline and any(_alive(w) for w in workers):
