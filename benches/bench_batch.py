@@ -48,6 +48,23 @@ def test_planarkin_sweep_batch(benchmark, m, threads):
 
 
 @pytest.mark.parametrize("m", SIZES)
+def test_planarkin_sweep_batch_across_angles(benchmark, m):
+    benchmark.group = _group(m)
+    arr = links(m)
+    b = benchmark(pk.sweep_batch, arr, THETA2, predictor="closed-form", threads=1)
+    assert b.success.all()
+    record(
+        benchmark,
+        "pk_batch_across_t1",
+        "planarkin sweep_batch(predictor='closed-form'), 1 thread",
+        m=m,
+        threads=1,
+        nit_mean=float(b.nit.mean()),
+        max_error=_check(m, b.theta3, b.theta4, 1e-8),
+    )
+
+
+@pytest.mark.parametrize("m", SIZES)
 @pytest.mark.parametrize("threads", [1, None], ids=["1thread", "allthreads"])
 def test_planarkin_closed_form_batch(benchmark, m, threads):
     benchmark.group = _group(m)

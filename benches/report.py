@@ -444,8 +444,26 @@ def targets(bench: Bench, crit: dict, trade: dict) -> list[tuple[str, str, str, 
             f"{r:.2f}x",
             r >= 1.0,
         )
+    across = bench.median("pk_batch_across_t1", m=m)
+    if across and npcf:
+        r = npcf / across
+        add(
+            f"Newton batch {m} x 361 across angles (predictor='closed-form'), 1 thread: "
+            ">= 1.5x NumPy closed form (issue 21)",
+            f"{_t(across)} vs {_t(npcf)} ({across / (m * 361) * 1e9:.1f} ns per point)",
+            f"{r:.2f}x",
+            r >= 1.5,
+        )
     cf1 = bench.median("pk_cf_batch_t1", m=m)
     cfa = bench.median("pk_cf_batch_tall", m=m)
+    if cf1:
+        ns = cf1 / (m * 361) * 1e9
+        add(
+            f"closed-form batch {m} x 361, 1 thread: <= 10 ns per point (issue 21)",
+            f"{ns:.1f} ns per point",
+            "-",
+            ns <= 10.0,
+        )
     if cf1 and npcf:
         r = npcf / cf1
         add(
