@@ -300,12 +300,9 @@ def run(args: argparse.Namespace) -> int:
     stop = _stop_words(res, args)
     written = _finish(args, problem, res, stop, t0)
     if interrupted:
-        what = (
-            f"wrote the best feasible design so far to {args.out}"
-            if written
-            else "no feasible design had been found; nothing written"
-        )
-        print(f"planarkin: interrupted: {_finished(res)}; {what}", file=sys.stderr)
+        # the line every command prints on Ctrl-C, and what was kept when something was
+        kept = f": wrote the best feasible design so far to {args.out} ({_finished(res)})"
+        print(f"planarkin: interrupted{kept if written else ''}", file=sys.stderr)
         return 130
     if not written:
         why = f"{stop}: {_finished(res)}" if stop else f"{_finished(res)}, none feasible"
