@@ -306,7 +306,7 @@ def run(args: argparse.Namespace) -> int:
         return 130
     if not written:
         why = f"{stop}: {_finished(res)}" if stop else f"{_finished(res)}, none feasible"
-        more = "--starts, --samples" + (" or --time-limit" if stop else "")
+        more = "--starts, --samples or --time-limit" if stop else "--starts or --samples"
         print(
             f"planarkin: no feasible design ({why}); nothing written (raise {more})",
             file=sys.stderr,
