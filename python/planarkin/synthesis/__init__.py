@@ -1,6 +1,8 @@
-"""Defect-free dimensional synthesis of double butterfly linkages (seed 003): the seed's
-loop choice and generated output in closed form, SLSQP multistarts on the true linkage
-(the Rust scene solver), verification, and the Ackermann steering example.
+"""Dimensional synthesis of any scene (``Problem(scene, free=[...], target=...)``: function
+and path generation with branch and order constraints on the real linkage) and the
+defect-free synthesis of double butterfly linkages (seed 003): the seed's loop choice and
+generated output in closed form, SLSQP multistarts on the true linkage (the Rust scene
+solver), verification, and the Ackermann steering example.
 
 >>> from planarkin.synthesis import admissible_loop_choices, TYPE_I_LINKS
 >>> len(admissible_loop_choices(TYPE_I_LINKS, "1", "2", "5"))
@@ -18,7 +20,15 @@ from .driver import (
     synthesize,
 )
 from .generated import SIGN_COMBINATIONS, Generated, SeedPlan, half_angle
-from .problem import OBJECTIVES, DesignSpace, FunctionTarget, PathTarget, Problem
+from .problem import (
+    OBJECTIVES,
+    DesignSpace,
+    FunctionTarget,
+    PathPoints,
+    PathTarget,
+    Problem,
+)
+from .space import SceneSpace
 from .topology import (
     STEERING_KNUCKLE,
     STEERING_LEVER,
@@ -30,7 +40,7 @@ from .topology import (
     admissible_loop_choices,
     loops,
 )
-from .verify import linear_sensitivity, tolerance_sensitivity, true_error, verify
+from .verify import linear_sensitivity, tolerance_sensitivity, true_error, verify, verify_scene
 
 __all__ = [
     "OBJECTIVES",
@@ -44,8 +54,10 @@ __all__ = [
     "FunctionTarget",
     "Generated",
     "LoopChoice",
+    "PathPoints",
     "PathTarget",
     "Problem",
+    "SceneSpace",
     "SeedPlan",
     "StartResult",
     "SynthesisInterrupted",
@@ -63,4 +75,5 @@ __all__ = [
     "tolerance_sensitivity",
     "true_error",
     "verify",
+    "verify_scene",
 ]

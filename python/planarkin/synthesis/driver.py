@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .problem import Problem
+from .problem import FunctionTarget, Problem
 
 #: forward-difference step on joint coordinates, relative to the box size
 FD_STEP = 1e-7
@@ -144,12 +144,12 @@ def run_start(
         if late():
             raise StopIteration
 
-    sp = problem.space
+    lo, hi = problem.lower, problem.upper
     grid = problem.grid()
-    box = max(float(np.max(sp.upper - sp.lower)), 1e-300)
+    box = max(float(np.max(hi - lo)), 1e-300)
     cache = _Cache(problem, grid, FD_STEP * box)
-    bounds = list(zip(sp.lower, sp.upper, strict=True))
-    x0 = np.clip(np.asarray(x0, dtype=np.float64), sp.lower, sp.upper)
+    bounds = list(zip(lo, hi, strict=True))
+    x0 = np.clip(np.asarray(x0, dtype=np.float64), lo, hi)
     phases: list[dict[str, Any]] = []
 
     def cons_fun(x: np.ndarray) -> np.ndarray:
@@ -184,7 +184,7 @@ def run_start(
             options={"maxiter": maxiter, "ftol": ftol},
             callback=stop_at_deadline if deadline is not None else None,
         )
-    x = np.clip(res.x, sp.lower, sp.upper)
+    x = np.clip(res.x, lo, hi)
     phases.append(_phase("least-squares", res))
     status, message, nit, success = int(res.status), str(res.message), int(res.nit), res.success
     stopped = TIME_LIMIT if int(res.status) == 99 else ""
@@ -193,6 +193,7 @@ def run_start(
         and not stopped
         and not late()
         and problem.objective == "true"
+        and isinstance(problem.target, FunctionTarget)
         and np.isfinite(problem.target.dense_in).all()
     ):
         d0 = cache.values(x)[1]
@@ -228,7 +229,7 @@ def run_start(
                 options={"maxiter": maxiter, "ftol": ftol},
                 callback=stop_at_deadline if deadline is not None else None,
             )
-        x2 = np.clip(r2.x[:-1], sp.lower, sp.upper)
+        x2 = np.clip(r2.x[:-1], lo, hi)
         phases.append(_phase("minimax", r2))
         f1, f2 = figures(problem, x), figures(problem, x2)
         phases[-1]["kept"] = bool(
@@ -274,8 +275,8 @@ def _phase(name: str, res: Any) -> dict[str, Any]:
 def _feasible(problem: Problem, x: np.ndarray, tol: float = 1e-6) -> bool:
     _, _, br, lc = problem.residuals(x)
     ok = bool(np.all(br >= -tol) and np.all(lc >= -tol))
-    sp = problem.space
-    return ok and bool(np.all(x >= sp.lower - 1e-12) and np.all(x <= sp.upper + 1e-12))
+    lo, hi = problem.lower, problem.upper
+    return ok and bool(np.all(x >= lo - 1e-12) and np.all(x <= hi + 1e-12))
 
 
 def sample_starts(
@@ -308,7 +309,6 @@ def _screen(
     deadline: float | None,
     progress: Callable[[int], object] | None,
 ) -> tuple[list[tuple[float, np.ndarray]], int]:
-    sp = problem.space
     grid = problem.grid()
     lite = replace(problem, objective="true")
     found: list[tuple[float, np.ndarray]] = []
@@ -316,7 +316,7 @@ def _screen(
     for _ in range(n_samples):
         if deadline is not None and time.time() >= deadline:
             break
-        x = sampler(rng) if sampler is not None else rng.uniform(sp.lower, sp.upper)
+        x = sampler(rng) if sampler is not None else rng.uniform(problem.lower, problem.upper)
         r, _, br, lc = lite.residuals(x, grid)
         if np.all(br > -1.0) and np.all(lc >= 0):
             found.append((float(np.sqrt(np.mean(r**2))), x))

@@ -1,7 +1,8 @@
-"""A synthesis problem: a design space (free joint coordinates of a template's drawn pose),
-a target (function or path), and the objective and constraints evaluated on the true
-linkage by the Rust scene solver (one sweep per candidate), or on the seed's generated
-mechanism (closed form)."""
+"""A synthesis problem: a design space (free joint coordinates of any scene, or of a double
+butterfly template's drawn pose), a target (function, or path with or without prescribed
+timing), and the objective and constraints evaluated on the true linkage by the Rust scene
+solver (one sweep per candidate), or on the seed's generated mechanism (closed form, double
+butterfly templates only)."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ import numpy as np
 
 from ..scene import Scene
 from .generated import SeedPlan
+from .space import SceneSpace
 from .topology import Template
 
 OBJECTIVES = ("true", "generated", "corrected")
@@ -98,7 +100,59 @@ class PathTarget:
         return float(np.ptp(self.xy, axis=0).max())
 
 
-Target = FunctionTarget | PathTarget
+@dataclass(frozen=True)
+class PathPoints:
+    """Path generation without prescribed timing: point ``point`` through ``xy`` (n, 2) in
+    that order, at input values the optimizer chooses (design variables after the joint
+    coordinates: input rotations, or displacements for a linear input, from the drawn
+    pose) within ``span``, each at least ``order_margin`` past the one before (the order
+    constraint); the branch constraint holds on ``dense`` inputs from the first point's to
+    the last's. ``phi0``: where the optimizer starts them (default evenly in ``span``)."""
+
+    point: str
+    xy: np.ndarray
+    span: tuple[float, float] = (-math.pi, math.pi)
+    dense: int = 41
+    order_margin: float = 1e-3
+    phi0: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        xy = np.asarray(self.xy, dtype=np.float64)
+        if xy.ndim != 2 or xy.shape[1] != 2 or xy.shape[0] < 2 or not np.all(np.isfinite(xy)):
+            raise ValueError(f"xy must be >= 2 finite points of shape (n, 2), got {xy.shape}")
+        object.__setattr__(self, "xy", xy)
+        lo, hi = (float(v) for v in self.span)
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+            raise ValueError(f"span must be two finite input values, low < high, got {self.span}")
+        object.__setattr__(self, "span", (lo, hi))
+        if int(self.dense) != self.dense or self.dense < 2:
+            raise ValueError(f"dense must be an integer >= 2, got {self.dense}")
+        if not (math.isfinite(self.order_margin) and self.order_margin > 0):
+            raise ValueError(f"order_margin must be finite and > 0, got {self.order_margin}")
+        if self.order_margin * (xy.shape[0] - 1) >= hi - lo:
+            raise ValueError("order_margin leaves no room in span for the points in order")
+        if self.phi0 is None:
+            phi0 = np.linspace(lo, hi, xy.shape[0] + 2)[1:-1]
+        else:
+            phi0 = np.asarray(self.phi0, dtype=np.float64)
+            if phi0.shape != (xy.shape[0],) or not np.all(np.isfinite(phi0)):
+                raise ValueError(f"phi0 must be {xy.shape[0]} finite input values")
+            if np.any(phi0 < lo) or np.any(phi0 > hi):
+                raise ValueError(f"phi0 must lie within span {self.span}")
+        object.__setattr__(self, "phi0", phi0)
+
+    @property
+    def n(self) -> int:
+        """The number of points."""
+        return int(self.xy.shape[0])
+
+    @property
+    def scale(self) -> float:
+        """The size of the prescribed path (the larger side of its bounding box)."""
+        return float(np.ptp(self.xy, axis=0).max()) or 1.0
+
+
+Target = FunctionTarget | PathTarget | PathPoints
 
 
 @dataclass(frozen=True)
@@ -164,6 +218,14 @@ class DesignSpace:
                     out.append((a, b))
         return out
 
+    @property
+    def links(self) -> dict[str, tuple[str, ...]]:
+        return self.template.links
+
+    def lengths(self, points: Mapping[str, Sequence[float]]) -> np.ndarray:
+        """Every distance between two points of one link."""
+        return link_lengths(points, self.template)
+
 
 def link_lengths(points: Mapping[str, Sequence[float]], template: Template) -> np.ndarray:
     """Every distance between two points of one link."""
@@ -189,12 +251,24 @@ class Evaluation:
     extra: dict[str, Any] = field(default_factory=dict)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Problem:
-    """What one optimizer run needs (plain data: it travels to worker processes)."""
+    """What one optimizer run needs (plain data: it travels to worker processes).
 
-    space: DesignSpace
-    target: FunctionTarget | PathTarget
+    ``Problem(scene, free=["A.x", "A.y", "B"], target=...)`` designs any scene: the named
+    joint coordinates are the design variables (``"B"``: both of B's), the others are
+    held as drawn (a :class:`SceneSpace` with its default bounds; build one to set them).
+    A double butterfly :class:`DesignSpace` works the same and adds the seed's closed
+    form. Targets: :class:`FunctionTarget` (the output's rotation, or displacement for a
+    linear output, against the input's, both from the drawn pose), :class:`PathTarget`
+    (a point at given inputs) and :class:`PathPoints` (a point through given points in
+    order, its inputs found too). Constraints, all on the real linkage swept by the scene
+    solver from the drawn pose: branch (every point of the range solved on the drawn
+    assembly, the plan's conditioning keeping the drawn sign with ``det_margin``), order
+    (the input passes the design points in order), link lengths (``min_link``)."""
+
+    space: DesignSpace | SceneSpace
+    target: Target
     #: the smallest |conditioning| allowed on the dense grid, with one sign throughout
     det_margin: float = 0.02
     #: the smallest dimensionless radicand of the closed forms (generated objective)
@@ -203,39 +277,163 @@ class Problem:
     #: sign combination (relative to the drawn pose) of the generated objective
     signs: tuple[int, int, int] = (1, 1, 1)
     #: constrain the closed forms' radicands (>= radicand_margin) on the dense grid
+    #: (double butterfly templates with a function target)
     closed_form: bool = True
+    #: the free joint coordinates of a SceneSpace ("A.x", "A.y", "B" for both)
+    free: tuple[str, ...] | None = None
 
-    def __post_init__(self) -> None:
+    def __init__(
+        self,
+        space: DesignSpace | SceneSpace | Scene,
+        target: Target,
+        det_margin: float = 0.02,
+        radicand_margin: float = 1e-3,
+        objective: str = "true",
+        signs: tuple[int, int, int] = (1, 1, 1),
+        closed_form: bool = True,
+        free: Sequence[str] | None = None,
+    ) -> None:
+        # written out (not the dataclass's): ``space`` may be a Scene, made a SceneSpace
+        given = {
+            "target": target,
+            "det_margin": det_margin,
+            "radicand_margin": radicand_margin,
+            "objective": objective,
+            "signs": signs,
+            "closed_form": closed_form,
+        }
+        for k, v in given.items():
+            object.__setattr__(self, k, v)
+        sp = space
+        if isinstance(sp, Scene):
+            if free is None:
+                raise ValueError(
+                    "free must name the joint coordinates to design (e.g. ['A.x', 'B']) "
+                    "when space is a Scene"
+                )
+            sp = SceneSpace(sp, free)
+        if not isinstance(sp, (DesignSpace, SceneSpace)):
+            raise ValueError(
+                f"space must be a Scene, SceneSpace or DesignSpace, got {type(sp).__name__}"
+            )
+        if free is not None and (not isinstance(sp, SceneSpace) or tuple(free) != sp.free):
+            raise ValueError("free is given with a Scene (a design space names its own)")
+        object.__setattr__(self, "space", sp)
+        object.__setattr__(self, "free", sp.free if isinstance(sp, SceneSpace) else None)
         if self.objective not in OBJECTIVES:
             raise ValueError(f"objective must be one of {OBJECTIVES}, got {self.objective!r}")
         if not (math.isfinite(self.det_margin) and self.det_margin >= 0):
             raise ValueError(f"det_margin must be finite and >= 0, got {self.det_margin}")
+        t = self.target
+        if not isinstance(t, (FunctionTarget, PathTarget, PathPoints)):
+            raise ValueError(
+                f"target must be a FunctionTarget, PathTarget or PathPoints, got {type(t).__name__}"
+            )
+        if isinstance(sp, SceneSpace):
+            if self.objective != "true":
+                raise ValueError(
+                    f"objective {self.objective!r} is the seed's closed form: it needs a double "
+                    "butterfly DesignSpace; a scene's is 'true'"
+                )
+            if isinstance(t, FunctionTarget) and sp.drawn.output is None:
+                raise ValueError("target: a function target needs the scene's output")
+        if isinstance(t, (PathTarget, PathPoints)) and t.point not in sp.points:
+            raise ValueError(f"target point {t.point!r} is not a point of the scene")
+
+    # --- the design vector ---------------------------------------------------------------
+
+    @property
+    def timing(self) -> int:
+        """How many input values the design vector carries after the joint coordinates
+        (those of a :class:`PathPoints` target; 0 otherwise)."""
+        return self.target.n if isinstance(self.target, PathPoints) else 0
+
+    @property
+    def lower(self) -> np.ndarray:
+        """Lower bounds of the design vector."""
+        t = self.target
+        if isinstance(t, PathPoints):
+            return np.concatenate([self.space.lower, np.full(t.n, t.span[0])])
+        return self.space.lower  # type: ignore[no-any-return]
+
+    @property
+    def upper(self) -> np.ndarray:
+        """Upper bounds of the design vector."""
+        t = self.target
+        if isinstance(t, PathPoints):
+            return np.concatenate([self.space.upper, np.full(t.n, t.span[1])])
+        return self.space.upper  # type: ignore[no-any-return]
+
+    @property
+    def x0(self) -> np.ndarray:
+        """The design vector of the drawing itself (and the target's ``phi0``)."""
+        x = self.space.x_of(self.space.points)
+        t = self.target
+        if isinstance(t, PathPoints):
+            assert t.phi0 is not None
+            x = np.concatenate([x, t.phi0])
+        return x
+
+    def coordinates(self, x: np.ndarray) -> np.ndarray:
+        """The joint coordinates of design vector ``x`` (without its input values)."""
+        return np.asarray(x, dtype=np.float64)[: self.space.size]
+
+    def scene(self, x: np.ndarray) -> Scene:
+        """The linkage of design vector ``x``, drawn at its design pose."""
+        return self.space.scene(self.coordinates(x))
+
+    def inputs(self, x: np.ndarray | None = None) -> np.ndarray:
+        """The design points' input values (from the drawn pose): the target's, or for a
+        :class:`PathPoints` target those in ``x`` (default its ``phi0``)."""
+        t = self.target
+        if isinstance(t, PathPoints):
+            if x is None:
+                assert t.phi0 is not None
+                return t.phi0
+            return np.asarray(x, dtype=np.float64)[self.space.size :]
+        return t.phi_in
 
     # --- the true linkage --------------------------------------------------------------
 
-    def grid(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def grid(self, x: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The sweep grid (design points, dense grid and 0, the drawn pose, sorted) and the
-        indices of the design points and of the dense grid in it."""
+        indices of the design points and of the dense grid in it. A :class:`PathPoints`
+        target's depends on the input values in ``x``."""
         t = self.target
-        allv = np.concatenate([t.phi_in, t.dense_in, [0.0]])
+        if isinstance(t, PathPoints):
+            phi = self.inputs(x)
+            dense = np.linspace(phi[0], phi[-1], t.dense)
+        else:
+            phi, dense = t.phi_in, t.dense_in
+        allv = np.concatenate([phi, dense, [0.0]])
         grid, inv = np.unique(np.round(allv, 14), return_inverse=True)
-        n, m = t.phi_in.size, t.dense_in.size
+        n, m = phi.size, dense.size
         return grid, inv[:n], inv[n : n + m]
 
     def evaluate(self, x: np.ndarray, grid: tuple | None = None) -> Evaluation:
         try:
-            return self._evaluate(x, grid)
+            return self._evaluate(np.asarray(x, dtype=np.float64), grid)
         except ValueError:
             # a drawing the scene solver cannot plan (coincident joints, ...) fails
-            n, m = self.target.phi_in.size, self.target.dense_in.size
+            t = self.target
+            if isinstance(t, FunctionTarget):
+                n, m = t.phi_in.size, t.dense_in.size
+            elif isinstance(t, PathTarget):
+                n, m = 2 * t.phi_in.size, t.dense_in.size
+            else:
+                n, m = 2 * t.n, t.dense
             nan = np.full(m, np.nan)
             return Evaluation(np.full(n, np.nan), nan, nan, math.nan, False)
 
     def _evaluate(self, x: np.ndarray, grid: tuple | None) -> Evaluation:
         sp = self.space
-        sc = sp.scene(x)
-        g, i_des, i_den = grid if grid is not None else self.grid()
         t = self.target
+        if isinstance(t, PathPoints):
+            grid = self.grid(x)  # its input values are design variables
+        g, i_des, i_den = grid if grid is not None else self.grid()
+        sc = sp.scene(self.coordinates(x))
+        if isinstance(sp, SceneSpace):
+            return self._evaluate_scene(sc, g, i_des, i_den)
         tpl = sp.template
         if isinstance(t, FunctionTarget):
             link, pivot = tpl.output
@@ -258,6 +456,27 @@ class Problem:
         ok = bool(np.all(ok_all))
         return Evaluation(err, dense_err, det[i_den], det0, ok)
 
+    def _evaluate_scene(
+        self, sc: Scene, g: np.ndarray, i_des: np.ndarray, i_den: np.ndarray
+    ) -> Evaluation:
+        # any scene: the whole plan swept (its conditioning covers every step), inputs
+        # and outputs measured from the drawn pose
+        t = self.target
+        vals = sc.input_angle + g if sc.input_kind == "angle" else g
+        sw = sc.sweep(vals, outputs="all", tol=SWEEP_TOL)
+        if isinstance(t, FunctionTarget):
+            out = output_from_drawn(sc, sw.output)
+            err = out[i_des] - t.phi_out
+            dense_err = out[i_den] - t.dense_out
+        else:
+            xy = sw.points[t.point]
+            err = (xy[i_des] - t.xy).ravel()
+            dense_err = np.full(i_den.size, np.nan)
+        ok_all = sw.status == 0
+        det = np.where(ok_all, sw.det, np.nan)
+        det0 = float(det[int(np.argmin(np.abs(g)))])
+        return Evaluation(err, dense_err, det[i_den], det0, bool(np.all(ok_all)))
+
     # --- the seed's generated mechanism -------------------------------------------------
 
     def generated(
@@ -265,6 +484,8 @@ class Problem:
     ) -> Any:
         if not isinstance(self.target, FunctionTarget):
             raise ValueError("objective 'generated' needs a function-generation target")
+        if not isinstance(self.space, DesignSpace):
+            raise ValueError("objective 'generated' needs a double butterfly DesignSpace")
         plan = SeedPlan(self.space.template, self.space.points_of(x))
         return plan.generated(
             self.target.phi_in, self.target.phi_out, signs or self.signs, with_k=with_k
@@ -275,7 +496,8 @@ class Problem:
     def residuals(self, x: np.ndarray, grid: tuple | None = None) -> tuple[np.ndarray, ...]:
         """(r, dense_r, branch, lengths): dimensionless residuals at the design points
         (per objective) and on the dense grid (true linkage), the branch constraint
-        s det / margin - 1 on the dense grid (failures -1), the link-length constraint
+        s det / margin - 1 on the dense grid (failures -1; then the closed forms'
+        radicands, or a PathPoints target's order constraint), the link-length constraint
         (length - min_link) / min_link (or 1 with no minimum)."""
         ev = self.evaluate(x, grid)
         scale = self.target.scale
@@ -291,7 +513,11 @@ class Problem:
             e = (g.theta - self.target.phi_out) / scale  # type: ignore[union-attr]
             one_k = np.where(np.abs(1 - g.k) > 1e-3, 1 - g.k, 1e-3)
             r = e if self.objective == "generated" else e / one_k
-        if self.closed_form and isinstance(self.target, FunctionTarget):
+        if (
+            self.closed_form
+            and isinstance(self.target, FunctionTarget)
+            and isinstance(self.space, DesignSpace)
+        ):
             # every closed form assemblable with a margin on the dense grid (its radicands),
             # so that the generated mechanism stays on the drawn branch of each loop
             t = self.target
@@ -299,10 +525,31 @@ class Problem:
             gd = plan.generated(t.dense_in, t.dense_out, self.signs, with_k=False)
             rm = max(self.radicand_margin, 1e-12)
             branch = np.concatenate([branch, (gd.radicand.ravel() - rm) / rm])
+        if isinstance(self.target, PathPoints):
+            # order: each point's input at least order_margin past the one before
+            om = self.target.order_margin
+            branch = np.concatenate([branch, np.diff(self.inputs(x)) / om - 1.0])
         r = np.where(np.isfinite(r), r, 1.0)
         dense = np.where(np.isfinite(ev.dense_err), ev.dense_err / scale, 1.0)
-        pts = self.space.points_of(x)
+        pts = self.space.points_of(self.coordinates(x))
         ml = self.space.min_link
-        lengths = link_lengths(pts, self.space.template)
+        lengths = self.space.lengths(pts)
         lc = (lengths - ml) / ml if ml > 0 else np.ones_like(lengths)
         return r, dense, branch, lc
+
+
+def output_from_drawn(sc: Scene, output: np.ndarray | None) -> np.ndarray:
+    """A sweep's output coordinate measured from the drawn pose: the output link's rotation
+    (wrapped to (-pi, pi]) or a linear output's displacement (already from the drawn
+    pose)."""
+    if output is None:
+        raise ValueError("scene must have an output, among the points swept")
+    o = sc.output
+    assert o is not None
+    if "link" in sc.to_dict()["output"]:
+        link, pivot = o
+        pts = sc.points
+        tip = next(p for p in sc.links[link] if p != pivot)
+        a0 = math.atan2(pts[tip][1] - pts[pivot][1], pts[tip][0] - pts[pivot][0])
+        return _wrap(output - a0)
+    return np.asarray(output, dtype=np.float64)

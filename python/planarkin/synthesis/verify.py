@@ -12,7 +12,7 @@ import numpy as np
 
 from ..scene import Scene
 from .generated import SeedPlan
-from .problem import FunctionTarget, Problem, link_lengths
+from .problem import DesignSpace, FunctionTarget, Problem, link_lengths, output_from_drawn
 from .topology import Template
 
 
@@ -126,6 +126,8 @@ def verify(problem: Problem, x: np.ndarray, dense: int = 1001) -> dict[str, Any]
     if not isinstance(t, FunctionTarget):
         raise ValueError("verify needs a function-generation target")
     sp = problem.space
+    if not isinstance(sp, DesignSpace):
+        raise ValueError("verify needs a double butterfly DesignSpace (any scene: verify_scene)")
     sc = sp.scene(x)
     pts = sp.points_of(x)
     e31, info31 = true_error(sc, t.phi_in, t.phi_out)
@@ -200,3 +202,91 @@ def linear_sensitivity(
             rows.append((e1 - e0) / h)
     j = np.array(rows)
     return float(np.degrees(np.sqrt(np.mean(np.sum(j**2, axis=0)))))
+
+
+def verify_scene(problem: Problem, x: np.ndarray, dense: int = 1001) -> dict[str, Any]:
+    """Every figure of a design of any scene, from the real linkage: its error at the
+    design points (function: output rotation or displacement; path: the point's distance
+    from each target point) and, for a function target, on ``dense`` inputs over the
+    range; the sweep over the range (every point solved, the conditioning's sign changes
+    and smallest size); the order (the design points' inputs strictly increasing); and
+    the circuit, traced by the scene's tracer from the drawn pose through dead points: the
+    range must be reached both ways from the drawn pose before any turning point, and
+    the traced poses at the design points must be the swept ones (``circuit``)."""
+    t = problem.target
+    sc = problem.scene(x)
+    phi = np.asarray(problem.inputs(x), dtype=np.float64)
+    if isinstance(t, FunctionTarget):
+        lo, hi = float(min(t.dense_in.min(), phi.min())), float(max(t.dense_in.max(), phi.max()))
+    else:
+        lo, hi = float(phi.min()), float(phi.max())
+    lo, hi = min(lo, 0.0), max(hi, 0.0)  # the drawn pose is where the motion starts
+    angle = sc.input_kind == "angle"
+    base = sc.input_angle if angle else 0.0
+    at = sc.sweep(base + phi, outputs="all", tol=1e-12)
+    grid = np.linspace(lo, hi, dense)
+    sw = sc.sweep(base + grid, outputs="all", tol=1e-12)
+    scale = problem.target.scale
+    out: dict[str, Any] = {"design_points": int(phi.size), "inputs": [float(v) for v in phi]}
+    if isinstance(t, FunctionTarget):
+        e = output_from_drawn(sc, at.output) - t.phi_out
+        want = (
+            np.asarray(t.function(grid), dtype=np.float64)
+            if t.function is not None
+            else np.interp(grid, t.dense_in, t.dense_out)
+        )
+        ed = output_from_drawn(sc, sw.output) - want
+        out["max_error"] = float(np.max(np.abs(e)))
+        out[f"max_error_{dense}"] = float(np.max(np.abs(ed)))
+    else:
+        e = np.hypot(*(at.points[t.point] - t.xy).T)
+        out["max_error"] = float(np.max(e))
+    out["max_error_relative"] = out["max_error"] / scale
+    ok = bool(np.all(at.status == 0) and np.all(sw.status == 0))
+    out["sweep_converged"] = ok
+    out["det_sign_changes"] = sign_changes(sw.det)
+    out["min_abs_conditioning"] = float(np.nanmin(np.abs(sw.det))) if ok else 0.0
+    out["in_order"] = bool(np.all(np.diff(phi) > 0))
+    out["circuit"] = _circuit(sc, lo, hi, phi, at.coords)
+    out["verified"] = bool(
+        ok
+        and out["det_sign_changes"] == 0
+        and out["in_order"]
+        and out["circuit"]["one_branch"]
+        and out["circuit"]["max_pose_distance"] <= 1e-3
+    )
+    return out
+
+
+def _circuit(
+    sc: Scene, lo: float, hi: float, phi: np.ndarray, coords: np.ndarray
+) -> dict[str, Any]:
+    # the tracer starts at the drawn pose with the input increasing and follows the
+    # circuit through dead points until it closes: forwards it must reach hi, and
+    # (closed) backwards from its end it must reach lo, before turning
+    tr = sc.trace()
+    th = tr.theta - tr.theta[0]
+    d = np.diff(th)
+    turn = np.flatnonzero(np.sign(d[1:]) * np.sign(d[:-1]) < 0) + 1
+    first = int(turn[0]) if turn.size else th.size - 1
+    last = int(turn[-1]) if turn.size else 0
+    forward = float(np.max(th[: first + 1]))
+    backward = float(np.min(th[last:] - th[-1])) if tr.closed else 0.0
+    one_branch = hi <= forward + 1e-9 and lo >= backward - 1e-9
+    size = float(np.ptp(coords[np.isfinite(coords).all(axis=(1, 2))], axis=(0, 1)).max()) or 1.0
+    dist = 0.0
+    if one_branch:
+        for i, v in enumerate(phi):
+            seg, rel = (slice(0, first + 1), th) if v >= 0 else (slice(last, th.size), th - th[-1])
+            ts, cs = rel[seg], tr.coords[seg]
+            k = int(np.clip(np.searchsorted(ts, v), 1, ts.size - 1))  # ts increases
+            w = (v - ts[k - 1]) / (ts[k] - ts[k - 1]) if ts[k] != ts[k - 1] else 0.0
+            pose = cs[k - 1] + w * (cs[k] - cs[k - 1])
+            dist = max(dist, float(np.max(np.hypot(*(pose - coords[i]).T))) / size)
+    return {
+        "one_branch": bool(one_branch),
+        "closed": bool(tr.closed),
+        "turning_points": int(tr.turning_points.size),
+        "reach": [backward, forward],
+        "max_pose_distance": dist if one_branch else math.inf,
+    }

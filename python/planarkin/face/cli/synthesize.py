@@ -24,7 +24,7 @@ import numpy as np
 from ...scene import Scene
 from ...synthesis import ackermann as ak
 from ...synthesis import driver
-from ...synthesis.problem import OBJECTIVES, Problem
+from ...synthesis.problem import OBJECTIVES, FunctionTarget, Problem
 from ...synthesis.verify import linear_sensitivity, tolerance_sensitivity, verify
 from ..figures import synthesis as synthesis_figures
 from ..progress import bar, shown
@@ -275,8 +275,8 @@ def run(args: argparse.Namespace) -> int:
     """``planarkin synthesize``; returns the exit code."""
     _check(args)
     t0 = time.perf_counter()
-    problem = ak.problem(objective=args.objective, det_margin=args.det_margin)
-    problem = replace(problem, space=ak.space(min_link=args.min_link))
+    space = ak.space(min_link=args.min_link)
+    problem = replace(ak.problem(objective=args.objective, det_margin=args.det_margin), space=space)
     interrupted = False
     bars = _Bars(args, math.degrees(problem.target.scale))
     try:
@@ -286,7 +286,7 @@ def run(args: argparse.Namespace) -> int:
             starts=args.starts,
             samples=args.samples,
             seed=args.seed,
-            sampler=ak.mirror_sampler(problem.space),
+            sampler=ak.mirror_sampler(space),
             workers=args.workers,
             maxiter=args.maxiter,
             progress=bars.finished,
@@ -300,16 +300,13 @@ def run(args: argparse.Namespace) -> int:
     stop = _stop_words(res, args)
     written = _finish(args, problem, res, stop, t0)
     if interrupted:
-        what = (
-            f"wrote the best feasible design so far to {args.out}"
-            if written
-            else "no feasible design had been found; nothing written"
-        )
-        print(f"planarkin: interrupted: {_finished(res)}; {what}", file=sys.stderr)
+        # the line every command prints on Ctrl-C, and what was kept when something was
+        kept = f": wrote the best feasible design so far to {args.out} ({_finished(res)})"
+        print(f"planarkin: interrupted{kept if written else ''}", file=sys.stderr)
         return 130
     if not written:
         why = f"{stop}: {_finished(res)}" if stop else f"{_finished(res)}, none feasible"
-        more = "--starts, --samples" + (" or --time-limit" if stop else "")
+        more = "--starts, --samples or --time-limit" if stop else "--starts or --samples"
         print(
             f"planarkin: no feasible design ({why}); nothing written (raise {more})",
             file=sys.stderr,
@@ -355,7 +352,9 @@ def _finish(
     report and figures; False (nothing written) when no run is a feasible, verified
     design."""
     truth = replace(problem, objective="true")
-    grid = np.linspace(problem.target.dense_in[0], problem.target.dense_in[-1], 201)
+    target = problem.target
+    assert isinstance(target, FunctionTarget)
+    grid = np.linspace(target.dense_in[0], target.dense_in[-1], 201)
     rows: list[tuple[driver.StartResult, dict[str, Any], float]] = []
     if not any(r.feasible for r in res.runs):
         return False
@@ -363,7 +362,7 @@ def _finish(
         for r in res.runs:  # by start index
             if r.feasible:
                 v = verify(truth, r.x)
-                s = linear_sensitivity(truth.space.scene(r.x), grid, ak.right_steer(grid))
+                s = linear_sensitivity(truth.scene(r.x), grid, ak.right_steer(grid))
             else:
                 v, s = {}, math.nan
             rows.append((r, v, s))
@@ -388,11 +387,11 @@ def _finish(
         chosen = min(good, key=lambda row: (row[1][key], row[0].index))
         why = "the smallest true max error of the verified designs"
     best, v, sens = chosen
-    sc = truth.space.scene(best.x)
+    sc = truth.scene(best.x)
     d = sc.to_dict()
     d["name"] = "Ackermann steering double butterfly"
     d["description"] = (
-        f"{problem.space.template.description} Synthesized by planarkin synthesize ackermann "
+        f"{ak.space().template.description} Synthesized by planarkin synthesize ackermann "
         f"(seed {args.seed}, {res.starts} starts, objective {args.objective}); lengths in "
         "wheelbases, drawn straight ahead (both knuckles at 0 deg, axles collinear)."
     )
@@ -459,7 +458,7 @@ def _finish(
         "machine": platform.machine(),
     }
     if args.tolerance:
-        g1001 = np.linspace(problem.target.dense_in[0], problem.target.dense_in[-1], 1001)
+        g1001 = np.linspace(target.dense_in[0], target.dense_in[-1], 1001)
         report["tolerance_sensitivity"] = tolerance_sensitivity(sc, g1001, ak.right_steer(g1001))
     report["wall_s"] = time.perf_counter() - t0
     paths = write(args.out, truth, best.x, report, sc, figures=not args.no_figures, fmt=args.format)

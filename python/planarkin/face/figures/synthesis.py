@@ -11,7 +11,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ...synthesis import SeedPlan
-from ...synthesis.problem import FunctionTarget, Problem
+from ...synthesis.problem import DesignSpace, FunctionTarget, Problem
 from ...synthesis.verify import output_rotation
 from .. import draw
 from .scene import ground_size
@@ -25,6 +25,7 @@ def error(problem: Problem, x: np.ndarray, dense: int = 1001) -> Figure:
     t = problem.target
     assert isinstance(t, FunctionTarget)
     sp = problem.space
+    assert isinstance(sp, DesignSpace)
     sc = sp.scene(x)
     grid = np.linspace(t.dense_in[0], t.dense_in[-1], dense)
     want = t.function(grid) if t.function is not None else np.interp(grid, t.dense_in, t.dense_out)
@@ -74,6 +75,7 @@ def conditioning(problem: Problem, x: np.ndarray, dense: int = 1001) -> Figure:
     """The signed, scale-free conditioning (the Jacobian determinant's Hadamard ratio) of
     the true linkage along the range."""
     t = problem.target
+    assert isinstance(t, FunctionTarget)
     sc = problem.space.scene(x)
     grid = np.linspace(t.dense_in[0], t.dense_in[-1], dense)
     _, sw = output_rotation(sc, grid)
@@ -100,6 +102,7 @@ def linkage(problem: Problem, x: np.ndarray, angles_deg: Any = None) -> Figure:
     """The linkage drawn at several input rotations (default: both ends of the range, their
     midpoints and the drawn pose), with the compact box of the drawn pose dashed."""
     t = problem.target
+    assert isinstance(t, FunctionTarget)
     sc = problem.space.scene(x)
     lo, hi = float(t.dense_in[0]), float(t.dense_in[-1])
     if angles_deg is None:
