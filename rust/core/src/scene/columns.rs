@@ -1,17 +1,23 @@
-//! The sweep of a plan with no group (dyads and rigid carries only): nothing carries over
-//! from one angle to the next, so each operation runs over a block of angles at a time,
-//! on columns of coordinates (tight loops, no per-angle dispatch), and the rows of the
-//! outputs are written once per block. Same numbers as the per-angle path of `sweep`.
+//! The sweep of a plan with no group (dyads, sliders' closed forms, rigid carries and the
+//! input): nothing carries over from one input value to the next, so each operation runs
+//! over a block of values at a time, on columns of coordinates (tight loops, no per-value
+//! dispatch), and the rows of the outputs are written once per block. Every operation is
+//! solved on its drawn side with the closed forms the continuation of `sweep` calls, so a
+//! certified column sweep gives that path's numbers (the input's sin and cos excepted:
+//! the polynomial ones, within 2 ulp, where the SIMD kernels are on).
 
 // the column loops index several arrays (and an offset into each) by the same angle
 #![allow(clippy::needless_range_loop)]
 
 use super::dyad::{Dyad, DyadOut};
+use super::eval::Known;
 use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
-use super::vec2::angular_acceleration;
+use super::slide::{unit, Rrp};
+use super::vec2::{angular_acceleration, Xy};
 use crate::error::Error;
 use crate::interrupt::Poll;
+use crate::simd::math::SIN_COS_MAX;
 use crate::Status;
 
 /// Angles per block: the columns of a block stay in cache.
@@ -31,7 +37,68 @@ struct Columns {
     st: Vec<i8>,
 }
 
+/// One input value's known points, indexed by point, for the slider solves with rates
+/// (only the operation's inputs are filled in).
+struct Scratch {
+    pos: Vec<Xy>,
+    vel: Vec<Xy>,
+    acc: Vec<Xy>,
+}
+
+/// (sin, cos) of one input angle as [`sin_cos`] gives it in a block, bit for bit: the
+/// continuation calls this, so both paths turn the input alike.
+pub(super) fn input_sin_cos(theta: f64) -> (f64, f64) {
+    if crate::simd::enabled() && !(theta.is_nan() || theta.abs() > SIN_COS_MAX) {
+        crate::simd::math::sin_cos(theta)
+    } else {
+        theta.sin_cos()
+    }
+}
+
+/// (sin, cos) of a block of angles: polynomial, 4 at a time, where the SIMD kernels are on
+/// (within 2 ulp of libm; libm beyond the polynomial's range), libm otherwise.
+fn sin_cos(theta: &[f64], out: &mut [(f64, f64)]) {
+    if crate::simd::enabled() {
+        crate::simd::sin_cos_into(theta, out);
+    } else {
+        for (o, t) in out.iter_mut().zip(theta) {
+            *o = t.sin_cos();
+        }
+    }
+}
+
+/// The column sweep of `plan` over `theta` into `out`, compiled for AVX2 where the SIMD
+/// kernels are on (the same operations on 4 lanes, without fused multiply-adds: the same
+/// numbers as the baseline build).
 pub(super) fn sweep(
+    plan: &Plan,
+    theta: &[f64],
+    opts: &SceneSweepOptions,
+    out: &mut SceneSweepOut<'_>,
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
+    #[cfg(target_arch = "x86_64")]
+    if crate::simd::enabled() {
+        // SAFETY: the SIMD kernels are on only where the CPU has AVX2 (and FMA).
+        return unsafe { sweep_avx2(plan, theta, opts, out, poll) };
+    }
+    sweep_body(plan, theta, opts, out, poll)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn sweep_avx2(
+    plan: &Plan,
+    theta: &[f64],
+    opts: &SceneSweepOptions,
+    out: &mut SceneSweepOut<'_>,
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
+    sweep_body(plan, theta, opts, out, poll)
+}
+
+#[inline(always)]
+fn sweep_body(
     plan: &Plan,
     theta: &[f64],
     opts: &SceneSweepOptions,
@@ -60,10 +127,21 @@ pub(super) fn sweep(
     for (s, &i) in plan.step_op.iter().enumerate() {
         step_of[i] = s;
     }
+    let mut fixed = vec![false; np];
+    for &(p, _) in &plan.fixed {
+        fixed[p] = true;
+    }
+    let inputs: Vec<Vec<usize>> = plan.ops.iter().map(Op::inputs).collect();
+    let angle = plan.ops.iter().any(|o| matches!(o, Op::Input { .. }));
+    let mut scratch =
+        vel.then(|| Scratch { pos: vec![[0.0; 2]; np], vel: vec![[0.0; 2]; np], acc: vec![[0.0; 2]; np] });
     let mut sdet = vec![1.0; ns * B];
     let mut sst = vec![OK; ns * B];
+    // the conditioning and status of an operation that opens no step (a carry)
+    let (mut cdet, mut cst) = ([1.0; B], [OK; B]);
     let mut first_bad = [OK; B];
-    let (mut cs, mut sn) = ([0.0; B], [0.0; B]);
+    let mut trig = [(0.0, 1.0); B];
+    let mut sv = [0.0; B];
     for (b, block) in theta.chunks(B).enumerate() {
         for _ in block {
             poll.tick()?;
@@ -71,10 +149,14 @@ pub(super) fn sweep(
         let m = block.len();
         let k0 = b * B;
         first_bad[..m].fill(OK);
-        for j in 0..m {
-            let (s, co) = block[j].sin_cos();
-            sn[j] = s;
-            cs[j] = co;
+        if angle {
+            sin_cos(block, &mut trig[..m]);
+        }
+        if plan.linear {
+            // the fused guide reads the displacement in the solving frame
+            for j in 0..m {
+                sv[j] = block[j] / plan.scale;
+            }
         }
         for (i, op) in plan.ops.iter().enumerate() {
             match op {
@@ -82,7 +164,7 @@ pub(super) fn sweep(
                     let (px, py) = (plan.pivot[0], plan.pivot[1]);
                     let o = q * B;
                     for j in 0..m {
-                        let (u0, u1) = (cs[j], sn[j]);
+                        let (u1, u0) = trig[j];
                         c.x[o + j] = px + lam * u0 - mu * u1;
                         c.y[o + j] = py + lam * u1 + mu * u0;
                         let st = if block[j].is_finite() { OK } else { Status::NonFinite.code() };
@@ -93,7 +175,7 @@ pub(super) fn sweep(
                     }
                     if vel {
                         for j in 0..m {
-                            let (u0, u1) = (cs[j], sn[j]);
+                            let (u1, u0) = trig[j];
                             c.vx[o + j] = -lam * u1 - mu * u0;
                             c.vy[o + j] = lam * u0 - mu * u1;
                             c.ax[o + j] = -(lam * u0 - mu * u1);
@@ -143,7 +225,31 @@ pub(super) fn sweep(
                         }
                     }
                 }
-                _ => unreachable!("the column sweep runs plans of dyads, carries and the input angle"),
+                Op::Group(_) => unreachable!("the column sweep runs plans with no group"),
+                op => {
+                    let (det, st) = match step_of[i] {
+                        usize::MAX => (&mut cdet[..], &mut cst[..]),
+                        s => (&mut sdet[s * B..], &mut sst[s * B..]),
+                    };
+                    let sv = if plan.linear { &sv[..m] } else { &block[..m] };
+                    let ins = &inputs[i];
+                    let singular = opts.newton.singular;
+                    match (scratch.as_mut(), op) {
+                        // a slot on a line fixed in ground (a slider-crank's): the line once
+                        (None, Op::Rrp(r)) if r.line.inputs().iter().all(|&p| fixed[p]) => {
+                            let l = &r.line;
+                            let (p, d) = l.place(c.point(l.base, 0), c.point(l.a, 0), c.point(l.b, 0));
+                            rrp_fixed_line_block(r, p, unit(d), &mut c, m, singular, det, st);
+                        }
+                        (None, _) => slider_block(op, ins, &mut c, sv, singular, det, st),
+                        (Some(k), _) => slider_rates_block(op, ins, &mut c, sv, singular, k, det, st),
+                    }
+                    for j in 0..m {
+                        if st[j] != OK && first_bad[j] == OK {
+                            first_bad[j] = st[j];
+                        }
+                    }
+                }
             }
         }
         write_block(plan, &c, &sdet, &sst, &first_bad, k0, m, opts, out);
@@ -151,6 +257,168 @@ pub(super) fn sweep(
     Ok(())
 }
 
+impl Columns {
+    /// Point p's position at the block's value j.
+    #[inline(always)]
+    fn point(&self, p: usize, j: usize) -> Xy {
+        [self.x[p * B + j], self.y[p * B + j]]
+    }
+}
+
+/// [`slider_block`] for a circle-line whose line is fixed (through `p` along unit `u` at
+/// every value): only its known point moves. Branch-free over the block's values.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn rrp_fixed_line_block(
+    r: &Rrp,
+    p: Xy,
+    u: Xy,
+    c: &mut Columns,
+    m: usize,
+    singular: f64,
+    det: &mut [f64],
+    sst: &mut [i8],
+) {
+    let (kx, qx) = two_columns(&mut c.x, r.k, r.p, m);
+    let (ky, qy) = two_columns(&mut c.y, r.k, r.p, m);
+    let (kst, qst) = two_columns(&mut c.st, r.k, r.p, m);
+    let (na, nonfinite, sing) = (Status::NotAssemblable.code(), Status::NonFinite.code(), Status::Singular.code());
+    for j in 0..m {
+        let (x, dt, meets) = r.place_branch_free([kx[j], ky[j]], p, u, r.side);
+        let bad = kst[j];
+        let finite = x[0].is_finite() & x[1].is_finite();
+        let solved = if dt.abs() >= singular && finite {
+            OK
+        } else if dt.is_nan() || !finite {
+            nonfinite
+        } else {
+            sing
+        };
+        let st = if bad != OK {
+            bad
+        } else if meets {
+            solved
+        } else {
+            na
+        };
+        qx[j] = x[0];
+        qy[j] = x[1];
+        qst[j] = st;
+        sst[j] = st;
+        det[j] = if bad == OK && meets { dt } else { f64::NAN };
+    }
+}
+
+/// Point a's column (read) and point b's (written) for the block's `m` values (a != b).
+fn two_columns<T>(v: &mut [T], a: usize, b: usize, m: usize) -> (&[T], &mut [T]) {
+    if a < b {
+        let (lo, hi) = v.split_at_mut(b * B);
+        (&lo[a * B..a * B + m], &mut hi[..m])
+    } else {
+        let (lo, hi) = v.split_at_mut(a * B);
+        (&hi[..m], &mut lo[b * B..b * B + m])
+    }
+}
+
+/// The first failure among an operation's inputs at the block's value `j`.
+#[inline(always)]
+fn inputs_status(c: &Columns, ins: &[usize], j: usize) -> i8 {
+    ins.iter().map(|&p| c.st[p * B + j]).find(|&s| s != OK).unwrap_or(OK)
+}
+
+/// The status of a solve with conditioning `det` at a finite or not position `x`.
+#[inline(always)]
+fn solved_status(x: Xy, det: f64, singular: f64) -> i8 {
+    if det.abs() >= singular && x[0].is_finite() && x[1].is_finite() {
+        OK
+    } else if det.is_nan() || !(x[0].is_finite() && x[1].is_finite()) {
+        Status::NonFinite.code()
+    } else {
+        Status::Singular.code()
+    }
+}
+
+/// A slider's closed form or a fused guide's operation (one output point) at the block's
+/// input values `sv` (solving frame), positions only, on the drawn side.
+#[inline(always)]
+fn slider_block(op: &Op, ins: &[usize], c: &mut Columns, sv: &[f64], singular: f64, det: &mut [f64], sst: &mut [i8]) {
+    let q = op.outputs()[0] * B;
+    let side = op.drawn_side();
+    for j in 0..sv.len() {
+        let bad = inputs_status(c, ins, j);
+        let (st, dt) = if bad != OK {
+            (bad, f64::NAN)
+        } else {
+            let (x, y) = (&c.x, &c.y);
+            match op.place_slider(sv[j], |p| [x[p * B + j], y[p * B + j]], side) {
+                Some((p, dt)) => {
+                    let st = solved_status(p, dt, singular);
+                    if st == OK {
+                        c.x[q + j] = p[0];
+                        c.y[q + j] = p[1];
+                    }
+                    (st, dt)
+                }
+                None => (Status::NotAssemblable.code(), f64::NAN),
+            }
+        };
+        c.st[q + j] = st;
+        sst[j] = st;
+        det[j] = dt;
+    }
+}
+
+/// [`slider_block`] with first and second derivatives by the input: each value's solve is
+/// the continuation's own ([`Op::solve_slider`] on the drawn side).
+#[allow(clippy::too_many_arguments)]
+fn slider_rates_block(
+    op: &Op,
+    ins: &[usize],
+    c: &mut Columns,
+    sv: &[f64],
+    singular: f64,
+    k: &mut Scratch,
+    det: &mut [f64],
+    sst: &mut [i8],
+) {
+    let q = op.outputs()[0] * B;
+    let side = op.drawn_side();
+    for j in 0..sv.len() {
+        let bad = inputs_status(c, ins, j);
+        let (st, dt) = if bad != OK {
+            (bad, f64::NAN)
+        } else {
+            for &p in ins {
+                let o = p * B + j;
+                k.pos[p] = [c.x[o], c.y[o]];
+                k.vel[p] = [c.vx[o], c.vy[o]];
+                k.acc[p] = [c.ax[o], c.ay[o]];
+            }
+            let known: Known<'_> = [&k.pos, &k.vel, &k.acc];
+            match op.solve_slider(sv[j], known, side, true) {
+                Some(out) => {
+                    let mut st = solved_status(out.x[0], out.det, singular);
+                    if st == OK && !(out.x[1][0].is_finite() && out.x[1][1].is_finite()) {
+                        st = Status::Singular.code();
+                    }
+                    if st == OK {
+                        let [p, v, w] = out.x;
+                        (c.x[q + j], c.y[q + j]) = (p[0], p[1]);
+                        (c.vx[q + j], c.vy[q + j]) = (v[0], v[1]);
+                        (c.ax[q + j], c.ay[q + j]) = (w[0], w[1]);
+                    }
+                    (st, out.det)
+                }
+                None => (Status::NotAssemblable.code(), f64::NAN),
+            }
+        };
+        c.st[q + j] = st;
+        sst[j] = st;
+        det[j] = dt;
+    }
+}
+
+#[inline(always)]
 fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det: &mut [f64], sst: &mut [i8]) {
     let (op, o1, o2) = (d.p * B, d.k1 * B, d.k2 * B);
     for j in 0..m {
@@ -210,7 +478,11 @@ fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det
     }
 }
 
+/// The block's rows of the outputs, written point by point (and link by link, step by
+/// step) down the block's values: a point failing at a value is NaN there unless every
+/// step solved (then its status is CONVERGED too).
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 fn write_block(
     plan: &Plan,
     c: &Columns,
@@ -224,70 +496,330 @@ fn write_block(
 ) {
     let (np, nl, ns) = (plan.points.len(), plan.links.len(), plan.steps.len());
     let (sc, org) = (plan.scale, plan.origin);
-    let omega = opts.omega.unwrap_or(0.0);
-    for j in 0..m {
-        let k = k0 + j;
-        let all_ok = first_bad[j] == OK;
-        let row = &mut out.points[2 * k * np..2 * (k + 1) * np];
-        let pst = &mut out.point_status[k * np..(k + 1) * np];
-        for ((dst, code), &p) in row.chunks_exact_mut(2).zip(pst.iter_mut()).zip(&plan.points) {
-            let o = p * B + j;
-            let st = c.st[o];
-            *code = st;
-            if all_ok || st == OK {
-                dst[0] = c.x[o] * sc + org[0];
-                dst[1] = c.y[o] * sc + org[1];
-            } else {
-                dst[0] = f64::NAN;
-                dst[1] = f64::NAN;
+    // per unit of the sweep variable (a displacement's rates carry 1 / scale)
+    let omega = opts.omega.unwrap_or(0.0) * if plan.linear { 1.0 / sc } else { 1.0 };
+    let w2 = omega * omega;
+    let rows = k0..k0 + m;
+    let first_bad = &first_bad[..m];
+    let col = |p: usize| p * B..p * B + m;
+    // a point's column: solved where it or every step is
+    let good = |p: usize| c.st[col(p)].iter().zip(first_bad).map(|(&st, &fb)| fb == OK || st == OK);
+    if np > 0 {
+        let pts = &mut out.points[2 * rows.start * np..2 * rows.end * np];
+        let pst = &mut out.point_status[rows.start * np..rows.end * np];
+        let all_ok = first_bad.iter().all(|&s| s == OK);
+        for (i, &p) in plan.points.iter().enumerate() {
+            let (xs, ys) = (&c.x[col(p)], &c.y[col(p)]);
+            if all_ok {
+                // every step solved: every point is, with status CONVERGED
+                for ((row, &x), &y) in pts.chunks_exact_mut(2 * np).zip(xs).zip(ys) {
+                    let dst = &mut row[2 * i..2 * i + 2];
+                    dst[0] = x * sc + org[0];
+                    dst[1] = y * sc + org[1];
+                }
+                continue;
+            }
+            let dst = pts.chunks_exact_mut(2 * np).zip(pst.chunks_exact_mut(np));
+            for ((((row, code), &x), &y), (ok, &st)) in dst.zip(xs).zip(ys).zip(good(p).zip(&c.st[col(p)])) {
+                code[i] = st;
+                row[2 * i] = if ok { x * sc + org[0] } else { f64::NAN };
+                row[2 * i + 1] = if ok { y * sc + org[1] } else { f64::NAN };
             }
         }
-        let ok = |p: usize| all_ok || c.st[p * B + j] == OK;
-        for (dst, &(a, b)) in out.angles[k * nl..(k + 1) * nl].iter_mut().zip(&plan.link_points) {
-            let (oa, ob) = (a * B + j, b * B + j);
-            let (dx, dy) = (c.x[ob] - c.x[oa], c.y[ob] - c.y[oa]);
-            *dst = if ok(a) && ok(b) { (dy + 0.0).atan2(dx) } else { f64::NAN };
+        if all_ok {
+            pst.fill(OK);
         }
-        if let Some((v, w)) = out.velocity.as_mut() {
-            for (dst, &p) in v[2 * k * np..2 * (k + 1) * np].chunks_exact_mut(2).zip(&plan.points) {
+    }
+    if nl > 0 {
+        let angles = &mut out.angles[rows.start * nl..rows.end * nl];
+        for (i, &(a, b)) in plan.link_points.iter().enumerate() {
+            let both = good(a).zip(good(b));
+            for (j, (row, (oa, ob))) in angles.chunks_exact_mut(nl).zip(both).enumerate() {
+                let (pa, pb) = (a * B + j, b * B + j);
+                let (dx, dy) = (c.x[pb] - c.x[pa], c.y[pb] - c.y[pa]);
+                row[i] = if oa && ob { (dy + 0.0).atan2(dx) } else { f64::NAN };
+            }
+        }
+    }
+    if let Some((v, w)) = out.velocity.as_mut() {
+        for (i, &p) in plan.points.iter().enumerate() {
+            let dst = v[2 * rows.start * np..2 * rows.end * np].chunks_exact_mut(2 * np);
+            for (j, (row, ok)) in dst.zip(good(p)).enumerate() {
                 let o = p * B + j;
-                let good = ok(p);
-                dst[0] = if good { c.vx[o] * sc * omega } else { f64::NAN };
-                dst[1] = if good { c.vy[o] * sc * omega } else { f64::NAN };
-            }
-            for (dst, &(a, b)) in w[k * nl..(k + 1) * nl].iter_mut().zip(&plan.link_points) {
-                let (oa, ob) = (a * B + j, b * B + j);
-                let (dx, dy) = (c.x[ob] - c.x[oa], c.y[ob] - c.y[oa]);
-                let (dvx, dvy) = (c.vx[ob] - c.vx[oa], c.vy[ob] - c.vy[oa]);
-                *dst = if ok(a) && ok(b) { (dx * dvy - dy * dvx) / (dx * dx + dy * dy) * omega } else { f64::NAN };
+                row[2 * i] = if ok { c.vx[o] * sc * omega } else { f64::NAN };
+                row[2 * i + 1] = if ok { c.vy[o] * sc * omega } else { f64::NAN };
             }
         }
-        if let Some((acc, alpha)) = out.acceleration.as_mut() {
-            let w2 = omega * omega;
-            for (dst, &p) in acc[2 * k * np..2 * (k + 1) * np].chunks_exact_mut(2).zip(&plan.points) {
+        for (i, &(a, b)) in plan.link_points.iter().enumerate() {
+            let dst = w[rows.start * nl..rows.end * nl].chunks_exact_mut(nl);
+            for (j, (row, (oa, ob))) in dst.zip(good(a).zip(good(b))).enumerate() {
+                let (pa, pb) = (a * B + j, b * B + j);
+                let (dx, dy) = (c.x[pb] - c.x[pa], c.y[pb] - c.y[pa]);
+                let (dvx, dvy) = (c.vx[pb] - c.vx[pa], c.vy[pb] - c.vy[pa]);
+                row[i] = if oa && ob { (dx * dvy - dy * dvx) / (dx * dx + dy * dy) * omega } else { f64::NAN };
+            }
+        }
+    }
+    if let Some((acc, alpha)) = out.acceleration.as_mut() {
+        for (i, &p) in plan.points.iter().enumerate() {
+            let dst = acc[2 * rows.start * np..2 * rows.end * np].chunks_exact_mut(2 * np);
+            for (j, (row, ok)) in dst.zip(good(p)).enumerate() {
                 let o = p * B + j;
-                let good = ok(p);
-                dst[0] = if good { c.ax[o] * sc * w2 } else { f64::NAN };
-                dst[1] = if good { c.ay[o] * sc * w2 } else { f64::NAN };
-            }
-            for (dst, &(a, b)) in alpha[k * nl..(k + 1) * nl].iter_mut().zip(&plan.link_points) {
-                let (oa, ob) = (a * B + j, b * B + j);
-                let d = [c.x[ob] - c.x[oa], c.y[ob] - c.y[oa]];
-                let dv = [c.vx[ob] - c.vx[oa], c.vy[ob] - c.vy[oa]];
-                let dw = [c.ax[ob] - c.ax[oa], c.ay[ob] - c.ay[oa]];
-                *dst = if ok(a) && ok(b) { angular_acceleration(d, dv, dw) * w2 } else { f64::NAN };
+                row[2 * i] = if ok { c.ax[o] * sc * w2 } else { f64::NAN };
+                row[2 * i + 1] = if ok { c.ay[o] * sc * w2 } else { f64::NAN };
             }
         }
-        let mut det = 1.0;
+        for (i, &(a, b)) in plan.link_points.iter().enumerate() {
+            let dst = alpha[rows.start * nl..rows.end * nl].chunks_exact_mut(nl);
+            for (j, (row, (oa, ob))) in dst.zip(good(a).zip(good(b))).enumerate() {
+                let (pa, pb) = (a * B + j, b * B + j);
+                let d = [c.x[pb] - c.x[pa], c.y[pb] - c.y[pa]];
+                let dv = [c.vx[pb] - c.vx[pa], c.vy[pb] - c.vy[pa]];
+                let dw = [c.ax[pb] - c.ax[pa], c.ay[pb] - c.ay[pa]];
+                row[i] = if oa && ob { angular_acceleration(d, dv, dw) * w2 } else { f64::NAN };
+            }
+        }
+    }
+    let det = &mut out.det[rows.clone()];
+    det.fill(1.0);
+    if ns > 0 {
+        let (codes, dets) =
+            (&mut out.step_status[rows.start * ns..rows.end * ns], &mut out.step_det[rows.start * ns..rows.end * ns]);
         for s in 0..ns {
-            let (code, d) = (sst[s * B + j], sdet[s * B + j]);
-            out.step_status[k * ns + s] = code;
-            out.step_det[k * ns + s] = d;
-            det *= d;
+            let (st, dt) = (&sst[s * B..s * B + m], &sdet[s * B..s * B + m]);
+            let dst = codes.chunks_exact_mut(ns).zip(dets.chunks_exact_mut(ns)).zip(det.iter_mut());
+            for (((code, d), total), (&st, &dt)) in dst.zip(st.iter().zip(dt)) {
+                code[s] = st;
+                d[s] = dt;
+                *total *= dt;
+            }
         }
-        out.status[k] = first_bad[j];
-        out.det[k] = det;
-        out.limit[k] = f64::NAN;
-        out.nit[k] = 0;
+    }
+    out.status[rows.clone()].copy_from_slice(first_bad);
+    out.limit[rows.clone()].fill(f64::NAN);
+    out.nit[rows].fill(0);
+}
+
+#[cfg(test)]
+mod tests {
+    //! The column path against the continuation on the slider built-ins (their drawings
+    //! copied from `python/planarkin/scene/builtin`): the same statuses, and positions,
+    //! angles, conditioning, velocities and accelerations to 1e-12 of the drawing's size.
+
+    use super::super::{LinearKind, PrismaticSpec, Scene, SceneSpec, SlotSpec};
+    use super::*;
+    use crate::interrupt::{Never, Poll};
+    use crate::solve::newton::NewtonOptions;
+
+    type Joint<'a> = (&'a str, &'a str, &'a str, (&'a str, &'a str));
+
+    struct Spec<'a> {
+        points: &'a [(&'a str, Xy)],
+        links: &'a [(&'a str, &'a [&'a str])],
+        input: (&'a str, &'a str),
+        slots: &'a [Joint<'a>],
+        prismatic: &'a [Joint<'a>],
+        linear: Option<(LinearKind, &'a str)>,
+    }
+
+    fn scene(s: &Spec<'_>) -> Scene {
+        let o = |x: &str| x.to_string();
+        let joint = |&(n, a, g, (l0, l1)): &Joint<'_>| (o(n), (o(a), o(g), (o(l0), o(l1))));
+        let spec = SceneSpec {
+            points: s.points.iter().map(|&(n, p)| (o(n), p)).collect(),
+            links: s.links.iter().map(|&(n, ps)| (o(n), ps.iter().map(|p| o(p)).collect())).collect(),
+            ground: o("ground"),
+            input: (o(s.input.0), o(s.input.1)),
+            output: None,
+            slots: s.slots.iter().map(joint).map(|(n, j)| (n, SlotSpec::from(j))).collect(),
+            prismatic: s.prismatic.iter().map(joint).map(|(n, j)| (n, PrismaticSpec::from(j))).collect(),
+            linear_input: s.linear.map(|(k, n)| (k, o(n))),
+        };
+        Scene::new(spec).expect("a built-in is valid")
+    }
+
+    const NO: &[Joint<'static>] = &[];
+
+    fn builtins() -> Vec<(&'static str, Scene)> {
+        let slider_crank = |b: Xy, a: Xy, x: Xy| {
+            scene(&Spec {
+                points: &[("O2", [0.0, 0.0]), ("X", x), ("A", a), ("B", b)],
+                links: &[("ground", &["O2", "X"]), ("crank", &["O2", "A"]), ("rod", &["A", "B"])],
+                input: ("crank", "O2"),
+                slots: &[("piston", "B", "ground", ("O2", "X"))],
+                prismatic: NO,
+                linear: None,
+            })
+        };
+        let whitworth = scene(&Spec {
+            points: &[
+                ("O2", [0.0, 0.0]),
+                ("O4", [0.0, 30.0]),
+                ("X", [-1.0, 30.0]),
+                ("A", [51.96152422706632, 29.999999999999996]),
+                ("C", [-50.0, 30.000000000000004]),
+                ("D", [-200.0, 30.0]),
+            ],
+            links: &[
+                ("ground", &["O2", "O4", "X"]),
+                ("crank", &["O2", "A"]),
+                ("lever", &["O4", "C"]),
+                ("rod", &["C", "D"]),
+            ],
+            input: ("crank", "O2"),
+            slots: &[("block", "A", "lever", ("O4", "C")), ("ram", "D", "ground", ("O4", "X"))],
+            prismatic: NO,
+            linear: None,
+        });
+        let yoke = scene(&Spec {
+            points: &[
+                ("O2", [0.0, 0.0]),
+                ("G", [1.0, 0.0]),
+                ("A", [45.31538935183249, 21.130913087034973]),
+                ("Y1", [45.31538935183249, -60.0]),
+                ("Y2", [45.31538935183249, 60.0]),
+                ("R", [165.3153893518325, 0.0]),
+            ],
+            links: &[("ground", &["O2", "G"]), ("crank", &["O2", "A"]), ("yoke", &["Y1", "Y2", "R"])],
+            input: ("crank", "O2"),
+            slots: &[("pin", "A", "yoke", ("Y1", "Y2"))],
+            prismatic: &[("guide", "yoke", "ground", ("O2", "G"))],
+            linear: None,
+        });
+        let inverted = scene(&Spec {
+            points: &[
+                ("O2", [0.0, 0.0]),
+                ("O4", [100.0, 0.0]),
+                ("A", [30.64177772475912, 25.71150438746157]),
+                ("C", [-40.64693667150496, 52.1386536546704]),
+            ],
+            links: &[("ground", &["O2", "O4"]), ("crank", &["O2", "A"]), ("cylinder", &["O4", "C"])],
+            input: ("crank", "O2"),
+            slots: &[("block", "A", "cylinder", ("O4", "C"))],
+            prismatic: NO,
+            linear: None,
+        });
+        let trammel = scene(&Spec {
+            points: &[
+                ("O", [0.0, 0.0]),
+                ("X", [1.0, 0.0]),
+                ("Y", [0.0, 1.0]),
+                ("A", [60.0, 0.0]),
+                ("B", [0.0, 80.0]),
+                ("P", [36.0, 32.0]),
+            ],
+            links: &[("ground", &["O", "X", "Y"]), ("bar", &["A", "B", "P"])],
+            input: ("", ""),
+            slots: &[("a", "A", "ground", ("O", "X")), ("b", "B", "ground", ("O", "Y"))],
+            prismatic: NO,
+            linear: Some((LinearKind::Slot, "a")),
+        });
+        let boom = scene(&Spec {
+            points: &[
+                ("O", [0.0, 0.0]),
+                ("C1", [600.0, -400.0]),
+                ("E", [692.820323027551, 399.99999999999994]),
+                ("T", [1732.0508075688774, 999.9999999999999]),
+                ("C2", [634.5756721218627, -101.9991226567924]),
+                ("R", [646.7194268650675, 2.665496875723136]),
+            ],
+            links: &[
+                ("ground", &["O", "C1"]),
+                ("boom", &["O", "E", "T"]),
+                ("barrel", &["C1", "C2"]),
+                ("rod", &["R", "E"]),
+            ],
+            input: ("", ""),
+            slots: NO,
+            prismatic: &[("cylinder", "rod", "barrel", ("C1", "C2"))],
+            linear: Some((LinearKind::Prismatic, "cylinder")),
+        });
+        vec![
+            (
+                "slider-crank",
+                slider_crank([193.386094815253, 0.0], [34.64101615137755, 19.999999999999996], [1.0, 0.0]),
+            ),
+            ("whitworth", whitworth),
+            ("scotch-yoke", yoke),
+            ("inverted-slider-crank", inverted),
+            ("elliptic-trammel", trammel),
+            ("hydraulic-boom", boom),
+        ]
+    }
+
+    struct Bufs {
+        f: Vec<Vec<f64>>,
+        i: Vec<Vec<i8>>,
+        nit: Vec<u32>,
+    }
+
+    impl Bufs {
+        /// With `rates`, velocities and accelerations too.
+        fn new(plan: &Plan, n: usize, rates: bool) -> Self {
+            let (np, nl, ns) = (plan.points.len(), plan.links.len(), plan.steps.len());
+            let k = usize::from(rates);
+            let f = [2 * n * np, n * nl, n, n, n * ns, 2 * n * np * k, n * nl * k, 2 * n * np * k, n * nl * k];
+            let i = vec![vec![0; n], vec![0; n * ns], vec![0; n * np]];
+            Bufs { f: f.iter().map(|&m| vec![0.0; m]).collect(), i, nit: vec![0; n] }
+        }
+
+        fn out(&mut self) -> SceneSweepOut<'_> {
+            let [pts, ang, det, lim, sdet, v, w, a, al] = &mut self.f[..] else { unreachable!() };
+            let [st, sst, pst] = &mut self.i[..] else { unreachable!() };
+            let rates = !v.is_empty();
+            SceneSweepOut {
+                points: pts,
+                angles: ang,
+                status: st,
+                nit: &mut self.nit,
+                det,
+                limit: lim,
+                step_status: sst,
+                step_det: sdet,
+                point_status: pst,
+                velocity: rates.then_some((&mut v[..], &mut w[..])),
+                acceleration: rates.then_some((&mut a[..], &mut al[..])),
+            }
+        }
+    }
+
+    #[test]
+    fn sliders_on_columns_match_the_continuation() {
+        for ((name, sc), omega) in builtins().into_iter().flat_map(|b| [(b.clone(), None), (b, Some(2.5))]) {
+            let plan = sc.plan(None).expect("the plan compiles");
+            assert!(plan.columns_ok(), "{name}");
+            let size = sc.scale();
+            // 1-degree steps through a turn; a linear input from its drawn pose 0.4 sizes on
+            let theta: Vec<f64> = if plan.linear {
+                (0..100).map(|k| k as f64 * 0.004 * size).collect()
+            } else {
+                (0..361).map(|k| sc.input_angle() + (k as f64).to_radians()).collect()
+            };
+            let h = (theta[1] - theta[0]).abs();
+            let n = theta.len();
+            let opts = |max_step: f64| SceneSweepOptions::new(NewtonOptions::default(), max_step, omega).unwrap();
+            let mut cols = Bufs::new(&plan, n, omega.is_some());
+            sweep(&plan, &theta, &opts(2.0 * h), &mut cols.out(), &Poll::new(&Never)).unwrap();
+            // the certificate holds here: the plain sweep takes the columns as they are
+            assert!(cols.i[0].iter().all(|&s| s == OK), "{name}: {:?}", cols.i[0]);
+            assert!(cols.f[4].iter().all(|d| d.abs() >= 0.05), "{name}");
+            let mut plain = Bufs::new(&plan, n, omega.is_some());
+            plan.sweep(&theta, &opts(2.0 * h), plain.out(), &Never).unwrap();
+            let bits =
+                |b: &Bufs| b.f.iter().map(|v| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>()).collect::<Vec<_>>();
+            assert!(bits(&plain) == bits(&cols), "{name}: the plain sweep is not the column one");
+            // steps longer than max_step: the continuation
+            let mut cont = Bufs::new(&plan, n, omega.is_some());
+            plan.sweep(&theta, &opts(0.5 * h), cont.out(), &Never).unwrap();
+            assert!(cont.i == cols.i && cont.nit == cols.nit, "{name}: statuses differ");
+            for (k, (a, b)) in cols.f.iter().zip(&cont.f).enumerate() {
+                // positions, angles, dets and rates: 1e-12 of their largest size
+                let big = a.iter().map(|x| x.abs()).filter(|x| x.is_finite()).fold(1.0, f64::max);
+                for (x, y) in a.iter().zip(b) {
+                    let same = (x.is_nan() && y.is_nan()) || (x - y).abs() <= 1e-12 * big;
+                    assert!(same, "{name} (omega {omega:?}): output {k}: {x} vs {y}");
+                }
+            }
+        }
     }
 }

@@ -5,17 +5,19 @@
 
 use super::dyad::{Dyad, DyadOut};
 use super::plan::Op;
-use super::slide::{cdiv, cmul, solve2, Solved};
+use super::slide::{cdiv, cmul, solve2, LineLine, Solved};
 use super::vec2::{cross, dot, sub, Xy};
 
 /// Positions, first and second derivatives by the input, indexed by point.
 pub(super) type Known<'a> = [&'a [Xy]; 3];
 
-fn add(a: Xy, b: Xy) -> Xy {
+#[inline]
+pub(super) fn add(a: Xy, b: Xy) -> Xy {
     [a[0] + b[0], a[1] + b[1]]
 }
 
-fn scale(a: Xy, k: f64) -> Xy {
+#[inline]
+pub(super) fn scale(a: Xy, k: f64) -> Xy {
     [a[0] * k, a[1] * k]
 }
 
@@ -41,9 +43,8 @@ impl Op {
     pub(super) fn solve_slider(&self, s: f64, k: Known<'_>, side: f64, rates: bool) -> Option<Solved> {
         match self {
             Op::StrokeCarry { a, b, num, den, .. } => {
-                let n = add(num[0], scale(num[1], s));
                 let d = add(den[0], scale(den[1], s));
-                let m = cdiv(n, d);
+                let m = stroke_ratio(num, den, s);
                 let ab: [Xy; 3] = [0, 1, 2].map(|o| sub(k[o][*b], k[o][*a]));
                 let mut x = [add(k[0][*a], cmul(m, ab[0])), [f64::NAN; 2], [f64::NAN; 2]];
                 if rates {
@@ -73,6 +74,41 @@ impl Op {
         }
     }
 
+    /// The position alone (no rates) of a slider or stroke operation at input `s` on
+    /// `side`, and its conditioning (1 for the carries), from the known points' positions
+    /// `at(point)`: what [`Op::solve_slider`] places, bit for bit. `None` where it cannot
+    /// close. Panics on the other operations.
+    #[inline(always)]
+    pub(super) fn place_slider(&self, s: f64, at: impl Fn(usize) -> Xy, side: f64) -> Option<(Xy, f64)> {
+        match self {
+            Op::StrokeCarry { a, b, num, den, .. } => {
+                let ka = at(*a);
+                Some((add(ka, cmul(stroke_ratio(num, den, s), sub(at(*b), ka))), 1.0))
+            }
+            Op::Offset { base, a, b, m, .. } => Some((add(at(*base), cmul(*m, sub(at(*b), at(*a)))), 1.0)),
+            Op::StrokeDyad(d, arms) => {
+                let (ra, rb) = (radius(&arms[0], s).0, radius(&arms[1], s).0);
+                match d.solve_radii(at(d.k1), at(d.k2), side, ra, rb) {
+                    DyadOut::Solved(p, det) => Some((p, det)),
+                    _ => None,
+                }
+            }
+            Op::Rrp(r) => {
+                let (p, d) = r.line.place(at(r.line.base), at(r.line.a), at(r.line.b));
+                r.place(at(r.k), p, d, side)
+            }
+            Op::Pp(pp) => {
+                let [l1, l2] = &pp.lines;
+                let (p1, d1) = l1.place(at(l1.base), at(l1.a), at(l1.b));
+                let (p2, d2) = l2.place(at(l2.base), at(l2.a), at(l2.b));
+                let (x, det) = LineLine::place(p1, d1, p2, d2);
+                x[0].is_finite().then_some((x, det))
+            }
+            Op::Rpr(r) => r.place(at(r.k), at(r.q), side).map(|(x, det, _)| (x, det)),
+            _ => unreachable!("place_slider is for slider and stroke operations"),
+        }
+    }
+
     /// Signed conditioning of a slider step at positions `pos`.
     pub(super) fn slider_det_at(&self, s: f64, pos: &[Xy]) -> f64 {
         let zero = vec![[0.0; 2]; pos.len()];
@@ -94,8 +130,15 @@ impl Op {
     }
 }
 
+/// A fused guide's shape ratio m(s) = (num0 + s num1) / (den0 + s den1) (complex).
+#[inline]
+pub(super) fn stroke_ratio(num: &[Xy; 2], den: &[Xy; 2], s: f64) -> Xy {
+    cdiv(add(num[0], scale(num[1], s)), add(den[0], scale(den[1], s)))
+}
+
 /// An arm's length |e0 + s e1| and its first and second derivatives by s.
-fn radius(arm: &[Xy; 2], s: f64) -> (f64, f64, f64) {
+#[inline]
+pub(super) fn radius(arm: &[Xy; 2], s: f64) -> (f64, f64, f64) {
     let e = add(arm[0], scale(arm[1], s));
     let r = dot(e, e).sqrt();
     let r1 = dot(arm[1], e) / r;

@@ -192,10 +192,15 @@ impl Plan {
         self.ops.iter().any(|o| matches!(o, Op::Group(_)))
     }
 
-    /// True when every operation runs on the column path (RRR dyads, carries and the input
-    /// angle only: no group, no slider, no linear input).
+    /// True when every operation runs on the column path: closed forms (RRR dyads and the
+    /// sliders' circle-line, line-line and guide-through-a-point, a linear input's fused
+    /// guide), carries and the input; no group.
     pub(super) fn columns_ok(&self) -> bool {
-        self.ops.iter().all(|o| matches!(o, Op::Input { .. } | Op::Dyad(_) | Op::Carry { .. }))
+        self.ops.iter().all(|o| match o {
+            Op::Input { .. } | Op::Dyad(_) | Op::Carry { .. } | Op::Offset { .. } => true,
+            Op::StrokeCarry { .. } | Op::StrokeDyad(..) | Op::Rrp(_) | Op::Pp(_) | Op::Rpr(_) => true,
+            Op::Group(_) => false,
+        })
     }
 }
 

@@ -88,13 +88,26 @@ impl Line {
         let mut p = [[0.0; 2]; 3];
         let mut d = [[0.0; 2]; 3];
         for o in 0..3 {
-            let ab = sub(k[o][self.b], k[o][self.a]);
-            let off = cmul(self.m_off, ab);
-            p[o] = [k[o][self.base][0] + off[0], k[o][self.base][1] + off[1]];
-            d[o] = cmul(self.m_dir, ab);
+            (p[o], d[o]) = self.place(k[o][self.base], k[o][self.a], k[o][self.b]);
         }
         LineAt { p, d }
     }
+
+    /// Its point and direction from the positions of `base`, `a` and `b` (linear in them:
+    /// the same map gives their derivatives from the points' derivatives).
+    #[inline]
+    pub(super) fn place(&self, base: Xy, a: Xy, b: Xy) -> (Xy, Xy) {
+        let ab = sub(b, a);
+        let off = cmul(self.m_off, ab);
+        ([base[0] + off[0], base[1] + off[1]], cmul(self.m_dir, ab))
+    }
+}
+
+/// `d` divided by its length.
+#[inline]
+pub(super) fn unit(d: Xy) -> Xy {
+    let n = dot(d, d).sqrt();
+    [d[0] / n, d[1] / n]
 }
 
 /// x with e1 . x = c1 and e2 . x = c2; `None` when e1 and e2 are parallel.
@@ -142,21 +155,7 @@ impl Rrp {
     /// The two intersections' one on `side`, or `None` where the circle misses the line
     /// (beyond rounding).
     pub(super) fn solve(&self, k: [Xy; 3], l: &LineAt, side: f64, rates: bool) -> Option<Solved> {
-        let n = dot(l.d[0], l.d[0]).sqrt();
-        let u = [l.d[0][0] / n, l.d[0][1] / n];
-        let w = sub(k[0], l.p[0]);
-        let along = dot(w, u);
-        let foot = [l.p[0][0] + along * u[0], l.p[0][1] + along * u[1]];
-        let dist = cross(u, w);
-        let r = self.r;
-        let round = 4.0 * f64::EPSILON * (r + dist.abs());
-        let h2 = (r - dist) * (r + dist);
-        if !(h2 >= -round * r) {
-            return None;
-        }
-        let h = side * h2.max(0.0).sqrt();
-        let x = [foot[0] + h * u[0], foot[1] + h * u[1]];
-        let det = h / r;
+        let (x, det) = self.place(k[0], l.p[0], l.d[0], side)?;
         let mut out = Solved { x: [x, [f64::NAN; 2], [f64::NAN; 2]], det };
         if rates {
             let (e1, c1, a1) = on_line_rates(l, x, [0.0; 2]);
@@ -171,6 +170,36 @@ impl Rrp {
             }
         }
         Some(out)
+    }
+
+    /// The position alone (no rates) and its conditioning, from known point `k` and the
+    /// line through `p` along `d`: what [`Rrp::solve`] places, bit for bit.
+    #[inline]
+    pub(super) fn place(&self, k: Xy, p: Xy, d: Xy, side: f64) -> Option<(Xy, f64)> {
+        self.place_along(k, p, unit(d), side)
+    }
+
+    /// [`Rrp::place`] with the line's unit direction `u` ([`unit`] of its direction) given.
+    #[inline]
+    pub(super) fn place_along(&self, k: Xy, p: Xy, u: Xy, side: f64) -> Option<(Xy, f64)> {
+        let (x, det, meets) = self.place_branch_free(k, p, u, side);
+        meets.then_some((x, det))
+    }
+
+    /// [`Rrp::place_along`] without a branch (a loop over many values of `k` vectorizes):
+    /// the position and conditioning, and whether the circle meets the line (where it
+    /// does not, the foot of k on the line and 0).
+    #[inline(always)]
+    pub(super) fn place_branch_free(&self, k: Xy, p: Xy, u: Xy, side: f64) -> (Xy, f64, bool) {
+        let w = sub(k, p);
+        let along = dot(w, u);
+        let foot = [p[0] + along * u[0], p[1] + along * u[1]];
+        let dist = cross(u, w);
+        let r = self.r;
+        let round = 4.0 * f64::EPSILON * (r + dist.abs());
+        let h2 = (r - dist) * (r + dist);
+        let h = side * h2.max(0.0).sqrt();
+        ([foot[0] + h * u[0], foot[1] + h * u[1]], h / r, h2 >= -round * r)
     }
 
     /// Signed conditioning at positions: the cosine between the line and k -> p.
@@ -190,11 +219,7 @@ pub(super) struct LineLine {
 
 impl LineLine {
     pub(super) fn solve(&self, l1: &LineAt, l2: &LineAt, rates: bool) -> Solved {
-        let (n1, n2) = (dot(l1.d[0], l1.d[0]).sqrt(), dot(l2.d[0], l2.d[0]).sqrt());
-        let det = cross(l1.d[0], l2.d[0]) / (n1 * n2);
-        // p = p1 + t d1 with cross(d2, p - p2) = 0
-        let t = cross(l2.d[0], sub(l2.p[0], l1.p[0])) / cross(l2.d[0], l1.d[0]);
-        let x = [l1.p[0][0] + t * l1.d[0][0], l1.p[0][1] + t * l1.d[0][1]];
+        let (x, det) = Self::place(l1.p[0], l1.d[0], l2.p[0], l2.d[0]);
         let mut out = Solved { x: [x, [f64::NAN; 2], [f64::NAN; 2]], det };
         if rates {
             let (e1, c1, a1) = on_line_rates(l1, x, [0.0; 2]);
@@ -208,6 +233,26 @@ impl LineLine {
         }
         out
     }
+
+    /// The intersection of the line through `p1` along `d1` with the one through `p2`
+    /// along `d2`, and the sine between them: what [`LineLine::solve`] places.
+    #[inline]
+    pub(super) fn place(p1: Xy, d1: Xy, p2: Xy, d2: Xy) -> (Xy, f64) {
+        let (n1, n2) = (dot(d1, d1).sqrt(), dot(d2, d2).sqrt());
+        let det = cross(d1, d2) / (n1 * n2);
+        // p = p1 + t d1 with cross(d2, p - p2) = 0
+        let t = cross(d2, sub(p2, p1)) / cross(d2, d1);
+        ([p1[0] + t * d1[0], p1[1] + t * d1[1]], det)
+    }
+}
+
+/// The guide's turn behind an [`Rpr`] position: its line's direction `u`, the signed
+/// distance `along` it from k to q, and the arm k -> t.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RprTurn {
+    pub u: Xy,
+    pub along: f64,
+    pub arm: Xy,
 }
 
 /// Guide turning about known point `k`: its slot line (through `l0` with unit direction
@@ -236,7 +281,26 @@ impl Rpr {
     }
 
     pub(super) fn solve(&self, k: [Xy; 3], q: [Xy; 3], side: f64, rates: bool) -> Option<Solved> {
-        let w = sub(q[0], k[0]);
+        let c = self.c();
+        let (x, det, RprTurn { u, along, arm }) = self.place(k[0], q[0], side)?;
+        let mut out = Solved { x: [x, [f64::NAN; 2], [f64::NAN; 2]], det };
+        if rates && along != 0.0 {
+            let dw = sub(q[1], k[1]);
+            let ddw = sub(q[2], k[2]);
+            let psi1 = cross(u, dw) / along;
+            let u1 = [-psi1 * u[1], psi1 * u[0]];
+            let psi2 = (2.0 * cross(u1, dw) + cross(u, ddw) - psi1 * psi1 * c) / along;
+            out.x[1] = [k[1][0] - psi1 * arm[1], k[1][1] + psi1 * arm[0]];
+            out.x[2] = [k[2][0] - psi2 * arm[1] - psi1 * psi1 * arm[0], k[2][1] + psi2 * arm[0] - psi1 * psi1 * arm[1]];
+        }
+        Some(out)
+    }
+
+    /// The position of `t` alone (no rates) and its conditioning, from the known points
+    /// `k` and `q`, with the guide's turn that the rates need: what [`Rpr::solve`] places.
+    #[inline]
+    pub(super) fn place(&self, k: Xy, q: Xy, side: f64) -> Option<(Xy, f64, RprTurn)> {
+        let w = sub(q, k);
         let rw = dot(w, w).sqrt();
         let c = self.c();
         let round = 4.0 * f64::EPSILON * (rw + c.abs());
@@ -249,19 +313,7 @@ impl Rpr {
         // the rotation taking d to u, applied to t0 - k0
         let rot = [u[0] * self.d[0] + u[1] * self.d[1], u[1] * self.d[0] - u[0] * self.d[1]];
         let arm = cmul(rot, sub(self.t0, self.k0));
-        let x = [k[0][0] + arm[0], k[0][1] + arm[1]];
-        let det = along / rw;
-        let mut out = Solved { x: [x, [f64::NAN; 2], [f64::NAN; 2]], det };
-        if rates && along != 0.0 {
-            let dw = sub(q[1], k[1]);
-            let ddw = sub(q[2], k[2]);
-            let psi1 = cross(u, dw) / along;
-            let u1 = [-psi1 * u[1], psi1 * u[0]];
-            let psi2 = (2.0 * cross(u1, dw) + cross(u, ddw) - psi1 * psi1 * c) / along;
-            out.x[1] = [k[1][0] - psi1 * arm[1], k[1][1] + psi1 * arm[0]];
-            out.x[2] = [k[2][0] - psi2 * arm[1] - psi1 * psi1 * arm[0], k[2][1] + psi2 * arm[0] - psi1 * psi1 * arm[1]];
-        }
-        Some(out)
+        Some(([k[0] + arm[0], k[1] + arm[1]], along / rw, RprTurn { u, along, arm }))
     }
 
     /// Signed conditioning at positions (guide placed so that t is at `t`).

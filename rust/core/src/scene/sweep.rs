@@ -281,7 +281,7 @@ impl<'p> Solver<'p> {
     fn eval(&mut self, theta: f64) -> bool {
         self.last_eval = theta;
         let plan = self.plan;
-        let (s, c) = theta.sin_cos();
+        let (s, c) = columns::input_sin_cos(theta);
         let u = [c, s];
         let pu = perp(u);
         let mut failed = false;
@@ -774,20 +774,21 @@ impl Plan {
         self.classify_limits(theta, &mut out, interrupt)
     }
 
-    /// A column sweep (dyads on their drawn sides) is the drawn circuit's motion when no
-    /// dyad came near a dead point: every angle solved, each step's conditioning at least
-    /// [`CERTIFIED`] in size, and the angles in sweep order (from the drawn angle) no more
-    /// than `max_step` apart. Otherwise the plan is followed by continuation.
+    /// A column sweep (dyads and sliders on their drawn sides) is the drawn circuit's
+    /// motion when no step came near a dead point: every input value solved, each step's
+    /// conditioning at least [`CERTIFIED`] in size, and the values in sweep order (from the
+    /// drawn one; an angle the shortest way round) no more than `max_step` apart.
+    /// Otherwise the plan is followed by continuation.
     fn certified(&self, theta: &[f64], opts: &SceneSweepOptions, out: &SceneSweepOut<'_>) -> bool {
-        let mut prev = self.theta0;
-        for (k, &t) in theta.iter().enumerate() {
-            let h = if k == 0 { wrap_angle(t - prev) } else { t - prev };
-            if !(h.abs() <= opts.max_step) {
-                return false;
-            }
-            prev = t;
-        }
-        out.status.iter().all(|&s| s == Status::Converged.code()) && out.step_det.iter().all(|d| d.abs() >= CERTIFIED)
+        let Some(&t0) = theta.first() else { return true };
+        let h0 = if self.linear { t0 - self.theta0 } else { wrap_angle(t0 - self.theta0) };
+        // folds with no early exit: these loops vectorize
+        let close =
+            theta.windows(2).fold(h0.abs() <= opts.max_step, |ok, t| ok & ((t[1] - t[0]).abs() <= opts.max_step));
+        let ok = Status::Converged.code();
+        close
+            && out.status.iter().fold(true, |all, &s| all & (s == ok))
+            && out.step_det.iter().fold(true, |all, d| all & (d.abs() >= CERTIFIED))
     }
 
     /// An angle that the drawn circuit does not reach is LIMIT when the linkage has some
