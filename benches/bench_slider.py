@@ -1,8 +1,11 @@
 """The centred slider-crank over 361 crank angles, piston position, side by side:
-planarkin's scene sweep (circle-line closed form, followed by continuation), pylinkage 1.3
-with numba on the same mechanism (Crank + RRPDyad, its circle-line dyad, ``step_fast``),
-and the closed form written in NumPy the way a user would. Each is checked against the
-closed form outside the timed call."""
+planarkin's scene sweep (the circle-line closed form at every angle at once, certified
+free of dead points, else continuation), pylinkage 1.3 with numba on the same mechanism
+(Crank + RRPDyad, its circle-line dyad, ``step_fast``), and the closed form written in
+NumPy the way a user would. Each is checked against the closed form outside the timed
+call. A fourth row times the binding alone (the compiled plan's sweep, no Python layer):
+with criterion's ``slider_crank_361/piston`` (the core alone, ``benches/scene.rs``) it
+splits planarkin's time into core, binding and Python layer."""
 
 from __future__ import annotations
 
@@ -40,6 +43,18 @@ def test_slider_planarkin(benchmark, slider):
     err = float(np.abs(sw.points["B"][:, 0] - numpy_piston(theta, r, rod)).max())
     assert err < 1e-12 * rod
     record(benchmark, "slider_pk", "planarkin sc.sweep(theta, outputs=['B'])", max_error=err)
+
+
+@pytest.mark.benchmark(group=SLIDER)
+def test_slider_binding(benchmark, slider):
+    sc, r, rod, theta = slider
+    _, core = sc._compiled(["B"])
+    args = (theta, 1e-9, 100, math.radians(3.0), None)
+    out = benchmark(core.sweep, *args)
+    err = float(np.abs(out[0][:, 3, 0] - numpy_piston(theta, r, rod)).max())
+    assert err < 1e-12 * rod
+    record(benchmark, "slider_binding", "planarkin binding alone (compiled plan's sweep)",
+           max_error=err)  # fmt: skip
 
 
 @pytest.mark.benchmark(group=SLIDER)

@@ -4,7 +4,7 @@
     python benches/report.py render   # re-render BENCHMARKS.md from benches/results/
 
 ``run`` takes about 4 minutes on 2 cores. It runs, in this order and in one session:
-``cargo bench -p planarkin-core --bench sweep`` (the core alone, criterion),
+``cargo bench -p planarkin-core --bench sweep --bench scene`` (the core alone, criterion),
 ``pytest benches/ --benchmark-enable --benchmark-json=...`` (everything from Python,
 including the peak-RSS subprocesses), and ``planarkin.fourbar.tradeoff.tradeoff()`` with its
 defaults. Raw results go to ``benches/results/``; the hand-written analysis in
@@ -35,6 +35,8 @@ CARGO_CMD = [
     "planarkin-core",
     "--bench",
     "sweep",
+    "--bench",
+    "scene",
     "--",
     "--warm-up-time",
     "1",
@@ -590,6 +592,8 @@ def render() -> None:
             L += _group_table(rows, base, points)
             if prefix == "seed sweep: Python layers":
                 L += _layers_note(bench, crit)
+            if prefix == "scene: centred slider-crank":
+                L += _slider_note(bench, crit)
             if prefix.startswith("growth"):
                 L += _growth_note(rows)
             L.append("")
@@ -712,6 +716,22 @@ def _layers_note(bench: Bench, crit: dict) -> list[str]:
         + f". Binding cost {_t(binding - r)} ({(binding - r) / api:.0%} of the API call), "
         f"Python API layer {_t(api - binding)} ({(api - binding) / api:.0%}); a 1-angle "
         f"binding call costs {_t(one)}.",
+    ]
+
+
+def _slider_note(bench: Bench, crit: dict) -> list[str]:
+    """The slider-crank's planarkin time split into the core alone (criterion), the
+    binding and the Python layer."""
+    api, binding = bench.median("slider_pk"), bench.median("slider_binding")
+    rust = crit.get("slider_crank_361/piston", {}).get("median_ns")
+    if not (api and binding and rust):
+        return []
+    r = rust * 1e-9
+    return [
+        "",
+        f"Rust core alone (criterion `slider_crank_361/piston`, into preallocated buffers): "
+        f"{_t(r)}; binding {_t(binding - r)} (its arrays and call); Python layer "
+        f"{_t(api - binding)} (arguments, the result object).",
     ]
 
 

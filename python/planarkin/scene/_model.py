@@ -446,10 +446,13 @@ class Scene:
                 raise ValueError(f"outputs must be a list of names or 'all', got {outputs!r}")
             outputs = None
         key = None if outputs is None else tuple(outputs)
-        if key is not None and not all(isinstance(o, str) for o in key):
-            raise ValueError(f"outputs must be a list of point or link names, got {outputs!r}")
-        hit = self._plans.get(key)
+        try:
+            hit = self._plans.get(key)  # only names pass the check below and get in
+        except TypeError:  # an unhashable entry
+            hit = None
         if hit is None:
+            if key is not None and not all(isinstance(o, str) for o in key):
+                raise ValueError(f"outputs must be a list of point or link names, got {outputs!r}")
             core = self._core.plan(None if key is None else list(key))
             names = list(self._data["points"])
             lnames = list(self._data["links"])
@@ -525,8 +528,9 @@ class Scene:
         angular velocity) adds point velocities and link angular velocities.
         """
         plan, core = self._compiled(outputs)
+        kind = self.input_kind
         if max_step is None:
-            max_step = MAX_STEP if self.input_kind == "angle" else MAX_STEP * self._size()
+            max_step = MAX_STEP if kind == "angle" else MAX_STEP * self._size()
         if theta is None:
             t = self._default_theta()
         else:
@@ -538,9 +542,11 @@ class Scene:
         w = None if omega is None else as_float("omega", omega)
         pts, ang, status, nit, det, limit, sst, sdet, pst, kin = core.sweep(t, tol, max_iter, ms, w)
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
+        # the output coordinate is computed when it is first read
+        output = None if self._data["output"] is None else self._output_of
         return SceneSweep.build(
             plan, t, pts, ang, status, nit, det, limit, sst, sdet, pst, vel, acc,
-            omega=w, input=self.input_kind, output=self._output_of(plan.points, pts),
+            w, kind, output,
         )  # fmt: skip
 
     def _output_of(self, names: tuple[str, ...], coords: np.ndarray) -> np.ndarray | None:

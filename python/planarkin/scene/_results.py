@@ -3,7 +3,7 @@ Nothing here reaches the kernel: the NumPy reference builds SceneSweep objects t
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -106,9 +106,12 @@ class SceneSweep(SweepResult):
     #: "angle": ``theta`` holds input angles (radians); "displacement": a linear input's
     #: displacements from the drawn pose (scene units).
     input: str = field(default="angle", kw_only=True)
-    #: (N,) the scene's output coordinate (an angle, or a displacement along a slot or
-    #: prismatic pair) at every input value; None when the scene names no output.
-    output: np.ndarray | None = field(default=None, kw_only=True)
+    #: Where ``output`` comes from: the (N,) array, a function of (``point_names``,
+    #: ``coords``) computing it on first access (the kernel's sweeps: nothing is spent on
+    #: an output nobody reads), or None.
+    output_source: np.ndarray | Callable[..., np.ndarray | None] | None = field(
+        default=None, kw_only=True, repr=False
+    )
     #: The names of the P reported points and of the L reported links, in array order.
     point_names: tuple[str, ...] = field(default=(), kw_only=True)
     link_names: tuple[str, ...] = field(default=(), kw_only=True)
@@ -116,31 +119,52 @@ class SceneSweep(SweepResult):
     @classmethod
     def build(
         cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel,
-        acc=None, *, omega=None, input="angle", output=None,
+        acc=None, omega=None, input="angle", output=None,
     ):  # noqa: ANN001, ANN206, E501  # fmt: skip
-        """From the kernel's arrays; ``vel`` and ``acc`` are (points, links) pairs or None."""
-        return cls(
-            acceleration_array=None if acc is None else acc[0],
-            angular_acceleration_array=None if acc is None else acc[1],
-            omega=omega,
-            input=input,
-            output=output,
-            plan=plan,
-            theta=theta,
-            coords=pts,
-            angle_array=ang,
-            status=status,
-            nit=nit,
-            det=det,
-            limit=limit,
-            step_status=step_status,
-            step_det=step_det,
-            point_status_array=pstat,
-            velocity_array=None if vel is None else vel[0],
-            angular_velocity_array=None if vel is None else vel[1],
-            point_names=plan.points,
-            link_names=plan.links,
-        )
+        """From the kernel's arrays; ``vel`` and ``acc`` are (points, links) pairs or None;
+        ``output`` the output coordinate, or a function of (``point_names``, ``coords``)
+        computing it on first access.
+
+        The fields go straight into the instance's dict, those left at their defaults not
+        at all (the class holds the defaults): the dataclass's frozen ``__init__`` sets
+        each of its 20 fields through ``object.__setattr__``, which costs more than a small
+        sweep itself (about 4 us). Every field reads the same (a test checks them against
+        ``dataclasses.fields``).
+        """
+        self = object.__new__(cls)
+        d = self.__dict__
+        d["plan"] = plan
+        d["theta"] = theta
+        d["coords"] = pts
+        d["angle_array"] = ang
+        d["status"] = status
+        d["nit"] = nit
+        d["det"] = det
+        d["limit"] = limit
+        d["step_status"] = step_status
+        d["step_det"] = step_det
+        d["point_status_array"] = pstat
+        d["point_names"] = plan.points
+        d["link_names"] = plan.links
+        if vel is not None:
+            d["velocity_array"], d["angular_velocity_array"] = vel
+        if acc is not None:
+            d["acceleration_array"], d["angular_acceleration_array"] = acc
+        if omega is not None:
+            d["omega"] = omega
+        if input != "angle":
+            d["input"] = input
+        if output is not None:
+            d["output_source"] = output
+        return self
+
+    @cached_property
+    def output(self) -> np.ndarray | None:
+        """(N,) the scene's output coordinate (an angle, or a displacement along a slot or
+        prismatic pair) at every input value; None when the scene names no output or the
+        plan does not report its points."""
+        src = self.output_source
+        return src(self.point_names, self.coords) if callable(src) else src
 
     @staticmethod
     def _columns(a: np.ndarray | None, names: tuple[str, ...]) -> dict[str, np.ndarray] | None:

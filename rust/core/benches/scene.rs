@@ -77,13 +77,16 @@ impl Bufs {
     }
 }
 
+/// A row: its name, the requested outputs (None: all), omega and max_step.
+type Case = (&'static str, Option<Vec<String>>, Option<f64>, f64);
+
 fn slider(c: &mut Criterion) {
     let sc = slider_crank();
     let theta: Vec<f64> = (0..N).map(|k| sc.input_angle() + (k as f64).to_radians()).collect();
     let mut g = c.benchmark_group("slider_crank_361");
     g.throughput(Throughput::Elements(N as u64));
     let max_step = 3f64.to_radians();
-    let cases: [(&str, Option<Vec<String>>, Option<f64>, f64); 4] = [
+    let cases: [Case; 4] = [
         ("piston", Some(vec!["B".into()]), None, max_step),
         ("all", None, None, max_step),
         ("all_omega", None, Some(1.0), max_step),

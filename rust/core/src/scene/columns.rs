@@ -17,7 +17,6 @@ use super::slide::{unit, Rrp};
 use super::vec2::{angular_acceleration, Xy};
 use crate::error::Error;
 use crate::interrupt::Poll;
-use crate::simd::math::SIN_COS_MAX;
 use crate::Status;
 
 /// Angles per block: the columns of a block stay in cache.
@@ -48,11 +47,19 @@ struct Scratch {
 /// (sin, cos) of one input angle as [`sin_cos`] gives it in a block, bit for bit: the
 /// continuation calls this, so both paths turn the input alike.
 pub(super) fn input_sin_cos(theta: f64) -> (f64, f64) {
-    if crate::simd::enabled() && !(theta.is_nan() || theta.abs() > SIN_COS_MAX) {
-        crate::simd::math::sin_cos(theta)
-    } else {
-        theta.sin_cos()
+    #[cfg(target_arch = "x86_64")]
+    if crate::simd::enabled() && !(theta.is_nan() || theta.abs() > crate::simd::math::SIN_COS_MAX) {
+        // SAFETY: the SIMD kernels are on only where the CPU has AVX2 and FMA.
+        return unsafe { sin_cos_fma(theta) };
     }
+    theta.sin_cos()
+}
+
+/// The polynomial sin/cos with its fused multiply-adds in hardware (not libm's `fma`).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_fma(theta: f64) -> (f64, f64) {
+    crate::simd::math::sin_cos(theta)
 }
 
 /// (sin, cos) of a block of angles: polynomial, 4 at a time, where the SIMD kernels are on
@@ -163,16 +170,14 @@ fn sweep_body(
                 Op::Input { q, lam, mu } => {
                     let (px, py) = (plan.pivot[0], plan.pivot[1]);
                     let o = q * B;
-                    for j in 0..m {
-                        let (u1, u0) = trig[j];
-                        c.x[o + j] = px + lam * u0 - mu * u1;
-                        c.y[o + j] = py + lam * u1 + mu * u0;
-                        let st = if block[j].is_finite() { OK } else { Status::NonFinite.code() };
-                        c.st[o + j] = st;
-                        if st != OK && first_bad[j] == OK {
-                            first_bad[j] = st;
-                        }
+                    let nonfinite = Status::NonFinite.code();
+                    let (xs, ys, sts) = (&mut c.x[o..o + m], &mut c.y[o..o + m], &mut c.st[o..o + m]);
+                    for (((x, y), st), (&(u1, u0), &t)) in xs.iter_mut().zip(ys).zip(sts).zip(trig.iter().zip(block)) {
+                        *x = px + lam * u0 - mu * u1;
+                        *y = py + lam * u1 + mu * u0;
+                        *st = if t.is_finite() { OK } else { nonfinite };
                     }
+                    note(&mut first_bad[..m], &c.st[o..o + m]);
                     if vel {
                         for j in 0..m {
                             let (u1, u0) = trig[j];
@@ -208,22 +213,12 @@ fn sweep_body(
                             c.ay[oq + j] = ay + (m1 * dx + m0 * dy);
                         }
                     }
-                    for j in 0..m {
-                        let st = c.st[oq + j];
-                        if st != OK && first_bad[j] == OK {
-                            first_bad[j] = st;
-                        }
-                    }
+                    note(&mut first_bad[..m], &c.st[oq..oq + m]);
                 }
                 Op::Dyad(d) => {
                     let s = step_of[i];
                     dyad_block(d, &mut c, m, opts.newton.singular, vel, &mut sdet[s * B..], &mut sst[s * B..]);
-                    for j in 0..m {
-                        let st = sst[s * B + j];
-                        if st != OK && first_bad[j] == OK {
-                            first_bad[j] = st;
-                        }
-                    }
+                    note(&mut first_bad[..m], &sst[s * B..s * B + m]);
                 }
                 Op::Group(_) => unreachable!("the column sweep runs plans with no group"),
                 op => {
@@ -244,17 +239,21 @@ fn sweep_body(
                         (None, _) => slider_block(op, ins, &mut c, sv, singular, det, st),
                         (Some(k), _) => slider_rates_block(op, ins, &mut c, sv, singular, k, det, st),
                     }
-                    for j in 0..m {
-                        if st[j] != OK && first_bad[j] == OK {
-                            first_bad[j] = st[j];
-                        }
-                    }
+                    note(&mut first_bad[..m], &st[..m]);
                 }
             }
         }
         write_block(plan, &c, &sdet, &sst, &first_bad, k0, m, opts, out);
     }
     Ok(())
+}
+
+/// Keeps each value's first failure: `st` where nothing failed before.
+#[inline(always)]
+fn note(first_bad: &mut [i8], st: &[i8]) {
+    for (f, &s) in first_bad.iter_mut().zip(st) {
+        *f = if *f == OK { s } else { *f };
+    }
 }
 
 impl Columns {
