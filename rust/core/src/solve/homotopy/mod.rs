@@ -948,12 +948,23 @@ impl Reduced {
 impl Iso {
     /// e and ebar at projective coordinates (x0, t, u) = (`x0`, `tu`).
     fn e_ebar(&self, x0: C, tu: &[C]) -> (Vec<C>, Vec<C>) {
+        let n = 2 * self.c;
+        let mut out = vec![C::default(); 2 * n];
+        self.e_ebar_into(x0, tu, &mut out);
+        let eb = out.split_off(n);
+        (out, eb)
+    }
+
+    /// [`Iso::e_ebar`] into `out` (e, then ebar), no allocation: the tracker's hot path.
+    fn e_ebar_into(&self, x0: C, tu: &[C], out: &mut [C]) {
         let (nc, cols) = (self.c, self.c + 1);
         let n = 2 * nc;
         let dotp = |p: &[C], w: &[C]| p[0] * x0 + p[1..].iter().zip(w).map(|(a, b)| a * b).sum::<C>();
-        let e = (0..n).map(|j| dotp(&self.pe[j * cols..(j + 1) * cols], &tu[..nc])).collect();
-        let eb = (0..n).map(|j| dotp(&self.pb[j * cols..(j + 1) * cols], &tu[nc..])).collect();
-        (e, eb)
+        let (e, eb) = out.split_at_mut(n);
+        for j in 0..n {
+            e[j] = dotp(&self.pe[j * cols..(j + 1) * cols], &tu[..nc]);
+            eb[j] = dotp(&self.pb[j * cols..(j + 1) * cols], &tu[nc..]);
+        }
     }
 
     /// H = (1 - tau) gamma G + tau F (or H_tau with `dtau`) and its Jacobian in X, rows 0..N.
@@ -962,7 +973,9 @@ impl Iso {
         let n = 2 * nc;
         let m = work.m;
         let (x0, tu) = (x[0], &x[1..]);
-        let (e, eb) = self.e_ebar(x0, tu);
+        let Work { w, rhs, jac, .. } = work;
+        self.e_ebar_into(x0, tu, &mut w[..2 * n]);
+        let (e, eb) = w.split_at(n);
         let dotp = |p: &[C], w: &[C]| p[0] * x0 + p[1..].iter().zip(w).map(|(a, b)| a * b).sum::<C>();
         let g_w = gamma * (1.0 - tau);
         for j in 0..n {
@@ -971,8 +984,8 @@ impl Iso {
             let (l, mm) = (dotp(la, &tu[..nc]), dotp(lb, &tu[nc..]));
             let f = e[j] * eb[j] - x0 * x0;
             let g = l * mm;
-            work.rhs[j] = if dtau { f - gamma * g } else { g_w * g + f * tau };
-            let row = &mut work.jac[j * m..(j + 1) * m];
+            rhs[j] = if dtau { f - gamma * g } else { g_w * g + f * tau };
+            let row = &mut jac[j * m..(j + 1) * m];
             let (ft, gt) = (C::new(tau, 0.0), g_w);
             row[0] = ft * (pe[0] * eb[j] + e[j] * pb[0] - x0 * 2.0) + gt * (la[0] * mm + l * lb[0]);
             for k in 0..nc {
@@ -1049,17 +1062,19 @@ fn lu_solve(a: &mut [C], m: usize, b: &mut [C]) -> bool {
             b.swap(k, p);
         }
         let inv = C::new(1.0, 0.0) / a[k * m + k];
-        for i in k + 1..m {
-            let f = a[i * m + k] * inv;
+        let bk = b[k];
+        // rows below k minus f times row k (the same operations, on row slices)
+        let (top, rest) = a.split_at_mut((k + 1) * m);
+        let rk = &top[k * m + k + 1..(k + 1) * m];
+        for (row, bi) in rest.chunks_exact_mut(m).zip(&mut b[k + 1..]) {
+            let f = row[k] * inv;
             if f == C::default() {
                 continue;
             }
-            for c in k + 1..m {
-                let v = a[k * m + c];
-                a[i * m + c] -= f * v;
+            for (x, &v) in row[k + 1..].iter_mut().zip(rk) {
+                *x -= f * v;
             }
-            let bk = b[k];
-            b[i] -= f * bk;
+            *bi -= f * bk;
         }
     }
     for k in (0..m).rev() {
