@@ -132,6 +132,13 @@ class Scene:
     def assemblies(self, theta: float, seed: int, runs: int) -> _Assemblies: ...
     def trace(self, start: _F64 | None, step: float, max_points: int) -> _Trace: ...
     def pose_gradient(self, points: _F64, free: list[tuple[int, int]], relative: bool) -> _F64: ...
+    def dets_gradient(
+        self,
+        points: _F64,
+        dpoints: _F64,
+        free: list[tuple[int, int]],
+        outputs: list[str] | None = None,
+    ) -> _F64: ...
     def circuits(
         self, theta: float, seed: int, runs: int, step: float, max_points: int
     ) -> tuple[

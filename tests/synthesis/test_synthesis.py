@@ -190,10 +190,10 @@ def test_branch_constraint_catches_a_dead_point():
     # drawn 5 deg inside a dead point of its circuit
     inside = _knuckle_problem(0.0, 60.0)
     x = inside.space.x_of(inside.space.points)
-    _, _, branch, _ = inside.residuals(x)
+    branch = inside.residuals(x).branch
     assert np.all(branch > 0)
     across = _knuckle_problem(-20.0, 60.0)
-    _, _, branch, _ = across.residuals(x)
+    branch = across.residuals(x).branch
     assert np.min(branch) < 0
     # and the scene solver agrees that the range holds a dead point
     sc = across.space.scene(x)
@@ -286,6 +286,25 @@ def test_shipped_ackermann_design_meets_the_target():
     assert sc.points["KL"] == (-0.3, 0.0) and sc.points["KR"] == (0.3, 0.0)
     xy = np.array(list(sc.points.values()))
     assert np.max(np.abs(xy)) <= 0.35 + 1e-12
+    # ... and over the whole steering range, not only as drawn (the packaging envelope):
+    # the shipped design and both alternatives written beside it
+    for name in ("design.json", "design_accurate.json", "design_robust.json"):
+        d = pk.Scene.load(SHIPPED / name)
+        sw = d.sweep(d.input_angle + np.linspace(lo, hi, 1001), outputs="all")
+        assert np.all(sw.status == 0), name
+        # (to SLSQP's feasibility: the constraints hold to 1e-6 of the box's size)
+        assert np.max(np.abs(sw.coords)) <= 0.35 + 1e-6, name
+        assert np.min(np.abs(sw.det)) >= 1e-4 and (np.all(sw.det > 0) or np.all(sw.det < 0))
+        e = np.degrees(
+            np.max(
+                np.abs(
+                    out_rotation(d, np.linspace(lo, hi, 1001))
+                    - ackermann(np.linspace(lo, hi, 1001))
+                )
+            )
+        )
+        assert e <= 0.01, name
+    assert {"designs", "p95_error_deg_at_sigma"} <= set(rep)
     # both at 0: axles collinear (the drawn pose is straight ahead)
     assert sc.input == ("left_knuckle", "KL") and sc.output == ("right_knuckle", "KR")
     assert {"tolerance_sensitivity", "det_sign_changes", "link_ratio", "starts"} <= set(rep)

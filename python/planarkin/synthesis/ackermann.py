@@ -33,9 +33,10 @@ def right_steer(delta_l: object, track: float = TRACK) -> np.ndarray:
     return out
 
 
-def target(n: int = 31, dense: int = 121) -> FunctionTarget:
+def target(n: int = 31, dense: int = 1001) -> FunctionTarget:
     """The 31 design points over the steering range (-40.903 to 61 deg of the left
-    knuckle) and a dense grid for the branch constraint."""
+    knuckle) and the dense grid of 1001 angles (the branch constraint, the envelope, the
+    minimax phase and the verification)."""
     if n < 2:
         raise ValueError(f"n must be >= 2, got {n}")
     if dense < 2:
@@ -55,8 +56,22 @@ def space(
     return DesignSpace(template, pts, free, -box, box, min_link)
 
 
-def problem(objective: str = "true", det_margin: float = DET_MARGIN, **kw: object) -> Problem:
-    return Problem(space(), target(**kw), det_margin=det_margin, objective=objective)  # type: ignore[arg-type]
+def problem(
+    objective: str = "true",
+    det_margin: float = DET_MARGIN,
+    envelope: bool = True,
+    **kw: object,
+) -> Problem:
+    """The steering problem: every joint within the box as drawn and (``envelope``) over
+    the whole steering range; the seed's objectives keep the closed forms assemblable."""
+    return Problem(
+        space(),
+        target(**kw),  # type: ignore[arg-type]
+        det_margin=det_margin,
+        objective=objective,
+        closed_form=objective != "true",
+        envelope=((-BOX, -BOX), (BOX, BOX)) if envelope else None,
+    )
 
 
 def mirror_sampler(sp: DesignSpace):  # type: ignore[no-untyped-def]

@@ -20,10 +20,18 @@ from typing import Any
 
 import numpy as np
 
-from .problem import FunctionTarget, Problem
+from .exact import Picks, Rows, available, exact_rows, extrema, fd_rows, picks, subgrid
+from .problem import Evaluation, FunctionTarget, PathPoints, Problem, Residuals
 
 #: forward-difference step on joint coordinates, relative to the box size
 FD_STEP = 1e-7
+#: the subgrid of the dense grid SLSQP sees the branch constraint on (with its smallest
+#: value on the whole grid), and the dense error's largest local extrema added to it for
+#: the minimax phase (with its largest value on the whole grid)
+SUBGRID, K_DENSE = 41, 64
+#: how the optimizer differentiates: the solver's exact derivatives, or forward
+#: differences of whole sweeps (the check)
+GRADIENTS = ("exact", "fd")
 #: seconds the running starts get, after the time limit, to hand back their iterate (they
 #: stop at their next SLSQP iteration) before an own process pool is terminated
 GRACE_S = 30.0
@@ -66,39 +74,81 @@ class StartResult:
 
 
 class _Cache:
-    """Residual vectors and their forward-difference Jacobians, one sweep per point."""
+    """One design at a time: its residuals (one sweep), the critical points the reduced
+    constraints take there, and their derivatives (exact, or forward differences), with
+    the constraint vector SLSQP sees assembled from them."""
 
-    def __init__(self, problem: Problem, grid: tuple, step: float) -> None:
+    def __init__(self, problem: Problem, grid: tuple, step: float, gradient: str) -> None:
         self.p = problem
         self.grid = grid
         self.step = step
+        self.gradient = gradient
         self._x: bytes | None = None
-        self._v: tuple[np.ndarray, ...] = ()
-        self._jx: bytes | None = None
-        self._j: tuple[np.ndarray, ...] = ()
+        self._res: Residuals | None = None
+        self._ev: Evaluation | None = None
+        self._picks: Picks | None = None
+        self._jx: tuple[bytes, bool] | None = None
+        self._rows: Rows | None = None
+        m = grid[2].size
+        self.sub = subgrid(m, SUBGRID)
+        self.dense_fixed = self.sub
 
-    def values(self, x: np.ndarray) -> tuple[np.ndarray, ...]:
-        k = np.asarray(x, dtype=np.float64).tobytes()
-        if k != self._x:
-            self._v = self.p.residuals(np.asarray(x, dtype=np.float64), self.grid)
-            self._x = k
-        return self._v
+    def fix_dense(self, x: np.ndarray) -> None:
+        """The minimax phase's fixed set: the subgrid and the dense error's largest local
+        extrema at ``x`` (its start)."""
+        d = np.abs(self.values(x).dense)
+        self.dense_fixed = np.union1d(subgrid(d.size, 3 * SUBGRID), extrema(d, K_DENSE))
+        self._x = self._jx = None  # the picks change
 
-    def jac(self, x: np.ndarray) -> tuple[np.ndarray, ...]:
-        x = np.asarray(x, dtype=np.float64)
+    def _at(self, x: np.ndarray) -> None:
         k = x.tobytes()
-        if k != self._jx:
-            v0 = self.values(x)
-            cols: list[list[np.ndarray]] = [[] for _ in v0]
-            for j in range(x.size):
-                xj = x.copy()
-                xj[j] += self.step
-                vj = self.p.residuals(xj, self.grid)
-                for c, a, b in zip(cols, vj, v0, strict=True):
-                    c.append((a - b) / self.step)
-            self._j = tuple(np.stack(c, axis=1) for c in cols)
-            self._jx = k
-        return self._j
+        if k != self._x:
+            grid = self.p.grid(x) if self.p.timing else self.grid
+            self._ev = self.p.evaluate(x, grid)
+            self._res = self.p.residuals_of(x, self._ev)
+            self._picks = picks(self._res, self.sub, self.dense_fixed)
+            self._x = k
+
+    def values(self, x: np.ndarray) -> Residuals:
+        x = np.asarray(x, dtype=np.float64)
+        self._at(x)
+        assert self._res is not None
+        return self._res
+
+    def cons(self, x: np.ndarray) -> np.ndarray:
+        """The constraints SLSQP sees: branch at its critical points, the extra ones, link
+        lengths, each envelope column at its tightest point."""
+        res = self.values(x)
+        p = self._picks
+        assert p is not None
+        env = res.envelope[p.envelope, np.arange(p.envelope.size)] if p.envelope.size else []
+        return np.concatenate([res.branch[p.branch], res.extra, res.lengths, env])
+
+    def dense(self, x: np.ndarray) -> np.ndarray:
+        """The dense error on the minimax phase's fixed set and, last, where its magnitude
+        is largest on the whole grid."""
+        res = self.values(x)
+        assert self._picks is not None
+        return res.dense[self._picks.dense]
+
+    def jac(self, x: np.ndarray, dense: bool = False) -> Rows:
+        x = np.asarray(x, dtype=np.float64)
+        self._at(x)
+        key = (x.tobytes(), dense)
+        if self._jx is None or self._jx[0] != key[0] or (dense and not self._jx[1]):
+            assert self._res is not None and self._picks is not None and self._ev is not None
+            if self.gradient == "exact":
+                self._rows = exact_rows(self.p, x, self._ev, self._res, self._picks, dense=dense)
+            else:
+                grid = self.p.grid(x) if self.p.timing else self.grid
+                self._rows = fd_rows(self.p, x, self._res, self._picks, grid, self.step)
+            self._jx = (key[0], dense or self.gradient != "exact")
+        assert self._rows is not None
+        return self._rows
+
+    def cons_jac(self, x: np.ndarray) -> np.ndarray:
+        j = self.jac(x)
+        return np.vstack([j.branch, j.extra, j.lengths, j.envelope])
 
 
 def figures(problem: Problem, x: np.ndarray) -> dict[str, float]:
@@ -128,13 +178,21 @@ def run_start(
     minimax: bool = True,
     deadline: float | None = None,
     index: int = 0,
+    gradient: str = "auto",
 ) -> StartResult:
     """SLSQP from ``x0``: least squares on the objective's residuals at the design points,
     then (``minimax``) the largest true residual on the dense grid, both under the branch,
     closed-form assemblability and link-length constraints and the box bounds. At
     ``deadline`` (``time.time()`` seconds: it holds across processes) SLSQP stops at its
     next iteration (status 99) and the iterate it reached is returned, verified like any
-    other (``stopped``); the minimax phase is skipped once it has passed."""
+    other (``stopped``); the minimax phase is skipped once it has passed. ``gradient``:
+    "exact" (the solver's derivatives), "fd" (forward differences, one sweep per design
+    variable), or "auto" (exact where available: :func:`resolve_gradient`). SLSQP sees
+    the constraints over the dense grid as :class:`~planarkin.synthesis.exact.Picks` says
+    (the branch constraint on a subgrid of :data:`SUBGRID` points and at its smallest;
+    each envelope side at its tightest point; in the minimax phase the error on a subgrid,
+    at its :data:`K_DENSE` largest extrema at the phase's start, and at its largest); the
+    whole grid is checked at the end."""
     from scipy.optimize import minimize  # imported here: the CLI's parser stays light
 
     def late() -> bool:
@@ -147,29 +205,22 @@ def run_start(
     lo, hi = problem.lower, problem.upper
     grid = problem.grid()
     box = max(float(np.max(hi - lo)), 1e-300)
-    cache = _Cache(problem, grid, FD_STEP * box)
+    gradient = resolve_gradient(problem, gradient)
+    cache = _Cache(problem, grid, FD_STEP * box, gradient)
     bounds = list(zip(lo, hi, strict=True))
     x0 = np.clip(np.asarray(x0, dtype=np.float64), lo, hi)
     phases: list[dict[str, Any]] = []
 
-    def cons_fun(x: np.ndarray) -> np.ndarray:
-        _, _, br, lc = cache.values(x)
-        return np.concatenate([br, lc])
-
-    def cons_jac(x: np.ndarray) -> np.ndarray:
-        _, _, br, lc = cache.jac(x)
-        return np.vstack([br, lc])
-
-    r0 = cache.values(x0)[0]
+    r0 = cache.values(x0).r
     w = 1.0 / max(float(np.sqrt(np.mean(r0**2))), 1e-12)
 
     def f(x: np.ndarray) -> float:
-        r = cache.values(x)[0]
+        r = cache.values(x).r
         return float(np.mean((w * r) ** 2))
 
     def fj(x: np.ndarray) -> np.ndarray:
-        r = cache.values(x)[0]
-        jr = cache.jac(x)[0]
+        r = cache.values(x).r
+        jr = cache.jac(x).r
         return 2.0 * w * w * (r @ jr) / r.size
 
     with warnings.catch_warnings():
@@ -180,7 +231,7 @@ def run_start(
             jac=fj,
             method="SLSQP",
             bounds=bounds,
-            constraints=[{"type": "ineq", "fun": cons_fun, "jac": cons_jac}],
+            constraints=[{"type": "ineq", "fun": cache.cons, "jac": cache.cons_jac}],
             options={"maxiter": maxiter, "ftol": ftol},
             callback=stop_at_deadline if deadline is not None else None,
         )
@@ -196,24 +247,28 @@ def run_start(
         and isinstance(problem.target, FunctionTarget)
         and np.isfinite(problem.target.dense_in).all()
     ):
-        d0 = cache.values(x)[1]
+        cache.fix_dense(x)
+        d0 = cache.values(x).dense
         t0 = max(float(np.max(np.abs(d0))), 1e-15)
         z0 = np.concatenate([x, [1.0]])
 
         def mm_cons(z: np.ndarray) -> np.ndarray:
+            # t >= |e| on the fixed set (two rows each) and at the largest |e| (one row)
             xx, t = z[:-1], z[-1]
-            _, d, br, lc = cache.values(xx)
-            return np.concatenate([t - d / t0, t + d / t0, br, lc])
+            d = cache.dense(xx) / t0
+            return np.concatenate([t - d[:-1], t + d[:-1], [t - abs(d[-1])], cache.cons(xx)])
 
         def mm_jac(z: np.ndarray) -> np.ndarray:
             xx = z[:-1]
-            _, jd, jb, jl = cache.jac(xx)
-            one = np.ones((jd.shape[0], 1))
+            d = cache.dense(xx)
+            jd = cache.jac(xx, dense=True).dense / t0
+            one = np.ones((jd.shape[0] - 1, 1))
+            jc = cache.cons_jac(xx)
             rows = [
-                np.hstack([-jd / t0, one]),
-                np.hstack([jd / t0, one]),
-                np.hstack([jb, np.zeros((jb.shape[0], 1))]),
-                np.hstack([jl, np.zeros((jl.shape[0], 1))]),
+                np.hstack([-jd[:-1], one]),
+                np.hstack([jd[:-1], one]),
+                np.r_[-np.sign(d[-1]) * jd[-1], 1.0][None, :],
+                np.hstack([jc, np.zeros((jc.shape[0], 1))]),
             ]
             return np.vstack(rows)
 
@@ -261,6 +316,19 @@ def run_start(
     )
 
 
+def resolve_gradient(problem: Problem, gradient: str) -> str:
+    """ "exact" or "fd" for ``problem``: "auto" is "exact" where it is available; "exact"
+    where it is not is an error saying why."""
+    if gradient not in (*GRADIENTS, "auto"):
+        raise ValueError(f"gradient must be 'auto', 'exact' or 'fd', got {gradient!r}")
+    if gradient == "fd":
+        return gradient
+    why = available(problem)
+    if why and gradient == "exact":
+        raise ValueError(f"gradient='exact' is not available here: {why}")
+    return "fd" if why else "exact"
+
+
 def _phase(name: str, res: Any) -> dict[str, Any]:
     # scipy's words as scipy gave them (99 is scipy's code for a callback's stop)
     return {
@@ -273,8 +341,9 @@ def _phase(name: str, res: Any) -> dict[str, Any]:
 
 
 def _feasible(problem: Problem, x: np.ndarray, tol: float = 1e-6) -> bool:
-    _, _, br, lc = problem.residuals(x)
-    ok = bool(np.all(br >= -tol) and np.all(lc >= -tol))
+    # every constraint at every point of the dense grid (not only the critical ones)
+    res = problem.residuals(x)
+    ok = all(bool(np.all(v >= -tol)) for v in (res.branch, res.extra, res.lengths, res.envelope))
     lo, hi = problem.lower, problem.upper
     return ok and bool(np.all(x >= lo - 1e-12) and np.all(x <= hi + 1e-12))
 
@@ -300,6 +369,24 @@ def sample_starts(
 SCREEN_CHUNK = 50
 
 
+#: the most dense-grid points screening looks at (a filter for starts, not a verification)
+SCREEN_DENSE = 121
+
+
+def _coarse(problem: Problem) -> Problem:
+    # every k-th point of the dense grid and its last one
+    t = problem.target
+    if isinstance(t, PathPoints) or t.dense_in.size <= SCREEN_DENSE:
+        return problem
+    k = -(-(t.dense_in.size - 1) // (SCREEN_DENSE - 1))
+    keep = np.unique(np.r_[np.arange(0, t.dense_in.size, k), t.dense_in.size - 1])
+    if isinstance(t, FunctionTarget):
+        return replace(
+            problem, target=replace(t, dense_in=t.dense_in[keep], dense_out=t.dense_out[keep])
+        )
+    return replace(problem, target=replace(t, dense_in=t.dense_in[keep]))
+
+
 def _screen(
     problem: Problem,
     n_samples: int,
@@ -309,16 +396,16 @@ def _screen(
     deadline: float | None,
     progress: Callable[[int], object] | None,
 ) -> tuple[list[tuple[float, np.ndarray]], int]:
-    grid = problem.grid()
-    lite = replace(problem, objective="true")
+    lite = _coarse(replace(problem, objective="true", envelope=None))
+    grid = lite.grid()
     found: list[tuple[float, np.ndarray]] = []
     done = told = 0
     for _ in range(n_samples):
         if deadline is not None and time.time() >= deadline:
             break
         x = sampler(rng) if sampler is not None else rng.uniform(problem.lower, problem.upper)
-        r, _, br, lc = lite.residuals(x, grid)
-        if np.all(br > -1.0) and np.all(lc >= 0):
+        r, _, br, extra, lc, _ = lite.residuals(x, grid)
+        if np.all(br > -1.0) and np.all(extra > -1.0) and np.all(lc >= 0):
             found.append((float(np.sqrt(np.mean(r**2))), x))
         done += 1
         if progress is not None and done - told >= SCREEN_CHUNK:
@@ -348,6 +435,8 @@ class SynthesisResult:
     #: "" (every start ran to its end), TIME_LIMIT or INTERRUPTED
     stopped: str = ""
     seed: int = 0
+    #: how the derivatives were taken: "exact" or "fd"
+    gradient: str = "exact"
 
     @property
     def feasible(self) -> list[StartResult]:
@@ -463,6 +552,7 @@ def synthesize(
     progress: Callable[[StartResult], object] | None = None,
     screening: Callable[[int], object] | None = None,
     time_limit: float | None = None,
+    gradient: str = "auto",
 ) -> SynthesisResult:
     """Multistart SLSQP. ``starts`` runs: the given ``x0`` first, then the best of
     ``samples`` random candidates (``seed``); on ``executor`` (default
@@ -479,7 +569,8 @@ def synthesize(
     terminated if they have not within :data:`GRACE_S`); the result says ``stopped``.
     Ctrl-C cancels what has not run and stops the default pool at once (a caller's
     executor is the caller's to stop: :func:`stop_pool`), then raises
-    :class:`SynthesisInterrupted` holding the runs that had finished."""
+    :class:`SynthesisInterrupted` holding the runs that had finished.
+    ``gradient``: how SLSQP's derivatives are taken (:func:`run_start`)."""
     if starts < 1:
         raise ValueError(f"starts must be >= 1, got {starts}")
     if samples < 0:
@@ -488,6 +579,7 @@ def synthesize(
         raise ValueError(f"workers must be >= 1, got {workers}")
     if time_limit is not None and not (math.isfinite(time_limit) and time_limit > 0):
         raise ValueError(f"time_limit must be finite and > 0 seconds, got {time_limit}")
+    gradient = resolve_gradient(problem, gradient)
     t0 = time.perf_counter()
     deadline = None if time_limit is None else time.time() + time_limit
     xs = [np.asarray(x, dtype=np.float64) for x in x0][:starts]
@@ -509,6 +601,7 @@ def synthesize(
             screened=screened,
             stopped=stopped,
             seed=seed,
+            gradient=gradient,
         )
 
     def counted(n: int) -> None:
@@ -546,7 +639,14 @@ def synthesize(
                 ex = process_pool(workers)
             for i, (p, x) in enumerate(zip(probs, xs, strict=True)):
                 f = ex.submit(
-                    run_start, p, x, maxiter=maxiter, minimax=minimax, deadline=deadline, index=i
+                    run_start,
+                    p,
+                    x,
+                    maxiter=maxiter,
+                    minimax=minimax,
+                    deadline=deadline,
+                    index=i,
+                    gradient=gradient,
                 )
                 futs[f] = i
         pending = set(futs)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -194,6 +194,11 @@ class DesignSpace:
     def size(self) -> int:
         return 2 * len(self.free)
 
+    @property
+    def coords(self) -> tuple[tuple[str, int], ...]:
+        """The design vector's entries as (point, axis 0 or 1)."""
+        return tuple((p, a) for p in self.free for a in (0, 1))
+
     def x_of(self, points: Mapping[str, Sequence[float]]) -> np.ndarray:
         return np.array([float(points[p][i]) for p in self.free for i in (0, 1)])
 
@@ -249,6 +254,30 @@ class Evaluation:
     det0: float
     ok: bool
     extra: dict[str, Any] = field(default_factory=dict)
+    #: (m, 4 M) the envelope's margins on the dense grid (empty without an envelope)
+    envelope: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+
+
+class Residuals(NamedTuple):
+    """A design's objective and constraints as vectors (``Problem.residuals``), every
+    constraint >= 0 where it holds, on every point of the dense grid (the optimizer
+    hands SLSQP the critical ones: :func:`~planarkin.synthesis.driver.run_start`)."""
+
+    #: dimensionless residuals at the design points (per objective)
+    r: np.ndarray
+    #: (m,) the true error on the dense grid over the target's scale (function targets)
+    dense: np.ndarray
+    #: (m,) the branch constraint s det / det_margin - 1 on the dense grid (failures -1)
+    branch: np.ndarray
+    #: the closed forms' radicands (double butterfly templates) and a PathPoints target's
+    #: order constraint
+    extra: np.ndarray
+    #: (length - min_link) / min_link per pair of joints on one link (1 with no minimum)
+    lengths: np.ndarray
+    #: (m, 4 M) every moving joint inside the envelope at every dense point: margins to
+    #: its four sides over the envelope's size, columns (x to high, x to low, y to high,
+    #: y to low) per joint
+    envelope: np.ndarray
 
 
 @dataclass(frozen=True, init=False)
@@ -265,7 +294,10 @@ class Problem:
     order, its inputs found too). Constraints, all on the real linkage swept by the scene
     solver from the drawn pose: branch (every point of the range solved on the drawn
     assembly, the plan's conditioning keeping the drawn sign with ``det_margin``), order
-    (the input passes the design points in order), link lengths (``min_link``)."""
+    (the input passes the design points in order), link lengths (``min_link``), and
+    with ``envelope`` ((x_low, y_low), (x_high, y_high), scene units) every moving joint
+    inside that box at every point of the dense grid (a packaging space over the whole
+    motion, not only as drawn)."""
 
     space: DesignSpace | SceneSpace
     target: Target
@@ -281,6 +313,8 @@ class Problem:
     closed_form: bool = True
     #: the free joint coordinates of a SceneSpace ("A.x", "A.y", "B" for both)
     free: tuple[str, ...] | None = None
+    #: the box every moving joint stays in over the motion: ((x_low, y_low), (x_high, y_high))
+    envelope: tuple[tuple[float, float], tuple[float, float]] | None = None
 
     def __init__(
         self,
@@ -292,6 +326,7 @@ class Problem:
         signs: tuple[int, int, int] = (1, 1, 1),
         closed_form: bool = True,
         free: Sequence[str] | None = None,
+        envelope: Any = None,
     ) -> None:
         # written out (not the dataclass's): ``space`` may be a Scene, made a SceneSpace
         given = {
@@ -325,6 +360,7 @@ class Problem:
         if not (math.isfinite(self.det_margin) and self.det_margin >= 0):
             raise ValueError(f"det_margin must be finite and >= 0, got {self.det_margin}")
         t = self.target
+        object.__setattr__(self, "envelope", _box(envelope))
         if not isinstance(t, (FunctionTarget, PathTarget, PathPoints)):
             raise ValueError(
                 f"target must be a FunctionTarget, PathTarget or PathPoints, got {type(t).__name__}"
@@ -426,42 +462,13 @@ class Problem:
             return Evaluation(np.full(n, np.nan), nan, nan, math.nan, False)
 
     def _evaluate(self, x: np.ndarray, grid: tuple | None) -> Evaluation:
-        sp = self.space
+        # the whole plan swept (its conditioning covers every step), inputs and outputs
+        # measured from the drawn pose
         t = self.target
         if isinstance(t, PathPoints):
             grid = self.grid(x)  # its input values are design variables
         g, i_des, i_den = grid if grid is not None else self.grid()
-        sc = sp.scene(self.coordinates(x))
-        if isinstance(sp, SceneSpace):
-            return self._evaluate_scene(sc, g, i_des, i_den)
-        tpl = sp.template
-        if isinstance(t, FunctionTarget):
-            link, pivot = tpl.output
-            sw = sc.sweep(sc.input_angle + g, outputs=[link], tol=SWEEP_TOL)
-            pts = sc.points
-            first = next(p for p in tpl.links[link] if p != pivot)
-            a0 = math.atan2(pts[first][1] - pts[pivot][1], pts[first][0] - pts[pivot][0])
-            rot = _wrap(sw.angles[link] - a0)
-            err = rot[i_des] - t.phi_out
-            dense_err = rot[i_den] - t.dense_out
-        else:
-            sw = sc.sweep(sc.input_angle + g, outputs=[t.point], tol=SWEEP_TOL)
-            xy = sw.points[t.point]
-            err = (xy[i_des] - t.xy).ravel()  # x and y deviations: smooth at zero
-            dense_err = np.full(i_den.size, np.nan)
-        ok_all = sw.status == 0
-        det = np.where(ok_all, sw.det, np.nan)
-        i0 = int(np.argmin(np.abs(g)))
-        det0 = float(det[i0])
-        ok = bool(np.all(ok_all))
-        return Evaluation(err, dense_err, det[i_den], det0, ok)
-
-    def _evaluate_scene(
-        self, sc: Scene, g: np.ndarray, i_des: np.ndarray, i_den: np.ndarray
-    ) -> Evaluation:
-        # any scene: the whole plan swept (its conditioning covers every step), inputs
-        # and outputs measured from the drawn pose
-        t = self.target
+        sc = self.space.scene(self.coordinates(x))
         vals = sc.input_angle + g if sc.input_kind == "angle" else g
         sw = sc.sweep(vals, outputs="all", tol=SWEEP_TOL)
         if isinstance(t, FunctionTarget):
@@ -470,12 +477,33 @@ class Problem:
             dense_err = out[i_den] - t.dense_out
         else:
             xy = sw.points[t.point]
-            err = (xy[i_des] - t.xy).ravel()
+            err = (xy[i_des] - t.xy).ravel()  # x and y deviations: smooth at zero
             dense_err = np.full(i_den.size, np.nan)
         ok_all = sw.status == 0
         det = np.where(ok_all, sw.det, np.nan)
         det0 = float(det[int(np.argmin(np.abs(g)))])
-        return Evaluation(err, dense_err, det[i_den], det0, bool(np.all(ok_all)))
+        env = np.zeros((i_den.size, 0))
+        if self.envelope is not None:
+            (xl, yl), (xh, yh) = self.envelope
+            w = max(xh - xl, yh - yl)
+            c = sw.coords[i_den][:, self.moving_indices(sc)]  # (m, M, 2)
+            env = np.stack(
+                [
+                    (xh - c[..., 0]) / w,
+                    (c[..., 0] - xl) / w,
+                    (yh - c[..., 1]) / w,
+                    (c[..., 1] - yl) / w,
+                ],
+                axis=-1,
+            ).reshape(i_den.size, -1)
+            env = np.where(np.isfinite(env), env, -1.0)
+        extra = {"scene": sc, "sweep": sw, "grid": (g, i_des, i_den)}
+        return Evaluation(err, dense_err, det[i_den], det0, bool(np.all(ok_all)), extra, env)
+
+    def moving_indices(self, sc: Scene) -> list[int]:
+        """Indices (in ``sc.points`` order) of the joints that move: the envelope's."""
+        ground = set(sc.links[sc.ground])
+        return [i for i, p in enumerate(sc.points) if p not in ground]
 
     # --- the seed's generated mechanism -------------------------------------------------
 
@@ -493,13 +521,16 @@ class Problem:
 
     # --- objective and constraints as vectors ------------------------------------------
 
-    def residuals(self, x: np.ndarray, grid: tuple | None = None) -> tuple[np.ndarray, ...]:
-        """(r, dense_r, branch, lengths): dimensionless residuals at the design points
-        (per objective) and on the dense grid (true linkage), the branch constraint
-        s det / margin - 1 on the dense grid (failures -1; then the closed forms'
-        radicands, or a PathPoints target's order constraint), the link-length constraint
-        (length - min_link) / min_link (or 1 with no minimum)."""
-        ev = self.evaluate(x, grid)
+    def residuals(self, x: np.ndarray, grid: tuple | None = None) -> Residuals:
+        """The objective and constraints at ``x`` as vectors (:class:`Residuals`): residuals
+        at the design points (per objective) and on the dense grid (true linkage), the
+        branch constraint s det / margin - 1 on the dense grid (failures -1), the closed
+        forms' radicands or a PathPoints target's order, the link lengths, the envelope."""
+        x = np.asarray(x, dtype=np.float64)
+        return self.residuals_of(x, self.evaluate(x, grid))
+
+    def residuals_of(self, x: np.ndarray, ev: Evaluation) -> Residuals:
+        """:meth:`residuals` from ``ev``, the evaluation of ``x``."""
         scale = self.target.scale
         s = 1.0 if not math.isfinite(ev.det0) or ev.det0 >= 0 else -1.0
         m = max(self.det_margin, 1e-12)
@@ -513,29 +544,65 @@ class Problem:
             e = (g.theta - self.target.phi_out) / scale  # type: ignore[union-attr]
             one_k = np.where(np.abs(1 - g.k) > 1e-3, 1 - g.k, 1e-3)
             r = e if self.objective == "generated" else e / one_k
+        r = np.where(np.isfinite(r), r, 1.0)
+        dense = np.where(np.isfinite(ev.dense_err), ev.dense_err / scale, 1.0)
+        env = ev.envelope
+        if self.envelope is not None and env.size == 0:  # a drawing that could not be planned
+            env = np.full((branch.size, 4 * self.moving_count), -1.0)
+        return Residuals(r, dense, branch, self.extra_constraints(x), self.lengths(x), env)
+
+    @property
+    def moving_count(self) -> int:
+        """How many joints move (the envelope holds 4 margins for each)."""
+        sp = self.space
+        ground = set(sp.links[_ground_name(sp)])
+        return sum(1 for p in sp.points if p not in ground)
+
+    def extra_constraints(self, x: np.ndarray) -> np.ndarray:
+        """The closed forms' radicands (double butterfly templates with ``closed_form``) and
+        a PathPoints target's order constraint (no sweep needed)."""
+        out = []
+        t = self.target
         if (
             self.closed_form
-            and isinstance(self.target, FunctionTarget)
+            and isinstance(t, FunctionTarget)
             and isinstance(self.space, DesignSpace)
         ):
             # every closed form assemblable with a margin on the dense grid (its radicands),
             # so that the generated mechanism stays on the drawn branch of each loop
-            t = self.target
-            plan = SeedPlan(self.space.template, self.space.points_of(x))
+            plan = SeedPlan(self.space.template, self.space.points_of(self.coordinates(x)))
             gd = plan.generated(t.dense_in, t.dense_out, self.signs, with_k=False)
             rm = max(self.radicand_margin, 1e-12)
-            branch = np.concatenate([branch, (gd.radicand.ravel() - rm) / rm])
-        if isinstance(self.target, PathPoints):
+            out.append((gd.radicand.ravel() - rm) / rm)
+        if isinstance(t, PathPoints):
             # order: each point's input at least order_margin past the one before
-            om = self.target.order_margin
-            branch = np.concatenate([branch, np.diff(self.inputs(x)) / om - 1.0])
-        r = np.where(np.isfinite(r), r, 1.0)
-        dense = np.where(np.isfinite(ev.dense_err), ev.dense_err / scale, 1.0)
+            out.append(np.diff(self.inputs(x)) / t.order_margin - 1.0)
+        return np.concatenate(out) if out else np.zeros(0)
+
+    def lengths(self, x: np.ndarray) -> np.ndarray:
+        """The link-length constraint (length - min_link) / min_link (1 with no minimum)."""
         pts = self.space.points_of(self.coordinates(x))
         ml = self.space.min_link
         lengths = self.space.lengths(pts)
-        lc = (lengths - ml) / ml if ml > 0 else np.ones_like(lengths)
-        return r, dense, branch, lc
+        return (lengths - ml) / ml if ml > 0 else np.ones_like(lengths)
+
+
+def _ground_name(sp: DesignSpace | SceneSpace) -> str:
+    return sp.template.ground if isinstance(sp, DesignSpace) else sp.drawn.ground
+
+
+def _box(envelope: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    if envelope is None:
+        return None
+    try:
+        (xl, yl), (xh, yh) = ((float(a), float(b)) for a, b in envelope)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"envelope must be ((x_low, y_low), (x_high, y_high)), got {envelope!r}"
+        ) from None
+    if not all(math.isfinite(v) for v in (xl, yl, xh, yh)) or not (xl < xh and yl < yh):
+        raise ValueError(f"envelope must be finite with low < high on both axes, got {envelope!r}")
+    return (xl, yl), (xh, yh)
 
 
 def output_from_drawn(sc: Scene, output: np.ndarray | None) -> np.ndarray:

@@ -121,7 +121,7 @@ def verify(problem: Problem, x: np.ndarray, dense: int = 1001) -> dict[str, Any]
     on ``dense`` points over the range (``sweep_converged``: every point solved), the
     generated error of the seed's closed form on the linkage's own roots with k (and
     where, and with what error, the drawn signs held fixed would change root), branch and
-    conditioning, link ratio, the bounding box."""
+    conditioning, link ratio, the bounding box as drawn and over the whole motion."""
     t = problem.target
     if not isinstance(t, FunctionTarget):
         raise ValueError("verify needs a function-generation target")
@@ -148,6 +148,8 @@ def verify(problem: Problem, x: np.ndarray, dense: int = 1001) -> dict[str, Any]
     changes = np.any(used != np.asarray(fixed.signs, dtype=np.int8), axis=1)
     eg = g.theta - t.phi_out
     xy = np.array(list(pts.values()))
+    # every joint over the whole motion (the packaging envelope), on the dense grid
+    motion = sc.sweep(sc.input_angle + grid, outputs="all", tol=1e-12).coords
     return {
         "generated_max_error_deg": float(np.degrees(np.max(np.abs(eg)))),
         "generated_rms_over_range": float(np.sqrt(np.mean(eg**2)) / t.scale),
@@ -174,6 +176,8 @@ def verify(problem: Problem, x: np.ndarray, dense: int = 1001) -> dict[str, Any]
         "longest_link": float(link_lengths(pts, sp.template).max()),
         "max_abs_x": float(np.max(np.abs(xy[:, 0]))),
         "max_abs_y": float(np.max(np.abs(xy[:, 1]))),
+        "motion_max_abs_x": float(np.nanmax(np.abs(motion[..., 0]))),
+        "motion_max_abs_y": float(np.nanmax(np.abs(motion[..., 1]))),
     }
 
 

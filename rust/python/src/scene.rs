@@ -110,6 +110,37 @@ impl PyScene {
         Ok(grid(py, pts.len(), 2 * nf, out))
     }
 
+    /// Derivatives of the signed conditioning of `plan(outputs)` at the poses `points`
+    /// (N * P, 2) whose derivatives `dpoints` (N * P * 2 * F, `pose_gradient`'s result
+    /// flattened) are given: (N, F), NaN where a pose is not finite.
+    #[pyo3(signature = (points, dpoints, free, outputs=None))]
+    fn dets_gradient<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'py, f64>,
+        dpoints: PyReadonlyArray1<'py, f64>,
+        free: Vec<(usize, usize)>,
+        outputs: Option<Vec<String>>,
+    ) -> PyResult<Arr2<'py, f64>> {
+        let np = self.inner.point_names().len();
+        let pts = points_of("points", &points)?;
+        let nf = free.len();
+        if np == 0 || pts.len() % np != 0 {
+            return Err(PyValueError::new_err(format!("points must hold whole poses of {np} points")));
+        }
+        let d = slice("dpoints", &dpoints)?;
+        if d.len() != pts.len() * 2 * nf {
+            return Err(PyValueError::new_err(format!(
+                "dpoints must hold {} values, the derivatives of points",
+                pts.len() * 2 * nf
+            )));
+        }
+        let n = pts.len() / np;
+        let mut out = zeros("conditioning gradients", n * nf)?;
+        py.detach(|| self.inner.dets_gradient(outputs.as_deref(), &pts, d, &free, &mut out)).map_err(err)?;
+        Ok(grid(py, n, nf, out))
+    }
+
     /// Circuits at `theta`: (assemblies as in `assemblies`, counts, failed,
     /// [(assembly indices, turning points, net turn, (lo, hi), trace)]).
     #[pyo3(signature = (theta, seed, runs, step, max_points))]

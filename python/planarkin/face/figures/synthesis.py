@@ -1,6 +1,7 @@
 """The seed's figures of a synthesized function generator (``planarkin synthesize``): the
 true and generated output error against the input, the conditioning along the range and
-the linkage at several input angles."""
+the linkage at several input angles, and accuracy against tolerance sensitivity of the
+designs a search found."""
 
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ from ...synthesis.verify import output_rotation
 from .. import draw
 from .scene import ground_size
 
-__all__ = ["conditioning", "error", "linkage"]
+__all__ = ["conditioning", "error", "linkage", "tolerance"]
 
 
 def error(problem: Problem, x: np.ndarray, dense: int = 1001) -> Figure:
@@ -141,4 +142,27 @@ def linkage(problem: Problem, x: np.ndarray, angles_deg: Any = None) -> Figure:
         ax.set_xlim(x0, x1)
         ax.set_ylim(y0, y1)
         ax.grid(alpha=0.2)
+    return fig
+
+
+def tolerance(
+    runs: list[tuple[int, float, float]], shipped: dict[str, int], sigma: float
+) -> Figure:
+    """Accuracy against tolerance sensitivity of the verified designs of a search: each
+    run's nominal true max error against its linearised 95th percentile at joint noise
+    ``sigma``; ``shipped`` names the runs written (name -> start index)."""
+    fig = Figure(figsize=(5.6, 4.2), layout="constrained")
+    ax = fig.add_subplot(1, 1, 1)
+    for i, nominal, p95 in runs:
+        ax.loglog(nominal, p95, "o", color="0.6", ms=5)
+        ax.annotate(str(i), (nominal, p95), fontsize=7, xytext=(3, 3), textcoords="offset points")
+    for (name, i), c in zip(shipped.items(), ("C0", "C3"), strict=False):
+        hit = [(n, p) for j, n, p in runs if j == i]
+        if hit:
+            ax.loglog(*hit[0], "o", color=c, ms=9, mfc="none", mew=2, label=f"{name} (start {i})")
+    ax.set_xlabel("nominal true max error [deg]")
+    ax.set_ylabel(f"95th percentile at joint noise {sigma:g} [deg]")
+    ax.set_title("accuracy against tolerance sensitivity", fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
     return fig

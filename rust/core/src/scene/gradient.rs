@@ -17,6 +17,10 @@ use super::vec2::{perp, sub, Xy};
 use super::Scene;
 use crate::error::Error;
 
+/// Step of [`Scene::dets_gradient`]'s central difference, in solving-frame units (the
+/// drawing's size is about 1 there).
+pub const DET_STEP: f64 = 1e-5;
+
 /// A free design variable: a point's drawn x (0) or y (1).
 pub type Free = (usize, usize);
 
@@ -68,6 +72,57 @@ impl Scene {
         for (pose, o) in poses.chunks(np).zip(out.chunks_mut(np * 2 * nf)) {
             if !self.gradient_into(&layout, pose, nf, o) {
                 o.fill(f64::NAN);
+            }
+        }
+        Ok(())
+    }
+
+    /// Derivatives of the signed conditioning that `plan(outputs)` reports (a sweep's
+    /// `det`, the product of its steps') at N solved poses, by the free drawn coordinates:
+    /// `out[n * F + f]`. `poses` holds N * P points (scene units) and `dpos` their
+    /// derivatives from [`Scene::poses_gradient`] (N * P * 2 * F). The conditioning is a
+    /// function of the drawing and the pose; it is differentiated along the exact tangent:
+    /// a central difference (step [`DET_STEP`] of the solving frame) of the conditioning of
+    /// the redrawn plan at the pose moved by the exact derivative, so no sweep is repeated
+    /// and the error is O(step^2). NaN where a pose or its derivative is not finite.
+    pub fn dets_gradient(
+        &self,
+        outputs: Option<&[String]>,
+        poses: &[Xy],
+        dpos: &[f64],
+        free: &[Free],
+        out: &mut [f64],
+    ) -> Result<(), Error> {
+        self.layout(free, true)?; // the same scenes as the pose gradient (and the checks)
+        let (np, nf) = (self.names.len(), free.len());
+        if np == 0 || nf == 0 {
+            return Ok(());
+        }
+        let n = poses.len() / np;
+        if !poses.len().is_multiple_of(np) || dpos.len() != poses.len() * 2 * nf || out.len() != n * nf {
+            return Err(Error::Shape { name: "poses".into(), got: out.len(), expected: n * nf });
+        }
+        let frame: Vec<Xy> = poses.iter().map(|&p| self.to_frame(p)).collect();
+        let h = DET_STEP;
+        let mut moved = vec![[0.0; 2]; np];
+        for (f, &(p, k)) in free.iter().enumerate() {
+            let mut dets = [vec![0.0; n], vec![0.0; n]];
+            for (side, sg) in [1.0, -1.0].into_iter().enumerate() {
+                let mut sc = self.clone();
+                sc.xy[p][k] += sg * h;
+                sc.drawn[p][k] += sg * h * self.scale;
+                let plan = sc.plan(outputs)?;
+                for (i, pose) in frame.chunks(np).enumerate() {
+                    for (q, (m, x)) in moved.iter_mut().zip(pose).enumerate() {
+                        for c in 0..2 {
+                            m[c] = x[c] + sg * h * dpos[((i * np + q) * 2 + c) * nf + f];
+                        }
+                    }
+                    dets[side][i] = plan.dets_at(&moved).0;
+                }
+            }
+            for (i, o) in out.iter_mut().skip(f).step_by(nf).enumerate() {
+                *o = (dets[0][i] - dets[1][i]) / (2.0 * h * self.scale);
             }
         }
         Ok(())

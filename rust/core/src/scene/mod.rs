@@ -29,7 +29,7 @@ mod vec2;
 use std::collections::HashMap;
 
 pub use assemble::{Assemblies, Assembly};
-pub use gradient::Free;
+pub use gradient::{Free, DET_STEP};
 pub use options::{SceneSweepOptions, SceneSweepOut};
 pub use plan::{Plan, StepInfo, StepKind};
 pub use sketch::{assemble_sketch, LengthSpec, Sketched, MAX_SKETCH_POINTS};
