@@ -67,3 +67,35 @@ def test_bad_input():
         linearized_tolerance(sc, t.dense_in, t.dense_out, sigmas=(0.0,))
     with pytest.raises(ValueError, match="samples must be >= 1"):
         linearized_tolerance(sc, t.dense_in, t.dense_out, samples=0)
+
+
+def test_tolerance_aware_objective_is_the_linearized_p95():
+    from planarkin.synthesis.exact import subgrid
+    from planarkin.synthesis.robust import p95_objective
+
+    p = ackermann.problem()
+    sc = _steering()
+    x = p.space.x_of(sc.points)
+    f = p95_objective(p, 1e-4, samples=300, seed=4, grid=101)
+    t = p.target
+    phi = t.dense_in[subgrid(t.dense_in.size, 101)]
+    noise = np.random.default_rng(4).standard_normal((300, 2 * len(sc.points)))
+    lin = linearized_tolerance(sc, phi, t.function(phi), sigmas=(1e-4,), noise=noise)[0]
+    assert np.degrees(f(x) * t.scale) == pytest.approx(lin["p95_max_error_deg"], rel=1e-12)
+
+
+def test_robust_start_returns_a_verified_design_no_worse_than_its_start():
+    import math
+
+    from planarkin.synthesis.driver import _feasible, figures
+    from planarkin.synthesis.robust import p95_objective, robust_start
+
+    p = ackermann.problem()
+    x0 = p.space.x_of(_steering().points)
+    deg = math.degrees(p.target.scale)
+    budget = 0.002
+    x, info = robust_start(p, x0, 1e-4, budget / deg, maxiter=15)
+    f = p95_objective(p, 1e-4)
+    assert f(x) <= f(x0) and info["p95_end"] <= info["p95_start"]
+    assert _feasible(p, x)
+    assert figures(p, x)["max_error"] * deg <= budget * (1 + 1e-6)
