@@ -348,6 +348,23 @@ def scene_targets(bench: Bench) -> list[tuple[str, str, str, str]]:
                 "-",
             )
         )
+    for what, key in (
+        ("synthesis: the residuals' derivatives at one steering design, exact vs fd", "rows"),
+        ("synthesis: one SLSQP start (60 iterations), exact vs fd", "start"),
+    ):
+        ex, fd = bench.median(f"synth_{key}_exact"), bench.median(f"synth_{key}_fd")
+        if ex and fd:
+            out.append((what, f"{_t(ex)} vs {_t(fd)}", f"{fd / ex:.1f}x faster", "-"))
+    ex, fd = bench.median("synth_cli_exact"), bench.median("synth_cli_fd")
+    if ex and fd:
+        out.append(
+            (
+                "planarkin synthesize ackermann --starts 2: exact >= 8x faster than fd (issue 19)",
+                f"{_t(ex)} vs {_t(fd)}",
+                f"{fd / ex:.1f}x faster",
+                _verdict(fd / ex >= 8),
+            )
+        )
     one, full = bench.median("scene_plan_first_dyad"), bench.median("scene_plan_all")
     if one and full:
         out.append(

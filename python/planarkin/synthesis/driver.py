@@ -14,7 +14,14 @@ import threading
 import time
 import warnings
 from collections.abc import Callable, Sequence
-from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExecutor, wait
+from concurrent.futures import (
+    FIRST_COMPLETED,
+    Executor,
+    Future,
+    ProcessPoolExecutor,
+    as_completed,
+    wait,
+)
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -387,6 +394,61 @@ def _coarse(problem: Problem) -> Problem:
     return replace(problem, target=replace(t, dense_in=t.dense_in[keep]))
 
 
+def _screen_chunk(
+    lite: Problem, grid: tuple, xs: list[np.ndarray], deadline: float | None
+) -> tuple[list[float | None], int]:
+    """RMS residual of each candidate that passes the screen (None: rejected, or not
+    screened before ``deadline``), and how many were screened."""
+    out: list[float | None] = []
+    for x in xs:
+        if deadline is not None and time.time() >= deadline:
+            break
+        r, _, br, extra, lc, _ = lite.residuals(x, grid)
+        ok = np.all(br > -1.0) and np.all(extra > -1.0) and np.all(lc >= 0)
+        out.append(float(np.sqrt(np.mean(r**2))) if ok else None)
+    n = len(out)
+    return out + [None] * (len(xs) - n), n
+
+
+def _screen_on(
+    ex: Executor,
+    problem: Problem,
+    n_samples: int,
+    n_keep: int,
+    rng: np.random.Generator,
+    sampler: Callable[[np.random.Generator], np.ndarray] | None,
+    deadline: float | None,
+    progress: Callable[[int], object] | None,
+    track: set[Future],
+) -> tuple[list[tuple[float, np.ndarray]], int]:
+    # _screen on the executor: the candidates drawn here in order, screened in chunks by
+    # the workers, ranked by (RMS, order drawn): the same starts as _screen, whatever the
+    # workers' number or the order they finish in
+    lite = _coarse(replace(problem, objective="true", envelope=None))
+    grid = lite.grid()
+    xs = [
+        sampler(rng) if sampler is not None else rng.uniform(problem.lower, problem.upper)
+        for _ in range(n_samples)
+    ]
+    with _SigintDeferred():
+        subs = {
+            ex.submit(_screen_chunk, lite, grid, xs[k : k + SCREEN_CHUNK], deadline): k
+            for k in range(0, len(xs), SCREEN_CHUNK)
+        }
+        track.update(subs)
+    rms: list[float | None] = [None] * len(xs)
+    done = 0
+    for f in as_completed(subs):
+        k = subs[f]
+        got, n = f.result()
+        rms[k : k + len(got)] = got
+        done += n
+        if progress is not None and n:
+            progress(n)
+    found = sorted((v, i) for i, v in enumerate(rms) if v is not None)
+    return [(v, xs[i]) for v, i in found[:n_keep]], done
+
+
 def _screen(
     problem: Problem,
     n_samples: int,
@@ -614,15 +676,23 @@ def synthesize(
     own = executor is None
     ex: Executor | None = executor
     futs: dict[Future, int] = {}
+    screens: set[Future] = set()
     pending: set[Future] = set()
     stopped = ""
     try:
         if need > 0:
             rng = np.random.default_rng(seed)
-            found, _ = _screen(problem, samples, need, rng, sampler, deadline, counted)
+            if ex is None:
+                with _SigintDeferred():
+                    ex = process_pool(workers)
+            found, _ = _screen_on(
+                ex, problem, samples, need, rng, sampler, deadline, counted, screens
+            )
             xs += [x for _, x in found]
         if not xs:
             if deadline is not None and time.time() >= deadline:
+                if own and ex is not None:
+                    ex.shutdown()
                 return result(TIME_LIMIT)
             raise ValueError(
                 "no start: none of the random samples moves through the range on one branch "
@@ -672,12 +742,12 @@ def synthesize(
                 if progress is not None:
                     progress(runs[i])
     except KeyboardInterrupt:
-        _abandon(futs, ex if own else None)
+        _abandon([*futs, *screens], ex if own else None)
         raise SynthesisInterrupted(result(INTERRUPTED)) from None
     except BaseException:
         # what has not run is not run; an own pool is stopped at once, a caller's
         # executor is left to the caller
-        _abandon(futs, ex if own else None)
+        _abandon([*futs, *screens], ex if own else None)
         raise
     if own and ex is not None:
         if pending:
