@@ -216,3 +216,34 @@ def test_a_scene_problem_runs_on_worker_processes():
                      minimax=False)  # fmt: skip
     assert [r.index for r in res.runs] == [0, 1] and res.best is not None
     assert res.best.converged and res.best.max_error < 1e-6
+
+
+def test_watt_six_bar_function_generator_recovers_a_reachable_function():
+    # the target: the drawn Watt II's own output rotation against its input rotation,
+    # from the NumPy reference (not the Rust solver); C and D moved off it, synthesis by
+    # exact gradients (and by forward differences) brings the real linkage back onto it
+    from planarkin.reference import scene_sweep
+
+    truth = pk.scenes.load("watt2")
+    phi = np.radians(np.linspace(0.0, 300.0, 11))
+    dense = np.radians(np.linspace(0.0, 300.0, 61))
+
+    def out_of(t: np.ndarray) -> np.ndarray:
+        # the rocker O6-D's rotation from its drawn angle
+        sw = scene_sweep(truth.to_dict(), truth.input_angle + t)
+        v = sw.points["D"] - sw.points["O6"]
+        o6, dd = truth.points["O6"], truth.points["D"]
+        a = np.arctan2(v[:, 1], v[:, 0]) - math.atan2(dd[1] - o6[1], dd[0] - o6[0])
+        return np.angle(np.exp(1j * a))
+
+    target = FunctionTarget(phi, out_of(phi), dense, out_of(dense))
+    d = truth.to_dict()
+    d["points"]["C"] = [d["points"]["C"][0] + 0.3, d["points"]["C"][1] - 0.2]
+    d["points"]["D"] = [d["points"]["D"][0] - 0.2, d["points"]["D"][1] + 0.3]
+    p = Problem(pk.Scene.from_dict(d), free=["C", "D"], target=target, det_margin=1e-3)
+    assert np.max(np.abs(p.residuals(p.x0).r)) > 1e-3  # the start is well off
+    for gradient in ("exact", "fd"):
+        res = run_start(p, p.x0, minimax=False, gradient=gradient)
+        assert res.feasible, gradient
+        v = verify_scene(p, res.x)
+        assert v["verified"] and v["max_error"] < 1e-7, (gradient, v["max_error"])

@@ -27,6 +27,7 @@ from .problem import (
     PathPoints,
     PathTarget,
     Problem,
+    Residuals,
 )
 from .space import SceneSpace
 from .topology import (
@@ -40,6 +41,7 @@ from .topology import (
     admissible_loop_choices,
     loops,
 )
+from .robust import linearized_tolerance, robust_start
 from .verify import linear_sensitivity, tolerance_sensitivity, true_error, verify, verify_scene
 
 __all__ = [
@@ -56,6 +58,7 @@ __all__ = [
     "LoopChoice",
     "PathPoints",
     "PathTarget",
+    "Residuals",
     "Problem",
     "SceneSpace",
     "SeedPlan",
@@ -67,8 +70,10 @@ __all__ = [
     "admissible_loop_choices",
     "half_angle",
     "linear_sensitivity",
+    "linearized_tolerance",
     "loops",
     "process_pool",
+    "robust_start",
     "run_start",
     "stop_pool",
     "synthesize",
