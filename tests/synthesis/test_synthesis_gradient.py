@@ -142,3 +142,18 @@ def test_both_gradients_reach_an_envelope_design_from_one_start():
         assert r.max_error * deg < 0.01, (g, r.max_error * deg)
         assert p.residuals(r.x).envelope.min() >= -1e-6
     assert got["exact"].max_error <= 2 * got["fd"].max_error
+
+
+def test_dets_gradient_checks_its_input():
+    sc = pk.scenes.load("fourbar")
+    sw = sc.sweep(sc.input_angle + np.array([0.0, 0.1]), outputs="all")
+    pts = np.ascontiguousarray(sw.coords.reshape(-1, 2))
+    dp = sc._core.pose_gradient(pts, [(2, 0)], True)
+    with pytest.raises(ValueError, match="dpoints must hold"):
+        sc._core.dets_gradient(pts, dp.ravel()[:-1], [(2, 0)], None)
+    with pytest.raises(ValueError, match="points must hold whole poses"):
+        sc._core.dets_gradient(pts[:-1], dp.ravel(), [(2, 0)], None)
+    with pytest.raises(ValueError, match="unknown|no point|output"):
+        sc._core.dets_gradient(pts, dp.ravel(), [(2, 0)], ["nowhere"])
+    out = sc._core.dets_gradient(pts, dp.ravel(), [(2, 0)], None)
+    assert out.shape == (2, 1) and np.all(np.isfinite(out))

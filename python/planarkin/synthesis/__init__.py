@@ -29,6 +29,7 @@ from .problem import (
     Problem,
     Residuals,
 )
+from .robust import linearized_tolerance, robust_start
 from .space import SceneSpace
 from .topology import (
     STEERING_KNUCKLE,
@@ -41,7 +42,6 @@ from .topology import (
     admissible_loop_choices,
     loops,
 )
-from .robust import linearized_tolerance, robust_start
 from .verify import linear_sensitivity, tolerance_sensitivity, true_error, verify, verify_scene
 
 __all__ = [
