@@ -6,6 +6,8 @@ not depend on what else the machine is doing, unlike timings on a shared 2-core 
     python benches/profile.py batch         # sweep_batch, 200 random linkages, 1 thread
     python benches/profile.py closed_form   # closed_form_batch, 200 linkages, 1 thread
     python benches/profile.py numpy_cf      # the NumPy vectorized closed form, same batch
+    python benches/profile.py group         # double-butterfly-1's sweep (a 6x6 group), 361 angles
+    python benches/profile.py jansen        # Jansen's leg, the foot requested, 361 angles
 
 For cycles rather than instructions: ``perf record -g python benches/profile.py batch --run 20``
 then ``perf report --no-children``.
@@ -34,11 +36,17 @@ def workload(kind: str, reps: int) -> int:
     links = np.vstack([[6.0, 2.0, 5.0, 5.0], random_crank_rockers(M - 1, seed=2024)])
     fb = pk.FourBar(6.0, 2.0, 5.0, 5.0)
     cols = [links[:, k : k + 1] for k in range(4)]
+    db = pk.scenes.load("double-butterfly-1")
+    db_theta = db.input_angle + np.radians(np.arange(361.0))
+    jansen = pk.scenes.load("jansen")
+    j_theta = jansen.input_angle + np.radians(np.arange(361.0))
     calls = {
         "seed": (lambda: fb.sweep(), 361),
         "batch": (lambda: pk.sweep_batch(links, threads=1), M * 361),
         "closed_form": (lambda: pk.closed_form_batch(links, threads=1), M * 361),
         "numpy_cf": (lambda: closed_form_vectorized(*cols, pk.DEFAULT_THETA2), M * 361),
+        "group": (lambda: db.sweep(db_theta), 361),
+        "jansen": (lambda: jansen.sweep(j_theta, outputs=["foot"]), 361),
     }
     fn, points = calls[kind]
     fn()
@@ -69,11 +77,11 @@ def _profile(kind: str, reps: int, tmp: str) -> dict[str, int]:
 def callgrind(kind: str) -> None:
     """Profiles 1 and 1 + REPS repetitions and prints the difference per point, so the
     interpreter start-up, imports and warm-up cancel out."""
-    reps = REPS * (100 if kind == "seed" else 1)
+    reps = REPS * {"seed": 100, "group": 10, "jansen": 100}.get(kind, 1)
     with tempfile.TemporaryDirectory() as tmp:
         base = _profile(kind, 1, tmp)
         full = _profile(kind, 1 + reps, tmp)
-    per = {"seed": 361, "batch": M * 361, "closed_form": M * 361, "numpy_cf": M * 361}[kind]
+    per = {"seed": 361, "group": 361, "jansen": 361}.get(kind, M * 361)
     points = per * reps
     diff = {k: v - base.get(k, 0) for k, v in full.items()}
     total = diff.pop("PROGRAM TOTALS", sum(diff.values()))
@@ -89,7 +97,7 @@ def callgrind(kind: str) -> None:
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    if not args or args[0] not in ("seed", "batch", "closed_form", "numpy_cf"):
+    if not args or args[0] not in ("seed", "batch", "closed_form", "numpy_cf", "group", "jansen"):
         print(__doc__)
         sys.exit(2)
     if "--run" in args:

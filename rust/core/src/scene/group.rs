@@ -725,7 +725,19 @@ impl Group {
         guess: &[f64],
         opts: &NewtonOptions,
     ) -> GroupSolve {
-        dispatch!(self.n(), solve_n, self, anchors, anchor_vel, guess, opts)
+        dispatch!(self.n(), solve_n, self, anchors, anchor_vel, guess, opts, false)
+    }
+
+    /// [`Group::solve`] that gives up where Newton's residual stalls
+    /// ([`newton::solve_or_stall`]): near a dead point, where a step past it has no root.
+    pub(super) fn solve_or_stall(
+        &self,
+        anchors: &[Xy],
+        anchor_vel: Option<&[Xy]>,
+        guess: &[f64],
+        opts: &NewtonOptions,
+    ) -> GroupSolve {
+        dispatch!(self.n(), solve_n, self, anchors, anchor_vel, guess, opts, true)
     }
 
     /// Visits each node with its term's multiplier and arm.
@@ -792,24 +804,43 @@ impl Group {
         [turn[0] + sd[0], turn[1] + sd[1]]
     }
 
-    /// Velocities of the nodes (per unit input rate) from the anchors' positions and
-    /// velocities and the unknowns' rates.
-    pub(super) fn place_velocity(
+    /// Positions (as [`Group::place`] gives them, bit for bit) and velocities (per unit
+    /// input rate, from the anchors' velocities and the unknowns' rates `dx`) of the nodes
+    /// in one pass: one sine and cosine per rotation, and no allocation for a group of up
+    /// to 32 points (a sweep's every solved angle).
+    pub(super) fn place_moving(
         &self,
         x: &[f64],
         dx: &[f64],
         anchors: &[Xy],
         anchor_vel: &[Xy],
-        mut put: impl FnMut(usize, Xy),
+        mut put: impl FnMut(usize, Xy, Xy),
     ) {
-        let mut vel: Vec<Xy> = anchor_vel.to_vec();
-        self.each_node(x, anchors, |_, nd, m, arm| {
-            let r = Self::term_rate(&nd.term, m, arm, dx, anchor_vel);
-            let vb = vel[nd.base];
-            let v = [vb[0] + r[0], vb[1] + r[1]];
-            vel.push(v);
-            put(nd.point, v);
-        });
+        const SMALL: usize = 32;
+        let mut cs = [[0.0; 2]; MAX];
+        for (c, a) in cs.iter_mut().zip(&x[..self.nrot]) {
+            *c = cs_of(*a);
+        }
+        let total = anchors.len() + self.nodes.len();
+        let (mut pbuf, mut vbuf) = ([[0.0; 2]; SMALL], [[0.0; 2]; SMALL]);
+        let mut heap: (Vec<Xy>, Vec<Xy>);
+        let (pos, vel): (&mut [Xy], &mut [Xy]) = if total <= SMALL {
+            (&mut pbuf[..total], &mut vbuf[..total])
+        } else {
+            heap = (vec![[0.0; 2]; total], vec![[0.0; 2]; total]);
+            (&mut heap.0, &mut heap.1)
+        };
+        pos[..anchors.len()].copy_from_slice(anchors);
+        vel[..anchors.len()].copy_from_slice(anchor_vel);
+        for (k, nd) in (anchors.len()..).zip(&self.nodes) {
+            let (m, arm) = (nd.term.m(&cs[..self.nrot], anchors), nd.term.arm(x));
+            let r = cmul(m, arm);
+            let (b, vb) = (pos[nd.base], vel[nd.base]);
+            pos[k] = [b[0] + r[0], b[1] + r[1]];
+            let w = Self::term_rate(&nd.term, m, arm, dx, anchor_vel);
+            vel[k] = [vb[0] + w[0], vb[1] + w[1]];
+            put(nd.point, pos[k], vel[k]);
+        }
     }
 
     /// Accelerations of the nodes (per unit input rate squared), from the anchors'
@@ -942,10 +973,11 @@ fn solve_n<const N: usize>(
     anchor_vel: Option<&[Xy]>,
     guess: &[f64],
     opts: &NewtonOptions,
+    stall: bool,
 ) -> GroupSolve {
     let sys = At { g, anchors };
     let x0 = SVector::<f64, N>::from_fn(|k, _| guess[k]);
-    let out = newton::solve(&sys, x0, opts, None);
+    let out = if stall { newton::solve_or_stall(&sys, x0, opts) } else { newton::solve(&sys, x0, opts, None) };
     let mut phi = [f64::NAN; MAX];
     let mut dphi = [f64::NAN; MAX];
     // (the signed Hadamard ratio of the last Jacobian, from the last step's elimination)

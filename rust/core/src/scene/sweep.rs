@@ -33,8 +33,12 @@ const CERTIFIED: f64 = 0.05;
 /// Largest group whose assemblies are counted (by the homotopy) to tell LIMIT from
 /// NOT_ASSEMBLABLE at the angles a sweep does not reach.
 const CLASSIFIED_GROUP: usize = 4;
-/// How many times a failing continuation step is halved.
+/// A failing continuation step is split until it is `2^-MAX_HALVINGS` of its length (by
+/// halving, or sooner where a group nearing a dead point predicts it).
 const MAX_HALVINGS: u32 = 16;
+/// At most this many splits of one failing step are aimed at a predicted dead point; the
+/// rest halve.
+const AIMED_SPLITS: u32 = 12;
 /// Newton steps per continuation step before it is halved (at most the user's max_iter).
 const STEP_ITER: u32 = 5;
 /// A converged group whose rotations moved more than this from the prediction (with a
@@ -133,6 +137,9 @@ struct Tangent {
     theta: f64,
     phi: [f64; MAX],
     dphi: [f64; MAX],
+    /// The conditioning there (its square falls linearly to a dead point: see
+    /// [`Solver::split`]).
+    det: f64,
 }
 
 /// Continuation state of one group.
@@ -216,6 +223,13 @@ struct Solver<'p> {
     last_eval: f64,
     /// Length of the continuation step being taken (infinite outside `reach`).
     step: f64,
+    /// The anchors' positions and rates of the group being solved (buffers kept).
+    anchor_pos: Vec<Xy>,
+    anchor_vel: Vec<Xy>,
+    /// Aimed splits left to the failing step being split (see [`Solver::split`]).
+    aimed_left: u32,
+    /// The solution (its input value) the last aimed split was predicted from.
+    aimed_from: f64,
 }
 
 impl<'p> Solver<'p> {
@@ -268,6 +282,10 @@ impl<'p> Solver<'p> {
             nit: 0,
             last_eval: f64::NAN,
             step: f64::INFINITY,
+            anchor_pos: Vec::new(),
+            anchor_vel: Vec::new(),
+            aimed_left: 0,
+            aimed_from: f64::NAN,
         };
         for &(p, xy) in &plan.fixed {
             s.pos[p] = xy;
@@ -478,6 +496,15 @@ impl<'p> Solver<'p> {
     }
 
     fn group(&mut self, i: usize, theta: f64) -> (Status, f64) {
+        // the anchors' positions and rates, in buffers kept from angle to angle
+        let (mut anchors, mut anchor_vel) =
+            (std::mem::take(&mut self.anchor_pos), std::mem::take(&mut self.anchor_vel));
+        let r = self.group_with(i, theta, &mut anchors, &mut anchor_vel);
+        (self.anchor_pos, self.anchor_vel) = (anchors, anchor_vel);
+        r
+    }
+
+    fn group_with(&mut self, i: usize, theta: f64, anchors: &mut Vec<Xy>, anchor_vel: &mut Vec<Xy>) -> (Status, f64) {
         let Op::Group(g) = &self.plan.ops[i] else { unreachable!("op {i} is a group") };
         let n = g.n();
         let state = self.groups[i].expect("a group has a state");
@@ -487,21 +514,32 @@ impl<'p> Solver<'p> {
             }
         }
         let guess = state.predict(theta, g, self.opts.max_step);
-        let anchors: Vec<Xy> = g.anchors.iter().map(|&a| self.pos[a]).collect();
-        let anchor_vel: Vec<Xy> = g.anchors.iter().map(|&a| self.vel[a]).collect();
-        let solve = |guess: &[f64], opts: &NewtonOptions| g.solve(&anchors, Some(&anchor_vel), guess, opts);
+        anchors.clear();
+        anchors.extend(g.anchors.iter().map(|&a| self.pos[a]));
+        anchor_vel.clear();
+        anchor_vel.extend(g.anchors.iter().map(|&a| self.vel[a]));
+        let (anchors, anchor_vel) = (&anchors[..], &anchor_vel[..]);
+        // near a dead point a step past it has no root: Newton gives up where it stalls
+        let solve = |guess: &[f64], opts: &NewtonOptions| {
+            if opts.max_iter > STEP_ITER {
+                g.solve_or_stall(anchors, Some(anchor_vel), guess, opts)
+            } else {
+                g.solve(anchors, Some(anchor_vel), guess, opts)
+            }
+        };
         let jump =
             |out: &GroupSolve, guess: &[f64]| (0..n).map(|k| g.gap(k, out.phi[k], guess[k]).abs()).fold(0.0, f64::max);
-        let mut out: GroupSolve = solve(&guess[..n], &self.step_newton);
-        self.nit += out.nit;
         let near_dead = !(state.det.abs() >= NEAR_DEAD);
         let near_newton = NewtonOptions { max_iter: self.opts.newton.max_iter.min(NEAR_DEAD_ITER), ..self.opts.newton };
-        if near_dead && out.status == Status::MaxIterations && near_newton.max_iter > self.step_newton.max_iter {
-            // Newton converges only linearly near a dead point (the error halves per step):
-            // give it enough steps for that
-            out = solve(&guess[..n], &near_newton);
-            self.nit += out.nit;
-        }
+        // Newton converges only linearly near a dead point (the error halves per step): give
+        // it enough steps for that there
+        let newton = if near_dead && near_newton.max_iter > self.step_newton.max_iter {
+            &near_newton
+        } else {
+            &self.step_newton
+        };
+        let mut out: GroupSolve = solve(&guess[..n], newton);
+        self.nit += out.nit;
         let mut sign = state.sign;
         if near_dead && out.status == Status::Converged && out.det * sign < 0.0 {
             // near a dead point both branches are close: the prediction reflected through
@@ -525,10 +563,11 @@ impl<'p> Solver<'p> {
         if status != Status::Converged {
             return (status, out.det);
         }
-        let pos = &mut self.pos;
-        g.place(&out.phi[..n], &anchors, |p, xy| pos[p] = xy);
-        let vel = &mut self.vel;
-        g.place_velocity(&out.phi[..n], &out.dphi[..n], &anchors, &anchor_vel, |p, v| vel[p] = v);
+        let (pos, vel) = (&mut self.pos, &mut self.vel);
+        g.place_moving(&out.phi[..n], &out.dphi[..n], anchors, anchor_vel, |p, xy, v| {
+            pos[p] = xy;
+            vel[p] = v;
+        });
         if self.need_acc {
             let anchor_acc: Vec<Xy> = g.anchors.iter().map(|&a| self.acc[a]).collect();
             let k = [&anchors[..], &anchor_vel[..], &anchor_acc[..]];
@@ -543,7 +582,7 @@ impl<'p> Solver<'p> {
         for w in &mut dphi {
             *w *= self.rate();
         }
-        let t = Tangent { theta, phi: out.phi, dphi };
+        let t = Tangent { theta, phi: out.phi, dphi, det: out.det };
         let st = self.groups[i].as_mut().expect("a group has a state");
         st.previous = st.tangent.filter(|t0| t0.theta != theta);
         st.tangent = Some(t);
@@ -580,7 +619,7 @@ impl<'p> Solver<'p> {
             // a small max_step makes many steps: each is counted (the halvings of one
             // step are bounded by MAX_HALVINGS)
             poll.tick()?;
-            if !self.reach(a, b, 0) {
+            if !self.reach(a, b) {
                 break;
             }
             a = b;
@@ -591,14 +630,23 @@ impl<'p> Solver<'p> {
         Ok(())
     }
 
-    fn reach(&mut self, a: f64, b: f64, depth: u32) -> bool {
+    /// One continuation step from `a` (solved) to `b`; a failing step is split until it is
+    /// `2^-MAX_HALVINGS` of its length, and what still fails then is at a dead point.
+    fn reach(&mut self, a: f64, b: f64) -> bool {
+        self.aimed_left = AIMED_SPLITS;
+        self.aimed_from = f64::NAN;
+        self.reach_within(a, b, 0, (b - a).abs() * 2f64.powi(-(MAX_HALVINGS as i32)))
+    }
+
+    fn reach_within(&mut self, a: f64, b: f64, depth: u32, floor: f64) -> bool {
         self.step = (b - a).abs();
         let failed = self.eval(b);
         self.step = f64::INFINITY;
         if !failed {
             return true;
         }
-        if depth >= MAX_HALVINGS || !b.is_finite() {
+        // (halving alone reaches `floor` at depth MAX_HALVINGS; aimed splits add levels)
+        if (b - a).abs() <= floor * (1.0 + 1e-9) || depth >= 4 * MAX_HALVINGS || !b.is_finite() {
             // what still fails this close to its last solution is at a dead point
             for (i, st) in self.groups.iter_mut().enumerate() {
                 if let Some(g) = st.as_mut() {
@@ -617,8 +665,53 @@ impl<'p> Solver<'p> {
             }
             return false;
         }
-        let mid = 0.5 * (a + b);
-        self.reach(a, mid, depth + 1) && self.reach(mid, b, depth + 1)
+        let mid = self.split(a, b, floor);
+        self.reach_within(a, mid, depth + 1, floor) && self.reach_within(mid, b, depth + 1, floor)
+    }
+
+    /// Where to split the failing step from `a` (solved) to `b`: halfway, or just short of
+    /// the dead point a failing group predicts. Near a dead point the square of a group's
+    /// conditioning falls linearly in the input (the two assemblies meet as a square
+    /// root), so its last two solutions extrapolate to the dead point; a split there leaves
+    /// a short step past it, and one success within `floor` of the prediction is followed
+    /// by a probe `floor` beyond, whose failure ends the search. Halving takes 2 Newton
+    /// solves per halving of the interval near the dead point (32 for `MAX_HALVINGS`); the
+    /// prediction, superlinear, a handful. A prediction is used once per new solution and
+    /// `AIMED_SPLITS` times per step at most; the bracket is what makes the answer, so a
+    /// poor prediction costs solves, never the result.
+    fn split(&mut self, a: f64, b: f64, floor: f64) -> f64 {
+        let half = 0.5 * (a + b);
+        if self.aimed_left == 0 || !(floor > 0.0) {
+            return half;
+        }
+        let dir = (b - a).signum();
+        let len = (b - a).abs();
+        // the nearest dead point a failing group predicts from its last two solutions
+        let mut ahead = f64::INFINITY;
+        for (i, st) in self.groups.iter().enumerate() {
+            let Some(g) = st else { continue };
+            let (Some(t1), Some(t0)) = (g.tangent, g.previous) else { continue };
+            if !self.own_failure[i] || t1.theta != a || t1.theta == self.aimed_from {
+                continue;
+            }
+            let (s0, s1) = (t0.det * t0.det, t1.det * t1.det);
+            let h = t1.theta - t0.theta;
+            if !(s1 < s0) || h * dir <= 0.0 {
+                continue;
+            }
+            let d = s1 * h.abs() / (s0 - s1);
+            if d.is_finite() {
+                ahead = ahead.min(d);
+            }
+        }
+        if !(ahead < len) {
+            return half;
+        }
+        self.aimed_left -= 1;
+        self.aimed_from = a;
+        // just short of the predicted dead point; within `floor` of it, a probe past it
+        let d = if ahead <= floor { 0.75 * floor } else { ahead - 0.25 * floor };
+        a + dir * d.clamp(0.5 * floor, len - 0.5 * floor)
     }
 
     /// The dead point (input angle) that stops the first group at LIMIT, if any.

@@ -185,7 +185,18 @@ pub fn solve<S: System<N>, const N: usize>(
     opts: &NewtonOptions,
     history: Option<&mut Vec<f64>>,
 ) -> Outcome<N> {
-    iterate(sys, x0, opts, history, None).0
+    iterate(sys, x0, opts, history, None, false).0
+}
+
+/// [`solve`] that gives up (`MaxIterations`) once the residual stalls: from the fourth step
+/// on, a residual above half the one two steps before. Where a root is near, Newton's
+/// residual falls by more than that every two steps, even at a double root (the error
+/// halves, the residual quarters), and after an overshoot it comes back as fast; just past
+/// a dead point, where no root is, it falls to the gap's size and then wanders, and a
+/// continuation that is looking for the dead point learns that in a few steps instead of
+/// `max_iter`.
+pub fn solve_or_stall<S: System<N>, const N: usize>(sys: &S, x0: SVector<f64, N>, opts: &NewtonOptions) -> Outcome<N> {
+    iterate(sys, x0, opts, None, None, true).0
 }
 
 /// [`solve`] that counts every Newton step on `poll` and returns [`Error::Interrupted`]
@@ -198,7 +209,7 @@ pub fn solve_polled<S: System<N>, const N: usize>(
     history: Option<&mut Vec<f64>>,
     poll: &Poll<'_>,
 ) -> Result<Outcome<N>, Error> {
-    match iterate(sys, x0, opts, history, Some(poll)) {
+    match iterate(sys, x0, opts, history, Some(poll), false) {
         (out, None) => Ok(out),
         (_, Some(e)) => Err(e),
     }
@@ -213,11 +224,14 @@ fn iterate<S: System<N>, const N: usize>(
     opts: &NewtonOptions,
     mut history: Option<&mut Vec<f64>>,
     poll: Option<&Poll<'_>>,
+    stall: bool,
 ) -> (Outcome<N>, Option<Error>) {
     let scale = sys.scale();
     let mut x = x0;
     let mut nit = 0;
     let mut last_small_step = f64::INFINITY;
+    // the residuals one and two steps before (for `stall`)
+    let (mut r1, mut r2) = (f64::INFINITY, f64::INFINITY);
     loop {
         let (f, j) = sys.eval(&x);
         let mut residual = 0.0_f64;
@@ -264,9 +278,10 @@ fn iterate<S: System<N>, const N: usize>(
             }
             last_small_step = step;
         }
-        if nit >= opts.max_iter {
+        if nit >= opts.max_iter || (stall && nit >= 4 && residual > 0.5 * r2) {
             return done(Status::MaxIterations);
         }
+        (r2, r1) = (r1, residual);
         if let Some(Err(e)) = poll.map(Poll::tick) {
             return (Outcome { x, status: Status::MaxIterations, nit, residual, jacobian: j, conditioning }, Some(e));
         }
@@ -305,6 +320,40 @@ mod tests {
         // quadratic: the last ratios e_{k+1} / e_k^2 stay bounded
         let n = h.len();
         assert!(h[n - 2] / (h[n - 3] * h[n - 3]) < 10.0);
+    }
+
+    /// x^2 = c, y = x: two roots for c > 0 that meet at a fold (c = 0); none past it.
+    struct Fold(f64);
+    impl System<2> for Fold {
+        fn eval(&self, x: &SVector<f64, 2>) -> (SVector<f64, 2>, SMatrix<f64, 2, 2>) {
+            let f = SVector::<f64, 2>::new(x[0] * x[0] - self.0, x[1] - x[0]);
+            (f, SMatrix::<f64, 2, 2>::new(2.0 * x[0], 0.0, -1.0, 1.0))
+        }
+        fn scale(&self) -> f64 {
+            1.0
+        }
+    }
+
+    #[test]
+    fn a_stalled_newton_gives_up_past_a_fold_and_converges_before_it() {
+        let opts = NewtonOptions { tol: 1e-12, max_iter: 60, singular: 1e-14 };
+        let x0 = SVector::<f64, 2>::new(1e-2, 1e-2);
+        // past the fold: no root; the plain solve runs to max_iter, the stalling one stops
+        // a few steps after the residual reaches the gap
+        let past = Fold(-1e-8);
+        assert_eq!(solve(&past, x0, &opts, None).nit, 60);
+        let out = solve_or_stall(&past, x0, &opts);
+        assert_eq!(out.status, Status::MaxIterations);
+        assert!(out.nit < 15, "{}", out.nit);
+        // just before it (the roots 2e-4 apart, the error halving at first) and at a
+        // regular root far from the start (the first step overshoots to 12.5) both
+        // converge as the plain solve does
+        for c in [4e-8, 0.25] {
+            let (a, b) = (solve(&Fold(c), x0, &opts, None), solve_or_stall(&Fold(c), x0, &opts));
+            assert_eq!((a.status, b.status), (Status::Converged, Status::Converged));
+            assert_eq!((a.nit, a.x), (b.nit, b.x));
+            assert!((b.x[0] - c.sqrt()).abs() < 1e-12);
+        }
     }
 
     #[test]
