@@ -9,7 +9,7 @@
 // the column loops index several arrays (and an offset into each) by the same angle
 #![allow(clippy::needless_range_loop)]
 
-use super::dyad::{Dyad, DyadOut};
+use super::dyad::{Dyad, COINCIDENT, ROUNDING};
 use super::eval::Known;
 use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
@@ -319,6 +319,16 @@ fn two_columns<T>(v: &mut [T], a: usize, b: usize, m: usize) -> (&[T], &mut [T])
     }
 }
 
+/// Columns `a` and `b` (read; they may be one) and column `q` (written; another) for the
+/// block's `m` values.
+fn two_in_one_out<T>(v: &mut [T], a: usize, b: usize, q: usize, m: usize) -> (&[T], &[T], &mut [T]) {
+    let (lo, hi) = v.split_at_mut(q * B);
+    let (out, rest) = hi.split_at_mut(B);
+    let (lo, rest) = (&*lo, &*rest);
+    let col = |p: usize| if p < q { &lo[p * B..p * B + m] } else { &rest[(p - q - 1) * B..(p - q - 1) * B + m] };
+    (col(a), col(b), &mut out[..m])
+}
+
 /// The first failure among an operation's inputs at the block's value `j`.
 #[inline(always)]
 fn inputs_status(c: &Columns, ins: &[usize], j: usize) -> i8 {
@@ -420,34 +430,76 @@ fn slider_rates_block(
 #[inline(always)]
 fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det: &mut [f64], sst: &mut [i8]) {
     let (op, o1, o2) = (d.p * B, d.k1 * B, d.k2 * B);
-    for j in 0..m {
-        let (s1, s2) = (c.st[o1 + j], c.st[o2 + j]);
-        if s1 != OK || s2 != OK {
-            let st = if s1 != OK { s1 } else { s2 };
-            c.st[op + j] = st;
-            sst[j] = st;
-            det[j] = f64::NAN;
-            continue;
+    {
+        // `Dyad::solve`'s arithmetic, operation for operation, over the block's values with
+        // no branch (it vectorizes), its cases kept as numbers; the statuses after
+        let (x1, x2, xq) = two_in_one_out(&mut c.x, d.k1, d.k2, d.p, m);
+        let (y1, y2, yq) = two_in_one_out(&mut c.y, d.k1, d.k2, d.p, m);
+        let (det, sst) = (&mut det[..m], &mut sst[..m]);
+        let (r1, r2, side) = (d.r1, d.r2, d.side);
+        let tiny = COINCIDENT * (r1 + r2);
+        let (na, nonfinite, sing) = (Status::NotAssemblable.code(), Status::NonFinite.code(), Status::Singular.code());
+        // coincident known points: a continuum with equal links, no assembly otherwise
+        let (coincident_st, coincident_det) = if (r1 - r2).abs() <= tiny { (sing, 0.0) } else { (na, f64::NAN) };
+        const SOLVED: f64 = 0.0;
+        const COINCIDE: f64 = 1.0;
+        let mut case = [SOLVED; B];
+        for j in 0..m {
+            let (ux, uy) = (x2[j] - x1[j], y2[j] - y1[j]);
+            let d2 = ux * ux + uy * uy;
+            let dd = d2.sqrt();
+            let round = ROUNDING * (dd + r1 + r2);
+            let q1 = dd + r1 - r2;
+            let q2 = dd - r1 + r2;
+            let q3 = r1 + r2 - dd;
+            let meets = (q1 >= -round) & (q2 >= -round) & (q3 >= -round);
+            let two_dh = ((r1 + r2 + dd) * q1.max(0.0) * q2.max(0.0) * q3.max(0.0)).sqrt();
+            let along = d2 + (r1 - r2) * (r1 + r2);
+            let h = side * two_dh;
+            let inv = 0.5 / d2;
+            // (a point that did not solve is masked where it is written out)
+            xq[j] = x1[j] + (along * ux + h * -uy) * inv;
+            yq[j] = y1[j] + (along * uy + h * ux) * inv;
+            let coincident = dd <= tiny;
+            det[j] = if coincident {
+                coincident_det
+            } else if meets {
+                h / (2.0 * r1 * r2)
+            } else {
+                f64::NAN
+            };
+            case[j] = if coincident {
+                COINCIDE
+            } else if meets {
+                SOLVED
+            } else {
+                2.0
+            };
         }
-        let (a, b) = ([c.x[o1 + j], c.y[o1 + j]], [c.x[o2 + j], c.y[o2 + j]]);
-        let (st, dt) = match d.solve(a, b) {
-            DyadOut::Solved(p, dt) => {
-                if dt.abs() >= singular {
-                    c.x[op + j] = p[0];
-                    c.y[op + j] = p[1];
-                    (OK, dt)
-                } else if dt.is_nan() {
-                    (Status::NonFinite.code(), dt)
-                } else {
-                    (Status::Singular.code(), dt)
-                }
+        let (s1, s2, sq) = two_in_one_out(&mut c.st, d.k1, d.k2, d.p, m);
+        for j in 0..m {
+            let dt = det[j];
+            let st = if s1[j] != OK {
+                s1[j]
+            } else if s2[j] != OK {
+                s2[j]
+            } else if case[j] == COINCIDE {
+                coincident_st
+            } else if case[j] != SOLVED {
+                na
+            } else if dt.abs() >= singular {
+                OK
+            } else if dt.is_nan() {
+                nonfinite
+            } else {
+                sing
+            };
+            if (s1[j] != OK) | (s2[j] != OK) {
+                det[j] = f64::NAN;
             }
-            DyadOut::NotAssemblable => (Status::NotAssemblable.code(), f64::NAN),
-            DyadOut::Indeterminate => (Status::Singular.code(), 0.0),
-        };
-        c.st[op + j] = st;
-        sst[j] = st;
-        det[j] = dt;
+            sq[j] = st;
+            sst[j] = st;
+        }
     }
     if vel {
         for j in 0..m {

@@ -4,9 +4,9 @@
 use super::vec2::{cross, dot, perp, sub, Xy};
 
 /// Known points closer than this fraction of r1 + r2 coincide.
-const COINCIDENT: f64 = 1e-12;
+pub(super) const COINCIDENT: f64 = 1e-12;
 /// Rounding of |k1 k2| and of the Heron factors, relative to d + r1 + r2.
-const ROUNDING: f64 = 4.0 * f64::EPSILON;
+pub(super) const ROUNDING: f64 = 4.0 * f64::EPSILON;
 
 /// Point `p` at distance `r1` from known point `k1` and `r2` from `k2`, on side `side`
 /// (+1: left of k1 -> k2) — the side of the drawn pose.
