@@ -3,6 +3,7 @@ the instructions per solved point of the functions that matter (instruction coun
 not depend on what else the machine is doing, unlike timings on a shared 2-core box).
 
     python benches/profile.py seed          # fb.sweep() of the seed linkage, 361 angles
+    python benches/profile.py seed_cf       # fb.sweep(predictor="closed-form"), 361 angles
     python benches/profile.py batch         # sweep_batch, 200 random linkages, 1 thread
     python benches/profile.py closed_form   # closed_form_batch, 200 linkages, 1 thread
     python benches/profile.py numpy_cf      # the NumPy vectorized closed form, same batch
@@ -42,6 +43,7 @@ def workload(kind: str, reps: int) -> int:
     j_theta = jansen.input_angle + np.radians(np.arange(361.0))
     calls = {
         "seed": (lambda: fb.sweep(), 361),
+        "seed_cf": (lambda: fb.sweep(predictor="closed-form"), 361),
         "batch": (lambda: pk.sweep_batch(links, threads=1), M * 361),
         "closed_form": (lambda: pk.closed_form_batch(links, threads=1), M * 361),
         "numpy_cf": (lambda: closed_form_vectorized(*cols, pk.DEFAULT_THETA2), M * 361),
@@ -77,11 +79,11 @@ def _profile(kind: str, reps: int, tmp: str) -> dict[str, int]:
 def callgrind(kind: str) -> None:
     """Profiles 1 and 1 + REPS repetitions and prints the difference per point, so the
     interpreter start-up, imports and warm-up cancel out."""
-    reps = REPS * {"seed": 100, "group": 10, "jansen": 100}.get(kind, 1)
+    reps = REPS * {"seed": 100, "seed_cf": 100, "group": 10, "jansen": 100}.get(kind, 1)
     with tempfile.TemporaryDirectory() as tmp:
         base = _profile(kind, 1, tmp)
         full = _profile(kind, 1 + reps, tmp)
-    per = {"seed": 361, "group": 361, "jansen": 361}.get(kind, M * 361)
+    per = {"seed": 361, "seed_cf": 361, "group": 361, "jansen": 361}.get(kind, M * 361)
     points = per * reps
     diff = {k: v - base.get(k, 0) for k, v in full.items()}
     total = diff.pop("PROGRAM TOTALS", sum(diff.values()))
@@ -97,7 +99,8 @@ def callgrind(kind: str) -> None:
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    if not args or args[0] not in ("seed", "batch", "closed_form", "numpy_cf", "group", "jansen"):
+    kinds = ("seed", "seed_cf", "batch", "closed_form", "numpy_cf", "group", "jansen")
+    if not args or args[0] not in kinds:
         print(__doc__)
         sys.exit(2)
     if "--run" in args:
