@@ -307,6 +307,7 @@ def scene_targets(bench: Bench) -> list[tuple[str, str, str, str]]:
                                              "scene_jansen_numpy"))  # fmt: skip
     out = _faster("Jansen's leg (foot, 361 angles) >= 3x faster than pylinkage + numba",
                   pk, pl, 3)  # fmt: skip
+    out += _faster("Jansen's leg: pylinkage + numba / planarkin >= 8 (issue 21)", pk, pl, 8)
     out += _faster("Jansen's leg faster than a vectorized NumPy circle-intersection chain",
                    pk, npc, 1)  # fmt: skip
     for name in ("double-butterfly-1", "double-butterfly-2"):
@@ -319,6 +320,15 @@ def scene_targets(bench: Bench) -> list[tuple[str, str, str, str]]:
                     f"{nit:.2f} it/pt over {row['extra_info']['solved']} angles",
                     "-",
                     _verdict(nit < 1.5),
+                )
+            )
+            med = bench.median(f"scene_group_{name}")
+            out.append(
+                (
+                    f"{name} sweep, 361 angles (both dead points found): <= 0.3 ms (issue 21)",
+                    _t(med),
+                    "-",
+                    _verdict(med is not None and med <= 0.3e-3),
                 )
             )
     sk, sl, sn = (bench.median(k) for k in ("slider_pk", "slider_pylinkage", "slider_numpy"))
