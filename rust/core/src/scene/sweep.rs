@@ -570,7 +570,7 @@ impl<'p> Solver<'p> {
         });
         if self.need_acc {
             let anchor_acc: Vec<Xy> = g.anchors.iter().map(|&a| self.acc[a]).collect();
-            let k = [&anchors[..], &anchor_vel[..], &anchor_acc[..]];
+            let k = [anchors, anchor_vel, &anchor_acc[..]];
             let ddphi = g.second(&out.phi[..n], &out.dphi[..n], k).unwrap_or([f64::NAN; MAX]);
             let acc = &mut self.acc;
             g.place_acceleration(&out.phi[..n], &out.dphi[..n], &ddphi[..n], k, |p, w| acc[p] = w);
