@@ -521,11 +521,13 @@ class Scene:
         Every angle gets a status; a point that cannot be solved is NaN with its status, and
         points that do not depend on it are still solved. Dyads are closed forms on their
         drawn side. Groups follow by continuation in steps of at most ``max_step``, each
-        given at most ``min(max_iter, 5)`` Newton steps to reach ``tol`` before it is halved
-        (down to ``max_step / 2**16``). An angle past a group's dead point is LIMIT, with
-        the dead point's angle in ``sw.limit``; the part of the drawn circuit that lies the
-        other way round is then solved backwards from the drawn pose. ``omega`` (input
-        angular velocity) adds point velocities and link angular velocities.
+        given at most ``min(max_iter, 5)`` Newton steps to reach ``tol`` before it is split
+        (down to ``max_step / 2**16``: halved, or just short of where the group's
+        conditioning extrapolates to zero). An angle past a group's dead point is LIMIT,
+        with the dead point's angle (within ``max_step / 2**16``) in ``sw.limit``; the part
+        of the drawn circuit that lies the other way round is then solved backwards from the
+        drawn pose. ``omega`` (input angular velocity) adds point velocities and link
+        angular velocities.
         """
         plan, core = self._compiled(outputs)
         kind = self.input_kind

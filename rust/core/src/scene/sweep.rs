@@ -10,8 +10,9 @@
 //! predicted to second order from its last two tangents (dphi/dtheta = -J^-1 dF/dtheta).
 //! A step where a dyad cannot close (a fold: the motion's dead point) or a group's Newton
 //! solve fails, jumps, or lands on another branch (the sign of its conditioning changed)
-//! is halved, down to `max_step / 2^16`; what still fails there has met a dead point, and
-//! angles past it are LIMIT. Points that do not depend on a failure are solved all the
+//! is split, down to `2^-16` of its length (at most `max_step / 2^16`): halved, or just
+//! short of the dead point a failing group's conditioning extrapolates to; what still
+//! fails there has met a dead point, and angles past it are LIMIT. Points that do not depend on a failure are solved all the
 //! same.
 
 use super::columns;
@@ -595,9 +596,10 @@ impl<'p> Solver<'p> {
     }
 
     /// Continuation to `to` from where the groups and dyads are (the one farthest away sets
-    /// the start; one stopped at a dead point that `to` lies beyond does not): uniform steps of at most `max_step`, each halved while some group fails; a
-    /// group that still fails at the smallest step has met a dead point there, and angles
-    /// past it are LIMIT. Ends with an evaluation at `to`. Every step is counted on `poll`
+    /// the start; one stopped at a dead point that `to` lies beyond does not): uniform steps
+    /// of at most `max_step`, each split while some group fails ([`Solver::reach`]); a group
+    /// that still fails at the smallest step has met a dead point there, and angles past it
+    /// are LIMIT. Ends with an evaluation at `to`. Every step is counted on `poll`
     /// (a small `max_step` makes many).
     fn advance(&mut self, to: f64, poll: &Poll<'_>) -> Result<(), Error> {
         // a state stopped at a dead point that `to` lies beyond stays there: it sets no start
@@ -616,8 +618,8 @@ impl<'p> Solver<'p> {
         let mut a = from;
         for k in 1..=m {
             let b = if k == m { to } else { from + h * (k as f64 / m as f64) };
-            // a small max_step makes many steps: each is counted (the halvings of one
-            // step are bounded by MAX_HALVINGS)
+            // a small max_step makes many steps: each is counted (the splits of one step
+            // are bounded: depth 4 MAX_HALVINGS at most)
             poll.tick()?;
             if !self.reach(a, b) {
                 break;
