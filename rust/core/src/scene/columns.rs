@@ -443,6 +443,7 @@ fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det
         let (coincident_st, coincident_det) = if (r1 - r2).abs() <= tiny { (sing, 0.0) } else { (na, f64::NAN) };
         const SOLVED: f64 = 0.0;
         const COINCIDE: f64 = 1.0;
+        const APART: f64 = 2.0;
         let mut case = [SOLVED; B];
         for j in 0..m {
             let (ux, uy) = (x2[j] - x1[j], y2[j] - y1[j]);
@@ -473,7 +474,7 @@ fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det
             } else if meets {
                 SOLVED
             } else {
-                2.0
+                APART
             };
         }
         let (s1, s2, sq) = two_in_one_out(&mut c.st, d.k1, d.k2, d.p, m);
@@ -485,7 +486,7 @@ fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det
                 s2[j]
             } else if case[j] == COINCIDE {
                 coincident_st
-            } else if case[j] != SOLVED {
+            } else if case[j] == APART {
                 na
             } else if dt.abs() >= singular {
                 OK
@@ -871,6 +872,73 @@ mod tests {
                     assert!(same, "{name} (omega {omega:?}): output {k}: {x} vs {y}");
                 }
             }
+        }
+    }
+
+    /// The branch-free dyad over a block is `Dyad::solve` value for value, bit for bit:
+    /// random known points, and the cases at the edges (coincident points with equal and
+    /// unequal links, out of reach, exactly in line, a non-finite input, a failed input).
+    #[test]
+    fn the_dyad_block_is_dyad_solve_bit_for_bit() {
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 12.0 - 6.0
+        };
+        let links = [0, 0];
+        for d in [
+            Dyad { p: 2, k1: 0, k2: 1, r1: 5.0, r2: 5.0, side: 1.0, links },
+            Dyad { p: 0, k1: 2, k2: 1, r1: 2.5, r2: 4.0, side: -1.0, links },
+        ] {
+            let mut c = Columns {
+                x: vec![0.0; 3 * B],
+                y: vec![0.0; 3 * B],
+                vx: vec![],
+                vy: vec![],
+                ax: vec![],
+                ay: vec![],
+                st: vec![OK; 3 * B],
+            };
+            let (o1, o2) = (d.k1 * B, d.k2 * B);
+            for j in 0..B {
+                (c.x[o1 + j], c.y[o1 + j], c.x[o2 + j], c.y[o2 + j]) = (next(), next(), next(), next());
+            }
+            // coincident; in line at full reach; out of reach; non-finite; a failed input
+            (c.x[o2], c.y[o2]) = (c.x[o1], c.y[o1]);
+            (c.x[o2 + 1], c.y[o2 + 1]) = (c.x[o1 + 1] + d.r1 + d.r2, c.y[o1 + 1]);
+            (c.x[o2 + 2], c.y[o2 + 2]) = (c.x[o1 + 2] + 2.0 * (d.r1 + d.r2), c.y[o1 + 2]);
+            c.x[o1 + 3] = f64::NAN;
+            c.st[o2 + 4] = Status::Limit.code();
+            let (mut det, mut sst) = (vec![0.0; B], vec![OK; B]);
+            dyad_block(&d, &mut c, B, 1e-6, false, &mut det, &mut sst);
+            let mut seen = std::collections::BTreeSet::new();
+            for j in 0..B {
+                let (a, b) = ([c.x[o1 + j], c.y[o1 + j]], [c.x[o2 + j], c.y[o2 + j]]);
+                let bad = [c.st[o1 + j], c.st[o2 + j]].into_iter().find(|&s| s != OK);
+                let (st, dt, p) = match (bad, d.solve(a, b)) {
+                    (Some(s), _) => (s, f64::NAN, None),
+                    (None, super::super::dyad::DyadOut::Solved(p, dt)) if dt.abs() >= 1e-6 => (OK, dt, Some(p)),
+                    (None, super::super::dyad::DyadOut::Solved(_, dt)) => {
+                        (if dt.is_nan() { Status::NonFinite.code() } else { Status::Singular.code() }, dt, None)
+                    }
+                    (None, super::super::dyad::DyadOut::NotAssemblable) => {
+                        (Status::NotAssemblable.code(), f64::NAN, None)
+                    }
+                    (None, super::super::dyad::DyadOut::Indeterminate) => (Status::Singular.code(), 0.0, None),
+                };
+                seen.insert(st);
+                assert_eq!((sst[j], c.st[d.p * B + j]), (st, st), "value {j}");
+                assert_eq!(det[j].to_bits(), dt.to_bits(), "value {j}: {} vs {dt}", det[j]);
+                if let Some(p) = p {
+                    let q = [c.x[d.p * B + j], c.y[d.p * B + j]];
+                    assert_eq!(q.map(f64::to_bits), p.map(f64::to_bits), "value {j}");
+                }
+            }
+            // every case met: solved, singular (in line or coincident), not assemblable,
+            // and the failed input's status carried
+            assert!(seen.len() >= 4, "{seen:?}");
         }
     }
 }
