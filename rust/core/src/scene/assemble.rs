@@ -232,7 +232,7 @@ impl Walk<'_> {
             let polished = (imag <= 1e-6 * zmax)
                 .then(|| {
                     let guess = g.unknowns_of_root(z);
-                    let out = g.solve(anchors, None, &guess, &tight);
+                    let out = g.solve(anchors, None, &guess, &tight, false);
                     let near = (0..n).all(|k| g.gap(k, out.phi[k], guess[k]).abs() <= 1e-4);
                     (out.status == Status::Converged && near).then(|| out.phi[..n].to_vec())
                 })

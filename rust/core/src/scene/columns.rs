@@ -310,13 +310,8 @@ fn rrp_fixed_line_block(
 
 /// Point a's column (read) and point b's (written) for the block's `m` values (a != b).
 fn two_columns<T>(v: &mut [T], a: usize, b: usize, m: usize) -> (&[T], &mut [T]) {
-    if a < b {
-        let (lo, hi) = v.split_at_mut(b * B);
-        (&lo[a * B..a * B + m], &mut hi[..m])
-    } else {
-        let (lo, hi) = v.split_at_mut(a * B);
-        (&hi[..m], &mut lo[b * B..b * B + m])
-    }
+    let (x, _, q) = two_in_one_out(v, a, a, b, m);
+    (x, q)
 }
 
 /// Columns `a` and `b` (read; they may be one) and column `q` (written; another) for the

@@ -717,27 +717,18 @@ impl Group {
     }
 
     /// Newton from `guess` with the anchors at `anchors`; the tangent dx/dtheta from the
-    /// anchors' velocities `anchor_vel` when given.
+    /// anchors' velocities `anchor_vel` when given. `stall`: give up where Newton's residual
+    /// stalls ([`newton::solve_or_stall`]), as near a dead point, where a step past it has
+    /// no root.
     pub(super) fn solve(
         &self,
         anchors: &[Xy],
         anchor_vel: Option<&[Xy]>,
         guess: &[f64],
         opts: &NewtonOptions,
+        stall: bool,
     ) -> GroupSolve {
-        dispatch!(self.n(), solve_n, self, anchors, anchor_vel, guess, opts, false)
-    }
-
-    /// [`Group::solve`] that gives up where Newton's residual stalls
-    /// ([`newton::solve_or_stall`]): near a dead point, where a step past it has no root.
-    pub(super) fn solve_or_stall(
-        &self,
-        anchors: &[Xy],
-        anchor_vel: Option<&[Xy]>,
-        guess: &[f64],
-        opts: &NewtonOptions,
-    ) -> GroupSolve {
-        dispatch!(self.n(), solve_n, self, anchors, anchor_vel, guess, opts, true)
+        dispatch!(self.n(), solve_n, self, anchors, anchor_vel, guess, opts, stall)
     }
 
     /// Visits each node with its term's multiplier and arm.

@@ -520,25 +520,16 @@ impl<'p> Solver<'p> {
         anchor_vel.clear();
         anchor_vel.extend(g.anchors.iter().map(|&a| self.vel[a]));
         let (anchors, anchor_vel) = (&anchors[..], &anchor_vel[..]);
-        // near a dead point a step past it has no root: Newton gives up where it stalls
-        let solve = |guess: &[f64], opts: &NewtonOptions| {
-            if opts.max_iter > STEP_ITER {
-                g.solve_or_stall(anchors, Some(anchor_vel), guess, opts)
-            } else {
-                g.solve(anchors, Some(anchor_vel), guess, opts)
-            }
-        };
-        let jump =
-            |out: &GroupSolve, guess: &[f64]| (0..n).map(|k| g.gap(k, out.phi[k], guess[k]).abs()).fold(0.0, f64::max);
         let near_dead = !(state.det.abs() >= NEAR_DEAD);
         let near_newton = NewtonOptions { max_iter: self.opts.newton.max_iter.min(NEAR_DEAD_ITER), ..self.opts.newton };
         // Newton converges only linearly near a dead point (the error halves per step): give
-        // it enough steps for that there
-        let newton = if near_dead && near_newton.max_iter > self.step_newton.max_iter {
-            &near_newton
-        } else {
-            &self.step_newton
-        };
+        // it enough steps for that there; and a step past the dead point has no root, so it
+        // gives up where its residual stalls
+        let longer = near_dead && near_newton.max_iter > self.step_newton.max_iter;
+        let solve = |guess: &[f64], opts: &NewtonOptions| g.solve(anchors, Some(anchor_vel), guess, opts, longer);
+        let jump =
+            |out: &GroupSolve, guess: &[f64]| (0..n).map(|k| g.gap(k, out.phi[k], guess[k]).abs()).fold(0.0, f64::max);
+        let newton = if longer { &near_newton } else { &self.step_newton };
         let mut out: GroupSolve = solve(&guess[..n], newton);
         self.nit += out.nit;
         let mut sign = state.sign;
