@@ -70,9 +70,16 @@ pub fn hadamard_ratio<const N: usize>(j: &SMatrix<f64, N, N>) -> f64 {
 /// Gaussian elimination with partial pivoting on the stack, for any N (nalgebra's LU needs
 /// `DimMin` bounds a generic const N cannot name). Multiplies `det` by the determinant;
 /// `None` on an exactly zero pivot.
+///
+/// Written for the small systems of a sweep (a 6x6 group is solved about twice an angle):
+/// rows are arrays, so a row swap is a swap of two arrays, and each elimination updates a
+/// whole row, a loop of constant length the compiler unrolls into packed operations. The
+/// columns left of the pivot that this also updates are never read again (the pivot search
+/// and the back substitution read only the columns from the pivot's on); every value that is
+/// read is made by the same operations, in the same order, as in the textbook loop, and so
+/// has the same bits.
+#[inline]
 pub fn eliminate<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>, det: &mut f64) -> Option<SVector<f64, N>> {
-    // row-major rows on the stack: a row swap is a swap of two arrays, and the inner loops
-    // run over contiguous memory (the same operations, in the same order, as on `a`)
     let mut m = [[0.0; N]; N];
     for (i, row) in m.iter_mut().enumerate() {
         for (c, v) in row.iter_mut().enumerate() {
@@ -82,11 +89,14 @@ pub fn eliminate<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>, det:
     let mut x = [0.0; N];
     x.copy_from_slice(b.as_slice());
     for k in 0..N {
-        // the last row of largest |a_ik| (as `max_by` picks among equals)
+        // the last row of largest |a_ik| (as `max_by` on `total_cmp` picks among equals; for
+        // numbers with a clear sign bit that order is the order of their bits)
         let mut p = k;
-        for i in k + 1..N {
-            if m[i][k].abs().total_cmp(&m[p][k].abs()).is_ge() {
-                p = i;
+        let mut best = m[k][k].abs().to_bits();
+        for (i, row) in m.iter().enumerate().skip(k + 1) {
+            let v = row[k].abs().to_bits();
+            if v >= best {
+                (p, best) = (i, v);
             }
         }
         if p != k {
@@ -99,14 +109,13 @@ pub fn eliminate<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>, det:
         if pivot == 0.0 {
             return None;
         }
-        let (top, rest) = m.split_at_mut(k + 1);
-        let rk = &top[k];
-        for (off, ri) in rest.iter_mut().enumerate() {
-            let f = ri[k] / pivot;
-            for c in k..N {
-                ri[c] -= f * rk[c];
+        let (rk, xk) = (m[k], x[k]);
+        for i in k + 1..N {
+            let f = m[i][k] / pivot;
+            for (v, r) in m[i].iter_mut().zip(rk) {
+                *v -= f * r;
             }
-            x[k + 1 + off] -= f * x[k];
+            x[i] -= f * xk;
         }
     }
     for k in (0..N).rev() {
