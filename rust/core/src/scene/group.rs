@@ -153,6 +153,9 @@ pub(super) struct GroupSolve {
     pub nit: u32,
     /// Signed Hadamard ratio of the Jacobian at the solution.
     pub det: f64,
+    /// (cos, sin) of the rotations in `phi` (when converged with anchor velocities given):
+    /// computed once for the rates and the placement.
+    pub cs: [Xy; MAX],
 }
 
 /// Union-find root.
@@ -501,8 +504,8 @@ impl Group {
         &self,
         x: &[f64],
         anchors: &[Xy],
-        mut f: impl FnMut(usize, f64),
-        mut j: impl FnMut(usize, usize, f64),
+        f: impl FnMut(usize, f64),
+        j: impl FnMut(usize, usize, f64),
     ) {
         let mut buf = [[0.0; 2]; 32];
         let heap: Vec<Xy>;
@@ -513,6 +516,18 @@ impl Group {
             heap = x[..self.nrot].iter().map(|a| cs_of(*a)).collect();
             &heap
         };
+        self.closure_terms_with(x, cs, anchors, f, j);
+    }
+
+    /// [`Group::closure_terms`] with the rotations' (cos, sin) `cs` given.
+    fn closure_terms_with(
+        &self,
+        x: &[f64],
+        cs: &[Xy],
+        anchors: &[Xy],
+        mut f: impl FnMut(usize, f64),
+        mut j: impl FnMut(usize, usize, f64),
+    ) {
         for (c, cl) in self.closures.iter().enumerate() {
             let d = sub(anchors[cl.plus], anchors[cl.minus]);
             let (mut fx, mut fy) = (d[0], d[1]);
@@ -797,21 +812,18 @@ impl Group {
 
     /// Positions (as [`Group::place`] gives them, bit for bit) and velocities (per unit
     /// input rate, from the anchors' velocities and the unknowns' rates `dx`) of the nodes
-    /// in one pass: one sine and cosine per rotation, and no allocation for a group of up
-    /// to 32 points (a sweep's every solved angle).
+    /// in one pass, from the rotations' (cos, sin) `cs` (those of [`GroupSolve::cs`]), with
+    /// no allocation for a group of up to 32 points (a sweep's every solved angle).
     pub(super) fn place_moving(
         &self,
         x: &[f64],
         dx: &[f64],
+        cs: &[Xy],
         anchors: &[Xy],
         anchor_vel: &[Xy],
         mut put: impl FnMut(usize, Xy, Xy),
     ) {
         const SMALL: usize = 32;
-        let mut cs = [[0.0; 2]; MAX];
-        for (c, a) in cs.iter_mut().zip(&x[..self.nrot]) {
-            *c = cs_of(*a);
-        }
         let total = anchors.len() + self.nodes.len();
         let (mut pbuf, mut vbuf) = ([[0.0; 2]; SMALL], [[0.0; 2]; SMALL]);
         let mut heap: (Vec<Xy>, Vec<Xy>);
@@ -971,6 +983,7 @@ fn solve_n<const N: usize>(
     let out = if stall { newton::solve_or_stall(&sys, x0, opts) } else { newton::solve(&sys, x0, opts, None) };
     let mut phi = [f64::NAN; MAX];
     let mut dphi = [f64::NAN; MAX];
+    let mut cs = [[f64::NAN; 2]; MAX];
     // (the signed Hadamard ratio of the last Jacobian, from the last step's elimination)
     let det = if out.conditioning.is_nan() { hadamard_ratio(&out.jacobian) } else { out.conditioning };
     if out.status == Status::Converged {
@@ -978,13 +991,22 @@ fn solve_n<const N: usize>(
             *p = if g.is_angle(k) { wrap_angle(*x) } else { *x };
         }
         if let Some(vel) = anchor_vel {
-            // J dx = -dF/dtheta at fixed unknowns
+            // J dx = -dF/dtheta at fixed unknowns, with J at the solution: Newton's last
+            // Jacobian is one correction away from it, and where the start was predicted so
+            // well that it converged at once (nit 0) that correction is about the tolerance,
+            // and the rates would be off by as much. The rotations' sines and cosines are
+            // kept for the placement.
+            for (c, a) in cs.iter_mut().zip(&phi[..g.nrot]) {
+                *c = cs_of(*a);
+            }
+            let mut jacobian = SMatrix::<f64, N, N>::zeros();
+            g.closure_terms_with(&phi[..N], &cs[..g.nrot], anchors, |_, _| {}, |r, c, v| jacobian[(r, c)] += v);
             let d = g.rate_terms(&phi[..N], vel);
             let rhs = SVector::<f64, N>::from_fn(|r, _| -d[r / 2][r % 2]);
-            if let Some(t) = newton::eliminate(out.jacobian, rhs, &mut 1.0) {
+            if let Some(t) = newton::eliminate(jacobian, rhs, &mut 1.0) {
                 dphi[..N].copy_from_slice(t.as_slice());
             }
         }
     }
-    GroupSolve { phi, dphi, status: out.status, nit: out.nit, det }
+    GroupSolve { phi, dphi, status: out.status, nit: out.nit, det, cs }
 }
