@@ -59,9 +59,21 @@ impl Error {
 /// A vector of `len` default values, allocated fallibly: an [`Error::Allocation`] naming
 /// `what` instead of an abort when the memory is not there.
 pub fn try_zeros<T: Clone + Default>(what: impl FnOnce() -> String, len: usize) -> Result<Vec<T>, Error> {
+    try_zeros_advised(what, len, |_| {})
+}
+
+/// [`try_zeros`] that hands the reserved, not yet written buffer to `advise` first (a
+/// caller that knows the operating system may ask for its memory policy there, as the
+/// Python bindings ask for huge pages).
+pub fn try_zeros_advised<T: Clone + Default>(
+    what: impl FnOnce() -> String,
+    len: usize,
+    advise: impl FnOnce(&mut Vec<T>),
+) -> Result<Vec<T>, Error> {
     let mut v = Vec::new();
     match v.try_reserve_exact(len) {
         Ok(()) => {
+            advise(&mut v);
             v.resize(len, T::default());
             Ok(v)
         }
@@ -150,5 +162,16 @@ mod tests {
             assert_eq!(Real(x).to_string(), py);
         }
         assert_eq!(positive_finite("tol", -1e-9).unwrap_err().to_string(), "tol must be finite and > 0, got -1e-09");
+    }
+
+    #[test]
+    fn advice_sees_the_reserved_buffer_before_it_is_written() {
+        let mut seen = None;
+        let v: Vec<f64> =
+            try_zeros_advised(|| "x".into(), 1000, |v: &mut Vec<f64>| seen = Some((v.len(), v.capacity()))).unwrap();
+        assert_eq!(seen, Some((0, 1000)));
+        assert!(v.len() == 1000 && v.iter().all(|x| *x == 0.0));
+        let e = try_zeros_advised::<f64>(|| "huge".into(), usize::MAX / 4, |_| panic!("not reserved")).unwrap_err();
+        assert!(matches!(e, Error::Allocation { .. }), "{e}");
     }
 }

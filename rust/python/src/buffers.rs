@@ -15,12 +15,41 @@ pub(crate) type Arr3<'py, T> = Bound<'py, PyArray3<T>>;
 
 /// `len` zeros, or MemoryError naming what and how many.
 pub(crate) fn zeros<T: Clone + Default>(what: &str, len: usize) -> PyResult<Vec<T>> {
-    planarkin_core::error::try_zeros(|| format!("{what} of {len} values"), len).map_err(err)
+    planarkin_core::error::try_zeros_advised(|| format!("{what} of {len} values"), len, huge_pages).map_err(err)
 }
 
 /// `len` zeros, or MemoryError with the description `what` as given.
 pub(crate) fn zeros_named<T: Clone + Default>(what: &str, len: usize) -> PyResult<Vec<T>> {
-    planarkin_core::error::try_zeros(|| what.to_string(), len).map_err(err)
+    planarkin_core::error::try_zeros_advised(|| what.to_string(), len, huge_pages).map_err(err)
+}
+
+/// Buffers at least this large are backed by transparent huge pages where the system
+/// allows it (NumPy asks the same for its arrays of 4 MiB and more).
+const HUGE_PAGE_MIN: usize = 4 << 20;
+
+/// Asks Linux to back the 2 MiB-aligned part of a large, not yet written buffer with
+/// transparent huge pages (`madvise(MADV_HUGEPAGE)`): a batch's outputs are tens of
+/// megabytes, and writing them first costs a page fault every 4 KiB otherwise, which on a
+/// virtual machine can take longer than computing the values (BENCHMARKS.md). Only advice:
+/// where huge pages are off, or on other systems, nothing changes.
+fn huge_pages<T>(v: &mut Vec<T>) {
+    #[cfg(target_os = "linux")]
+    {
+        const HUGE: usize = 2 << 20;
+        let bytes = v.capacity() * std::mem::size_of::<T>();
+        if bytes < HUGE_PAGE_MIN {
+            return;
+        }
+        let start = v.as_mut_ptr() as usize;
+        let (lo, hi) = (start.next_multiple_of(HUGE), (start + bytes) / HUGE * HUGE);
+        if hi > lo {
+            // SAFETY: [lo, hi) lies inside the buffer `v` owns; MADV_HUGEPAGE changes only
+            // how the kernel backs those pages, never their contents or their mapping.
+            unsafe { libc::madvise(lo as *mut libc::c_void, hi - lo, libc::MADV_HUGEPAGE) };
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = (v, HUGE_PAGE_MIN);
 }
 
 /// m * n for an (m, n) output, or MemoryError when it does not fit in memory's address space.
