@@ -187,8 +187,7 @@ impl GroupState {
         let tm = match (t0, self.older) {
             (Some(t0), Some(tm)) if self.det.abs() >= NEAR_DEAD => {
                 let (s0, s1) = (t1.theta - t0.theta, t0.theta - tm.theta);
-                (s0 * h > 0.0 && s1 * h > 0.0 && s0.abs() >= 0.5 * h.abs() && s1.abs() >= 0.5 * h.abs())
-                    .then_some(tm)
+                (s0 * h > 0.0 && s1 * h > 0.0 && s0.abs() >= 0.5 * h.abs() && s1.abs() >= 0.5 * h.abs()).then_some(tm)
             }
             _ => None,
         };
