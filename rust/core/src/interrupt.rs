@@ -48,6 +48,12 @@ impl<'a> Poll<'a> {
         Poll { source, left: Cell::new(CHECK_EVERY) }
     }
 
+    /// The interrupt this countdown asks (for work handed to other threads, which poll it
+    /// through their own countdowns or a watcher).
+    pub fn source(&self) -> &'a dyn Interrupt {
+        self.source
+    }
+
     /// Counts one unit of work; every [`CHECK_EVERY`] units, asks the interrupt.
     #[inline]
     pub fn tick(&self) -> Result<(), Error> {

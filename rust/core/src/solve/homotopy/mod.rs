@@ -32,13 +32,18 @@
 use nalgebra::{Complex, DMatrix, DVector};
 
 use crate::error::Real;
-use crate::interrupt::{Never, Poll};
+use crate::interrupt::{Flag, Interrupt, Never, Poll};
+use crate::parallel::prelude::*;
 use crate::{wrap_angle, Error};
 
 type C = Complex<f64>;
 
 /// Largest number of unknown rotations accepted (2^16 paths per run).
 pub const MAX_LINKS: usize = 16;
+
+/// Paths of one run from which they are tracked on all cores (with the `parallel`
+/// feature): a path of a six-link group takes about 0.2 ms, a task costs microseconds.
+const PARALLEL_PATHS: usize = 8;
 
 /// A path whose homogenizing coordinate |x0| (with |X| = 1) falls below this is declared
 /// infinite: its t exceeds 1e6 times the scale of the row-normalised problem. Paths to
@@ -564,21 +569,13 @@ impl Reduced {
 
     /// One full tracking of the 2^N paths with one gamma; returns the distinct roots.
     fn run(&self, gamma: C, opts: &HomotopyOptions, poll: &Poll<'_>) -> Result<RunResult, Error> {
-        let n = self.n;
-        let m = n + 1;
-        let mut work = Work {
-            steps: 0,
-            m,
-            jac: vec![C::default(); m * m],
-            rhs: vec![C::default(); m],
-            w: vec![C::default(); self.d],
-        };
         let mut res = RunResult { roots: Vec::new(), paths: 0, failed: 0, infinite: 0, jumps: 0, steps: 0 };
+        let starts: Vec<usize> = (0..self.paths()).collect();
         // root index reached by each path (None: infinite or failed)
-        let mut reached: Vec<Option<usize>> = Vec::with_capacity(self.paths());
-        for start in 0..self.paths() {
+        let mut reached: Vec<Option<usize>> = Vec::with_capacity(starts.len());
+        for end in self.track_paths(&starts, gamma, opts, poll, &mut res.steps)? {
             res.paths += 1;
-            let end = match self.path(start, gamma, opts, &mut work, poll)? {
+            reached.push(match end {
                 PathEnd::Root(t) => Some(insert_unique(&mut res.roots, t)),
                 PathEnd::Infinite => {
                     res.infinite += 1;
@@ -588,8 +585,7 @@ impl Reduced {
                     res.failed += 1;
                     None
                 }
-            };
-            reached.push(end);
+            });
         }
         // Roots here are isolated and simple for generic geometry, so two paths ending at
         // one root means a path jumped (and another root was probably lost): retrack
@@ -602,16 +598,70 @@ impl Reduced {
         if res.jumps > 0 {
             let fine =
                 HomotopyOptions { max_step: opts.max_step / 8.0, max_steps: opts.max_steps.saturating_mul(4), ..*opts };
-            for (start, r) in reached.iter().enumerate() {
-                if matches!(r, Some(r) if hits[*r] > 1) {
-                    if let PathEnd::Root(t) = self.path(start, gamma, &fine, &mut work, poll)? {
-                        insert_unique(&mut res.roots, t);
-                    }
+            let again: Vec<usize> =
+                (0..starts.len()).filter(|&s| matches!(reached[s], Some(r) if hits[r] > 1)).collect();
+            for end in self.track_paths(&again, gamma, &fine, poll, &mut res.steps)? {
+                if let PathEnd::Root(t) = end {
+                    insert_unique(&mut res.roots, t);
                 }
             }
         }
-        res.steps = work.steps;
         Ok(res)
+    }
+
+    /// The ends of the paths from `starts`, in their order, and the steps they took added
+    /// to `steps`. The paths are independent: with the `parallel` feature, a run of at
+    /// least [`PARALLEL_PATHS`] is tracked on all cores (rayon's pool), each path by the
+    /// same arithmetic as alone, so the ends are the same whatever the thread count.
+    /// Interrupts are then asked by a watcher on this thread for long runs (as the
+    /// batches do), else once the paths are tracked.
+    fn track_paths(
+        &self,
+        starts: &[usize],
+        gamma: C,
+        opts: &HomotopyOptions,
+        poll: &Poll<'_>,
+        steps: &mut usize,
+    ) -> Result<Vec<PathEnd>, Error> {
+        let one = |start: usize, poll: &Poll<'_>| -> Result<(PathEnd, usize), Error> {
+            let mut work = self.work();
+            let end = self.path(start, gamma, opts, &mut work, poll)?;
+            Ok((end, work.steps))
+        };
+        let ends: Vec<(PathEnd, usize)> = if cfg!(feature = "parallel") && starts.len() >= PARALLEL_PATHS {
+            let size = starts.len() as u128 * u128::from(opts.max_steps);
+            let ends = crate::parallel::run(None, size, poll.source(), |stop| {
+                let flag = Flag(stop);
+                starts
+                    .par_iter()
+                    .map(
+                        |&start| {
+                            if flag.interrupted() {
+                                Err(Error::Interrupted)
+                            } else {
+                                one(start, &Poll::new(&flag))
+                            }
+                        },
+                    )
+                    .collect::<Result<Vec<_>, Error>>()
+            })?;
+            // the caller's countdown counts the steps as if it had taken them (it asks the
+            // interrupt as often as on one thread)
+            for _ in 0..ends.iter().map(|e| e.1).sum::<usize>() {
+                poll.tick()?;
+            }
+            ends
+        } else {
+            starts.iter().map(|&start| one(start, poll)).collect::<Result<Vec<_>, Error>>()?
+        };
+        *steps += ends.iter().map(|e| e.1).sum::<usize>();
+        Ok(ends.into_iter().map(|e| e.0).collect())
+    }
+
+    /// A path's linear-algebra buffers.
+    fn work(&self) -> Work {
+        let m = self.n + 1;
+        Work { steps: 0, m, jac: vec![C::default(); m * m], rhs: vec![C::default(); m], w: vec![C::default(); self.d] }
     }
 
     /// Tracks the path from start point number `start` (bit k set: t_k = -1) and
@@ -950,14 +1000,15 @@ impl Iso {
     fn e_ebar(&self, x0: C, tu: &[C]) -> (Vec<C>, Vec<C>) {
         let n = 2 * self.c;
         let mut out = vec![C::default(); 2 * n];
-        self.e_ebar_into(x0, tu, &mut out);
+        self.e_ebar_into(self.c, x0, tu, &mut out);
         let eb = out.split_off(n);
         (out, eb)
     }
 
     /// [`Iso::e_ebar`] into `out` (e, then ebar), no allocation: the tracker's hot path.
-    fn e_ebar_into(&self, x0: C, tu: &[C], out: &mut [C]) {
-        let (nc, cols) = (self.c, self.c + 1);
+    #[inline(always)]
+    fn e_ebar_into(&self, nc: usize, x0: C, tu: &[C], out: &mut [C]) {
+        let cols = nc + 1;
         let n = 2 * nc;
         let dotp = |p: &[C], w: &[C]| p[0] * x0 + p[1..].iter().zip(w).map(|(a, b)| a * b).sum::<C>();
         let (e, eb) = out.split_at_mut(n);
@@ -969,12 +1020,26 @@ impl Iso {
 
     /// H = (1 - tau) gamma G + tau F (or H_tau with `dtau`) and its Jacobian in X, rows 0..N.
     fn eval(&self, x: &[C], tau: f64, gamma: C, work: &mut Work, dtau: bool) {
-        let (nc, cols) = (self.c, self.c + 1);
+        // the same arithmetic at a size known to the compiler (C = N / 2 <= MAX_LINKS / 2)
+        macro_rules! fixed {
+            ($($n:literal)*) => {
+                match self.c {
+                    $($n => self.eval_n($n, x, tau, gamma, work, dtau),)*
+                    nc => self.eval_n(nc, x, tau, gamma, work, dtau),
+                }
+            };
+        }
+        fixed!(1 2 3 4 5 6 7 8);
+    }
+
+    #[inline(always)]
+    fn eval_n(&self, nc: usize, x: &[C], tau: f64, gamma: C, work: &mut Work, dtau: bool) {
+        let cols = nc + 1;
         let n = 2 * nc;
         let m = work.m;
         let (x0, tu) = (x[0], &x[1..]);
         let Work { w, rhs, jac, .. } = work;
-        self.e_ebar_into(x0, tu, &mut w[..2 * n]);
+        self.e_ebar_into(nc, x0, tu, &mut w[..2 * n]);
         let (e, eb) = w.split_at(n);
         let dotp = |p: &[C], w: &[C]| p[0] * x0 + p[1..].iter().zip(w).map(|(a, b)| a * b).sum::<C>();
         let g_w = gamma * (1.0 - tau);
@@ -1042,6 +1107,30 @@ fn angles_close(a: &[f64], b: &[f64], tol: f64) -> bool {
 /// Solves the m x m system in place by Gaussian elimination with partial pivoting (row
 /// major `a`); the solution replaces `b`. False on a zero or non-finite pivot.
 fn lu_solve(a: &mut [C], m: usize, b: &mut [C]) -> bool {
+    // the tracker's systems are (N + 1) square, N <= MAX_LINKS: the same elimination at a
+    // size known to the compiler (its loops unrolled, no bounds checks), bit for bit
+    macro_rules! fixed {
+        ($($n:literal)*) => {
+            match m {
+                $($n => return lu_fixed::<$n>(a, b),)*
+                _ => {}
+            }
+        };
+    }
+    fixed!(2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17);
+    lu_dynamic(a, m, b)
+}
+
+/// [`lu_solve`] for an M x M system: the same operations in the same order.
+fn lu_fixed<const M: usize>(a: &mut [C], b: &mut [C]) -> bool {
+    if a.len() != M * M || b.len() != M {
+        return false;
+    }
+    lu_dynamic(&mut a[..M * M], M, &mut b[..M])
+}
+
+#[inline(always)]
+fn lu_dynamic(a: &mut [C], m: usize, b: &mut [C]) -> bool {
     for k in 0..m {
         let mut p = k;
         let mut best = a[k * m + k].norm_sqr();
