@@ -64,7 +64,7 @@ unsafe fn sin_cos_fma(theta: f64) -> (f64, f64) {
 
 /// (sin, cos) of a block of angles: polynomial, 4 at a time, where the SIMD kernels are on
 /// (within 2 ulp of libm; libm beyond the polynomial's range), libm otherwise.
-fn sin_cos(theta: &[f64], out: &mut [(f64, f64)]) {
+pub(super) fn sin_cos(theta: &[f64], out: &mut [(f64, f64)]) {
     if crate::simd::enabled() {
         crate::simd::sin_cos_into(theta, out);
     } else {

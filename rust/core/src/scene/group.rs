@@ -23,6 +23,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
+use super::columns;
 use super::slide::{cdiv, cmul};
 use super::vec2::{dot, perp, sub, Xy};
 use super::{LinearKind, Scene};
@@ -487,13 +488,15 @@ impl Group {
         self.n() > self.nrot || self.closures.iter().any(|c| c.terms.iter().any(|t| matches!(t.turn, Turn::Known(..))))
     }
 
-    /// (cos, sin) of the rotation columns.
+    /// (cos, sin) of the rotation columns, all at once (4 at a time where the SIMD kernels
+    /// are on: see [`cs_of`]).
     #[inline]
     fn turns(&self, x: &[f64], buf: &mut [Xy; 32]) -> usize {
-        let n = self.nrot.min(buf.len());
-        for (b, a) in buf.iter_mut().zip(&x[..n]) {
-            let (s, c) = a.sin_cos();
-            *b = [c, s];
+        let n = self.nrot.min(MAX);
+        let mut sc = [(0.0, 0.0); MAX];
+        columns::sin_cos(&x[..n], &mut sc[..n]);
+        for (b, (s, c)) in buf.iter_mut().zip(&sc[..n]) {
+            *b = [*c, *s];
         }
         n
     }
@@ -908,9 +911,12 @@ fn merged(terms: Vec<Term>) -> Vec<Term> {
     out
 }
 
+/// (cos, sin) of a rotation: the polynomial within 2 ulp of libm where the SIMD kernels
+/// are on (the input angle's, [`columns::input_sin_cos`]; about a third of libm's cost,
+/// and a group's evaluations take a dozen a step), libm otherwise.
 #[inline]
 fn cs_of(a: f64) -> Xy {
-    let (s, c) = a.sin_cos();
+    let (s, c) = columns::input_sin_cos(a);
     [c, s]
 }
 
@@ -996,9 +1002,9 @@ fn solve_n<const N: usize>(
             // well that it converged at once (nit 0) that correction is about the tolerance,
             // and the rates would be off by as much. The rotations' sines and cosines are
             // kept for the placement.
-            for (c, a) in cs.iter_mut().zip(&phi[..g.nrot]) {
-                *c = cs_of(*a);
-            }
+            let mut buf = [[0.0; 2]; 32];
+            let nr = g.turns(&phi[..N], &mut buf);
+            cs[..nr].copy_from_slice(&buf[..nr]);
             let mut jacobian = SMatrix::<f64, N, N>::zeros();
             g.closure_terms_with(&phi[..N], &cs[..g.nrot], anchors, |_, _| {}, |r, c, v| jacobian[(r, c)] += v);
             let d = g.rate_terms(&phi[..N], vel);

@@ -149,10 +149,10 @@ struct Tangent {
 struct GroupState {
     theta: f64,
     phi: [f64; MAX],
-    tangent: Option<Tangent>,
-    previous: Option<Tangent>,
-    /// The solution before `previous` (a third one for the quintic prediction).
-    older: Option<Tangent>,
+    /// The last three solutions with their tangents, the newest at `head`: a ring, where
+    /// a new solution takes the oldest one's place and nothing is moved.
+    tangents: [Option<Tangent>; 3],
+    head: usize,
     /// A dead point met while continuing in direction `dir` (+1 / -1): angles past it in
     /// that direction are LIMIT without a solve.
     limit: Option<(f64, f64)>,
@@ -164,6 +164,40 @@ struct GroupState {
 }
 
 impl GroupState {
+    /// The last solution's tangent.
+    fn tangent(&self) -> Option<&Tangent> {
+        self.tangents[self.head].as_ref()
+    }
+
+    /// The one before it.
+    fn previous(&self) -> Option<&Tangent> {
+        self.tangents[(self.head + 2) % 3].as_ref()
+    }
+
+    /// The one before that.
+    fn older(&self) -> Option<&Tangent> {
+        self.tangents[(self.head + 1) % 3].as_ref()
+    }
+
+    /// Records a new solution: the last one becomes the previous one if it was taken at
+    /// another input value (else the history restarts), and so on down the line.
+    fn push(&mut self, t: Tangent) {
+        match self.tangent() {
+            Some(t1) if t1.theta != t.theta => {
+                let keep_previous = self.previous().is_some_and(|t0| t0.theta != t.theta);
+                self.head = (self.head + 1) % 3;
+                self.tangents[self.head] = Some(t);
+                if !keep_previous {
+                    self.tangents[(self.head + 1) % 3] = None;
+                }
+            }
+            _ => {
+                self.tangents = [None; 3];
+                self.tangents[self.head] = Some(t);
+            }
+        }
+    }
+
     /// From the last solution: fifth order from the last three tangents where the group is
     /// well away from a dead point and the three were taken at steps about as long as this
     /// one; else third order from the last two (the cubic Hermite), first order with one;
@@ -181,21 +215,22 @@ impl GroupState {
         if h.abs() > 4.0 * max_step {
             return x;
         }
-        let Some(t1) = self.tangent else { return x };
-        let t0 = self.previous.filter(|t0| t0.theta != t1.theta);
+        let Some(t1) = self.tangent() else { return x };
+        let t0 = self.previous().filter(|t0| t0.theta != t1.theta);
         // the quintic: three solutions, each step at least half as long as this one
-        let tm = match (t0, self.older) {
+        let tm = match (t0, self.older()) {
             (Some(t0), Some(tm)) if self.det.abs() >= NEAR_DEAD => {
                 let (s0, s1) = (t1.theta - t0.theta, t0.theta - tm.theta);
                 (s0 * h > 0.0 && s1 * h > 0.0 && s0.abs() >= 0.5 * h.abs() && s1.abs() >= 0.5 * h.abs()).then_some(tm)
             }
             _ => None,
         };
+        let quintic = t0.zip(tm).map(|(t0, tm)| (t0, tm, Hermite5::new(t0.theta - t1.theta, tm.theta - t1.theta)));
         for (k, xk) in x.iter_mut().enumerate().take(n) {
-            let dx = match (t0, tm) {
-                (Some(t0), Some(tm)) => {
-                    let older = |t: Tangent| (t.theta - t1.theta, -g.gap(k, t1.phi[k], t.phi[k]), t.dphi[k]);
-                    hermite5(t1.dphi[k], older(t0), older(tm), h)
+            let dx = match (t0, &quintic) {
+                (_, Some((t0, tm, q))) => {
+                    let older = |t: &Tangent| (-g.gap(k, t1.phi[k], t.phi[k]), t.dphi[k]);
+                    q.eval(t1.dphi[k], older(t0), older(tm), h)
                 }
                 // the cubic through both solutions with both tangents (Hermite), one step on
                 (Some(t0), None) => {
@@ -207,7 +242,7 @@ impl GroupState {
                     let x1 = s + h;
                     (a * x1 + c2 * x1 * x1 + c3 * x1 * x1 * x1) - dp
                 }
-                (None, _) => t1.dphi[k] * h,
+                (None, None) => t1.dphi[k] * h,
             };
             // a steep tangent (near a dead point) predicts worse than none: start from the
             // last solution (the branch is then picked by the conditioning's sign)
@@ -221,24 +256,44 @@ impl GroupState {
 }
 
 /// The quintic Hermite interpolant (Newton's divided differences on the doubled nodes) of
-/// a function that is 0 with slope `d1` at abscissa 0, and has (abscissa, value, slope)
-/// `p0` and `pm` at two other abscissae, evaluated at `h`.
-fn hermite5(d1: f64, p0: (f64, f64, f64), pm: (f64, f64, f64), h: f64) -> f64 {
-    let z = [0.0, 0.0, p0.0, p0.0, pm.0, pm.0];
-    let mut q = [0.0, 0.0, p0.1, p0.1, pm.1, pm.1];
-    // first differences: a slope at a doubled node, a secant between two nodes
-    let slopes = [f64::NAN, d1, (p0.1 - 0.0) / p0.0, p0.2, (pm.1 - p0.1) / (pm.0 - p0.0), pm.2];
-    q[1..].copy_from_slice(&slopes[1..]);
-    for j in 2..6 {
-        for i in (j..6).rev() {
-            q[i] = (q[i] - q[i - 1]) / (z[i] - z[i - j]);
+/// a function that is 0 with slope `d1` at abscissa 0 and has (value, slope) at two other
+/// abscissae: prepared once for the abscissae (the reciprocals of the differences' spans),
+/// then evaluated for each coordinate with no division.
+struct Hermite5 {
+    z: [f64; 6],
+    /// `inv[j][i]` = 1 / (z[i] - z[i - j]) (unused where the span is 0: a slope there).
+    inv: [[f64; 6]; 6],
+}
+
+impl Hermite5 {
+    fn new(a0: f64, am: f64) -> Self {
+        let z = [0.0, 0.0, a0, a0, am, am];
+        let mut inv = [[0.0; 6]; 6];
+        for (j, row) in inv.iter_mut().enumerate().skip(1) {
+            for i in j..6 {
+                row[i] = 1.0 / (z[i] - z[i - j]);
+            }
         }
+        Hermite5 { z, inv }
     }
-    let mut p = q[5];
-    for j in (0..5).rev() {
-        p = p * (h - z[j]) + q[j];
+
+    /// The interpolant at `h`, for slope `d1` at 0 and (value, slope) `p0`, `pm` at the
+    /// other two abscissae.
+    fn eval(&self, d1: f64, p0: (f64, f64), pm: (f64, f64), h: f64) -> f64 {
+        let (z, inv) = (&self.z, &self.inv);
+        // first differences: a slope at a doubled node, a secant between two nodes
+        let mut q = [0.0, d1, p0.0 * inv[1][2], p0.1, (pm.0 - p0.0) * inv[1][4], pm.1];
+        for j in 2..6 {
+            for i in (j..6).rev() {
+                q[i] = (q[i] - q[i - 1]) * inv[j][i];
+            }
+        }
+        let mut p = q[5];
+        for j in (0..5).rev() {
+            p = p * (h - z[j]) + q[j];
+        }
+        p
     }
-    p
 }
 
 struct Solver<'p> {
@@ -301,9 +356,8 @@ impl<'p> Solver<'p> {
                     Op::Group(g) => Some(GroupState {
                         theta: plan.theta0,
                         phi: [0.0; MAX],
-                        tangent: None,
-                        previous: None,
-                        older: None,
+                        tangents: [None; 3],
+                        head: 0,
                         limit: None,
                         sign: g.sign,
                         det: f64::NAN,
@@ -622,10 +676,7 @@ impl<'p> Solver<'p> {
         }
         let t = Tangent { theta, phi: out.phi, dphi, det: out.det };
         let st = self.groups[i].as_mut().expect("a group has a state");
-        let previous = st.tangent.filter(|t0| t0.theta != theta);
-        st.older = previous.and(st.previous).filter(|o| o.theta != theta);
-        st.previous = previous;
-        st.tangent = Some(t);
+        st.push(t);
         st.theta = theta;
         st.phi = out.phi;
         st.sign = sign;
@@ -731,7 +782,7 @@ impl<'p> Solver<'p> {
         let mut ahead = f64::INFINITY;
         for (i, st) in self.groups.iter().enumerate() {
             let Some(g) = st else { continue };
-            let (Some(t1), Some(t0)) = (g.tangent, g.previous) else { continue };
+            let (Some(t1), Some(t0)) = (g.tangent(), g.previous()) else { continue };
             if !self.own_failure[i] || t1.theta != a || t1.theta == self.aimed_from {
                 continue;
             }
@@ -991,7 +1042,7 @@ impl Plan {
                     for g in s.groups.iter_mut().flatten() {
                         let shift = t - start;
                         g.theta += shift;
-                        for tg in [g.tangent.as_mut(), g.previous.as_mut(), g.older.as_mut()].into_iter().flatten() {
+                        for tg in g.tangents.iter_mut().flatten() {
                             tg.theta += shift;
                         }
                         if let Some(l) = g.limit.as_mut() {
@@ -1028,7 +1079,7 @@ impl Plan {
 
 #[cfg(test)]
 mod tests {
-    use super::hermite5;
+    use super::Hermite5;
 
     /// The quintic Hermite interpolant is exact on a polynomial of degree 5, at uneven
     /// abscissae, and its extrapolation of sin one step on has the error its remainder
@@ -1038,13 +1089,13 @@ mod tests {
         let f = |t: f64| 0.3 - 1.1 * t + 0.7 * t * t - 2.0 * t.powi(3) + 0.4 * t.powi(4) - 1.3 * t.powi(5);
         let df = |t: f64| -1.1 + 1.4 * t - 6.0 * t * t + 1.6 * t.powi(3) - 6.5 * t.powi(4);
         let (t1, t0, tm, t) = (0.2, -0.1, -0.35, 0.5);
-        let older = |s: f64| (s - t1, f(s) - f(t1), df(s));
-        let p = hermite5(df(t1), older(t0), older(tm), t - t1);
+        let older = |s: f64| (f(s) - f(t1), df(s));
+        let p = Hermite5::new(t0 - t1, tm - t1).eval(df(t1), older(t0), older(tm), t - t1);
         assert!((p - (f(t) - f(t1))).abs() < 1e-13, "{p}");
         let h = 1f64.to_radians();
-        for x1 in [0.3, 1.0, 2.5] {
-            let older = |s: f64| (s - x1, s.sin() - x1.sin(), s.cos());
-            let p = hermite5(x1.cos(), older(x1 - h), older(x1 - 2.0 * h), h);
+        for x1 in [0.3_f64, 1.0, 2.5] {
+            let older = |s: f64| (s.sin() - x1.sin(), s.cos());
+            let p = Hermite5::new(-h, -2.0 * h).eval(x1.cos(), older(x1 - h), older(x1 - 2.0 * h), h);
             let err = (p - ((x1 + h).sin() - x1.sin())).abs();
             // remainder: 36 h^6 / 720 |sin(xi)| <= h^6 / 20
             assert!(err <= h.powi(6) / 20.0 + 1e-16, "{err}");
