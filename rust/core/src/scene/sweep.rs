@@ -283,9 +283,9 @@ impl Hermite5 {
         let (z, inv) = (&self.z, &self.inv);
         // first differences: a slope at a doubled node, a secant between two nodes
         let mut q = [0.0, d1, p0.0 * inv[1][2], p0.1, (pm.0 - p0.0) * inv[1][4], pm.1];
-        for j in 2..6 {
+        for (j, span) in inv.iter().enumerate().skip(2) {
             for i in (j..6).rev() {
-                q[i] = (q[i] - q[i - 1]) * inv[j][i];
+                q[i] = (q[i] - q[i - 1]) * span[i];
             }
         }
         let mut p = q[5];
