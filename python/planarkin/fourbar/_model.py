@@ -174,7 +174,7 @@ class FourBar:
         t3, t4, st, nit, res, w, acc = self._core.sweep(
             a.theta2, a.mode, g, a.tol, a.max_iter, a.predictor, a.method, w2, a2
         )
-        return Sweep(
+        return Sweep.build(
             self.lengths, a.mode, a.theta2, t3, t4, st, nit, res,
             omega2=w2, omega3=w[0] if w else None, omega4=w[1] if w else None,
             alpha2=a2, alpha3=acc[0] if acc else None, alpha4=acc[1] if acc else None,
