@@ -491,7 +491,7 @@ impl Group {
     /// (cos, sin) of the rotation columns, all at once (4 at a time where the SIMD kernels
     /// are on: see [`cs_of`]).
     #[inline]
-    fn turns(&self, x: &[f64], buf: &mut [Xy; 32]) -> usize {
+    fn turns(&self, x: &[f64], buf: &mut [Xy; MAX]) -> usize {
         let n = self.nrot.min(MAX);
         let mut sc = [(0.0, 0.0); MAX];
         columns::sin_cos(&x[..n], &mut sc[..n]);
@@ -510,7 +510,7 @@ impl Group {
         f: impl FnMut(usize, f64),
         j: impl FnMut(usize, usize, f64),
     ) {
-        let mut buf = [[0.0; 2]; 32];
+        let mut buf = [[0.0; 2]; MAX];
         let heap: Vec<Xy>;
         let cs: &[Xy] = if self.nrot <= buf.len() {
             let n = self.turns(x, &mut buf);
@@ -1002,7 +1002,7 @@ fn solve_n<const N: usize>(
             // well that it converged at once (nit 0) that correction is about the tolerance,
             // and the rates would be off by as much. The rotations' sines and cosines are
             // kept for the placement.
-            let mut buf = [[0.0; 2]; 32];
+            let mut buf = [[0.0; 2]; MAX];
             let nr = g.turns(&phi[..N], &mut buf);
             cs[..nr].copy_from_slice(&buf[..nr]);
             let mut jacobian = SMatrix::<f64, N, N>::zeros();

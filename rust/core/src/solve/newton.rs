@@ -88,34 +88,22 @@ pub fn eliminate<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>, det:
     }
     let mut x = [0.0; N];
     x.copy_from_slice(b.as_slice());
-    for k in 0..N {
-        // the last row of largest |a_ik| (as `max_by` on `total_cmp` picks among equals; for
-        // numbers with a clear sign bit that order is the order of their bits)
-        let mut p = k;
-        let mut best = m[k][k].abs().to_bits();
-        for (i, row) in m.iter().enumerate().skip(k + 1) {
-            let v = row[k].abs().to_bits();
-            if v >= best {
-                (p, best) = (i, v);
+    // the steps spelled out for the sizes the groups use, so each step's loops have
+    // constant bounds and unroll (the same operations in the same order as the loop)
+    macro_rules! steps {
+        ($($k:literal)*) => {{
+            $( eliminate_step(&mut m, &mut x, det, $k)?; )*
+        }};
+    }
+    match N {
+        2 => steps!(0 1),
+        4 => steps!(0 1 2 3),
+        6 => steps!(0 1 2 3 4 5),
+        8 => steps!(0 1 2 3 4 5 6 7),
+        _ => {
+            for k in 0..N {
+                eliminate_step(&mut m, &mut x, det, k)?;
             }
-        }
-        if p != k {
-            m.swap(k, p);
-            x.swap(k, p);
-            *det = -*det;
-        }
-        let pivot = m[k][k];
-        *det *= pivot;
-        if pivot == 0.0 {
-            return None;
-        }
-        let (rk, xk) = (m[k], x[k]);
-        for i in k + 1..N {
-            let f = m[i][k] / pivot;
-            for (v, r) in m[i].iter_mut().zip(rk) {
-                *v -= f * r;
-            }
-            x[i] -= f * xk;
         }
     }
     for k in (0..N).rev() {
@@ -126,6 +114,40 @@ pub fn eliminate<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>, det:
         x[k] = s / m[k][k];
     }
     Some(SVector::<f64, N>::from_column_slice(&x))
+}
+
+/// Step `k` of [`eliminate`]: the pivot, the row swap, and the rows below it.
+#[inline(always)]
+fn eliminate_step<const N: usize>(m: &mut [[f64; N]; N], x: &mut [f64; N], det: &mut f64, k: usize) -> Option<()> {
+    // the last row of largest |a_ik| (as `max_by` on `total_cmp` picks among equals; for
+    // numbers with a clear sign bit that order is the order of their bits)
+    let mut p = k;
+    let mut best = m[k][k].abs().to_bits();
+    for (i, row) in m.iter().enumerate().skip(k + 1) {
+        let v = row[k].abs().to_bits();
+        if v >= best {
+            (p, best) = (i, v);
+        }
+    }
+    if p != k {
+        m.swap(k, p);
+        x.swap(k, p);
+        *det = -*det;
+    }
+    let pivot = m[k][k];
+    *det *= pivot;
+    if pivot == 0.0 {
+        return None;
+    }
+    let (rk, xk) = (m[k], x[k]);
+    for i in k + 1..N {
+        let f = m[i][k] / pivot;
+        for (v, r) in m[i].iter_mut().zip(rk) {
+            *v -= f * r;
+        }
+        x[i] -= f * xk;
+    }
+    Some(())
 }
 
 /// Stopping criteria, validated once.
