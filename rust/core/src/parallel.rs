@@ -110,6 +110,19 @@ fn pool(threads: usize) -> Result<Arc<rayon::ThreadPool>, Error> {
     Ok(p)
 }
 
+/// Whether this thread is one of rayon's workers (work started here must not wait on a
+/// watcher thread: it could wait for workers that are all waiting too).
+pub fn in_worker() -> bool {
+    #[cfg(feature = "parallel")]
+    {
+        rayon::current_thread_index().is_some()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        false
+    }
+}
+
 /// Validates a thread count as the caller gives it: None (all cores) or an integer >= 1.
 pub fn threads(n: Option<i64>) -> Result<Option<usize>, Error> {
     match n {

@@ -614,7 +614,7 @@ impl Reduced {
     /// least [`PARALLEL_PATHS`] is tracked on all cores (rayon's pool), each path by the
     /// same arithmetic as alone, so the ends are the same whatever the thread count.
     /// Interrupts are then asked by a watcher on this thread for long runs (as the
-    /// batches do), else once the paths are tracked.
+    /// batches do; not from inside a pool's worker), else once the paths are tracked.
     fn track_paths(
         &self,
         starts: &[usize],
@@ -629,7 +629,8 @@ impl Reduced {
             Ok((end, work.steps))
         };
         let ends: Vec<(PathEnd, usize)> = if cfg!(feature = "parallel") && starts.len() >= PARALLEL_PATHS {
-            let size = starts.len() as u128 * u128::from(opts.max_steps);
+            // (from inside a pool's worker, no watcher: the pool is already busy with us)
+            let size = if crate::parallel::in_worker() { 0 } else { starts.len() as u128 * u128::from(opts.max_steps) };
             let ends = crate::parallel::run(None, size, poll.source(), |stop| {
                 let flag = Flag(stop);
                 starts

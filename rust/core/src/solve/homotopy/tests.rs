@@ -564,3 +564,18 @@ fn homotopy_stops_when_interrupted() {
         assert!(e.starts_with("runs must be an integer in 1..=16"), "{e}");
     }
 }
+
+/// The paths of a run are tracked on all cores: the solutions (roots, their order, the
+/// paths' accounting and steps) are the same, bit for bit, on one thread and on all.
+#[test]
+fn homotopy_is_the_same_on_one_thread_and_on_all() {
+    let mut rng = SplitMix64(301);
+    let j = joints(&mut rng, BUTTERFLY);
+    for build in [butterfly_bar_ground as Builder, butterfly_hinge_input] {
+        let (a, b) = build(&j);
+        let all = solve(&a, &b);
+        let one = crate::parallel::with_threads(Some(1), || solve(&a, &b)).unwrap();
+        assert!(all.paths >= PARALLEL_PATHS, "{}", all.paths);
+        assert_eq!(all, one);
+    }
+}
