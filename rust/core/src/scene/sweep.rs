@@ -199,15 +199,16 @@ impl GroupState {
     }
 
     /// From the last solution: fifth order from the last three tangents where the group is
-    /// well away from a dead point and the three were taken at steps about as long as this
-    /// one; else third order from the last two (the cubic Hermite), first order with one;
+    /// well away from a dead point and the three were taken at steps at least half as long
+    /// as this one; else third order from the last two (the cubic Hermite), first order with one;
     /// the last solution itself after a gap or where the tangent is steep (a prediction
     /// over several steps, or across a dead point's square-root turn, is worse than none).
     ///
     /// The quintic's error over a step h is about h^6 |phi^(6)| / 20 (1.4e-12 |phi^(6)| at
-    /// one degree), the cubic's h^4 |phi^(4)| / 6 (1.5e-8 |phi^(4)|): at an ordinary angle
-    /// the quintic's start is already within the Newton tolerance, so one evaluation
-    /// converges (its correction applied) where the cubic's takes a step and a second one.
+    /// one degree), the cubic's h^4 |phi^(4)| / 6 (1.5e-8 |phi^(4)|): the quintic's start is
+    /// often already within the Newton tolerance (99% of Stephenson III's angles, 58% of a
+    /// double butterfly's at one-degree steps), and then one evaluation converges (its
+    /// correction applied) where the cubic's took a step and a second evaluation.
     fn predict(&self, theta: f64, g: &Group, max_step: f64) -> [f64; MAX] {
         let n = g.n();
         let h = theta - self.theta;

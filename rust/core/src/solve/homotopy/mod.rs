@@ -1109,7 +1109,7 @@ fn angles_close(a: &[f64], b: &[f64], tol: f64) -> bool {
 /// major `a`); the solution replaces `b`. False on a zero or non-finite pivot.
 fn lu_solve(a: &mut [C], m: usize, b: &mut [C]) -> bool {
     // the tracker's systems are (N + 1) square, N <= MAX_LINKS: the same elimination at a
-    // size known to the compiler (its loops unrolled, no bounds checks), bit for bit
+    // size known to the compiler (constant loop bounds), bit for bit
     macro_rules! fixed {
         ($($n:literal)*) => {
             match m {
