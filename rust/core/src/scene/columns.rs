@@ -44,36 +44,6 @@ struct Scratch {
     acc: Vec<Xy>,
 }
 
-/// (sin, cos) of one input angle as [`sin_cos`] gives it in a block, bit for bit: the
-/// continuation calls this, so both paths turn the input alike.
-pub(super) fn input_sin_cos(theta: f64) -> (f64, f64) {
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::enabled() && !(theta.is_nan() || theta.abs() > crate::simd::math::SIN_COS_MAX) {
-        // SAFETY: the SIMD kernels are on only where the CPU has AVX2 and FMA.
-        return unsafe { sin_cos_fma(theta) };
-    }
-    theta.sin_cos()
-}
-
-/// The polynomial sin/cos with its fused multiply-adds in hardware (not libm's `fma`).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn sin_cos_fma(theta: f64) -> (f64, f64) {
-    crate::simd::math::sin_cos(theta)
-}
-
-/// (sin, cos) of a block of angles: polynomial, 4 at a time, where the SIMD kernels are on
-/// (within 2 ulp of libm; libm beyond the polynomial's range), libm otherwise.
-pub(super) fn sin_cos(theta: &[f64], out: &mut [(f64, f64)]) {
-    if crate::simd::enabled() {
-        crate::simd::sin_cos_into(theta, out);
-    } else {
-        for (o, t) in out.iter_mut().zip(theta) {
-            *o = t.sin_cos();
-        }
-    }
-}
-
 /// The column sweep of `plan` over `theta` into `out`, compiled for AVX2 where the SIMD
 /// kernels are on (the same operations on 4 lanes, without fused multiply-adds: the same
 /// numbers as the baseline build).
@@ -157,7 +127,7 @@ fn sweep_body(
         let k0 = b * B;
         first_bad[..m].fill(OK);
         if angle {
-            sin_cos(block, &mut trig[..m]);
+            crate::simd::sin_cos_block(block, &mut trig[..m]);
         }
         if plan.linear {
             // the fused guide reads the displacement in the solving frame

@@ -23,7 +23,6 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::columns;
 use super::slide::{cdiv, cmul};
 use super::vec2::{dot, perp, sub, Xy};
 use super::{LinearKind, Scene};
@@ -494,7 +493,7 @@ impl Group {
     fn turns(&self, x: &[f64], buf: &mut [Xy; MAX]) -> usize {
         let n = self.nrot.min(MAX);
         let mut sc = [(0.0, 0.0); MAX];
-        columns::sin_cos(&x[..n], &mut sc[..n]);
+        crate::simd::sin_cos_block(&x[..n], &mut sc[..n]);
         for (b, (s, c)) in buf.iter_mut().zip(&sc[..n]) {
             *b = [*c, *s];
         }
@@ -912,11 +911,11 @@ fn merged(terms: Vec<Term>) -> Vec<Term> {
 }
 
 /// (cos, sin) of a rotation: the polynomial within 2 ulp of libm where the SIMD kernels
-/// are on (the input angle's, [`columns::input_sin_cos`]; about a third of libm's cost,
-/// and a group's evaluations take a dozen a step), libm otherwise.
+/// are on ([`crate::simd::sin_cos`]; about a third of libm's cost, and a group's
+/// evaluations take a dozen a step), libm otherwise.
 #[inline]
 fn cs_of(a: f64) -> Xy {
-    let (s, c) = columns::input_sin_cos(a);
+    let (s, c) = crate::simd::sin_cos(a);
     [c, s]
 }
 

@@ -399,7 +399,7 @@ impl<'p> Solver<'p> {
     fn eval(&mut self, theta: f64) -> bool {
         self.last_eval = theta;
         let plan = self.plan;
-        let (s, c) = columns::input_sin_cos(theta);
+        let (s, c) = crate::simd::sin_cos(theta);
         let u = [c, s];
         let pu = perp(u);
         let mut failed = false;

@@ -61,6 +61,38 @@ unsafe fn table_avx2(theta: &[f64], out: &mut [(f64, f64)]) {
     table_body(theta, out)
 }
 
+/// (sin, cos) of one angle as [`sin_cos_block`] gives it in a block, bit for bit (the
+/// scenes' continuation turns its input and its groups' rotations with this, the column
+/// sweep with the block form, so both paths turn alike): the polynomial where the SIMD
+/// kernels are on, libm otherwise or beyond the polynomial's range.
+pub fn sin_cos(theta: f64) -> (f64, f64) {
+    #[cfg(target_arch = "x86_64")]
+    if enabled() && !(theta.is_nan() || theta.abs() > math::SIN_COS_MAX) {
+        // SAFETY: the SIMD kernels are on only where the CPU has AVX2 and FMA.
+        return unsafe { sin_cos_fma(theta) };
+    }
+    theta.sin_cos()
+}
+
+/// The polynomial sin/cos with its fused multiply-adds in hardware (not libm's `fma`).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_fma(theta: f64) -> (f64, f64) {
+    math::sin_cos(theta)
+}
+
+/// (sin, cos) of a block of angles: polynomial, 4 at a time, where the SIMD kernels are on
+/// (within 2 ulp of libm; libm beyond the polynomial's range), libm otherwise.
+pub fn sin_cos_block(theta: &[f64], out: &mut [(f64, f64)]) {
+    if enabled() {
+        sin_cos_into(theta, out);
+    } else {
+        for (o, t) in out.iter_mut().zip(theta) {
+            *o = t.sin_cos();
+        }
+    }
+}
+
 /// (sin, cos) of every angle into a buffer the caller allocated (fallibly, for user
 /// sizes), 4 at a time; arguments beyond the polynomial's range (|x| > 1e5, infinities,
 /// NaN) go to libm.
