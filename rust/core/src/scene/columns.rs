@@ -9,7 +9,7 @@
 // the column loops index several arrays (and an offset into each) by the same angle
 #![allow(clippy::needless_range_loop)]
 
-use super::dyad::{Dyad, COINCIDENT, ROUNDING};
+use super::dyad::{closed_form, Dyad, APART, COINCIDE};
 use super::eval::Known;
 use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
@@ -396,51 +396,17 @@ fn slider_rates_block(
 fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det: &mut [f64], sst: &mut [i8]) {
     let (op, o1, o2) = (d.p * B, d.k1 * B, d.k2 * B);
     {
-        // `Dyad::solve`'s arithmetic, operation for operation, over the block's values with
-        // no branch (it vectorizes), its cases kept as numbers; the statuses after
+        // `Dyad::solve`'s closed form over the block's values (it has no branch, so this
+        // vectorizes), its cases kept as numbers; the statuses after
         let (x1, x2, xq) = two_in_one_out(&mut c.x, d.k1, d.k2, d.p, m);
         let (y1, y2, yq) = two_in_one_out(&mut c.y, d.k1, d.k2, d.p, m);
         let (det, sst) = (&mut det[..m], &mut sst[..m]);
-        let (r1, r2, side) = (d.r1, d.r2, d.side);
-        let tiny = COINCIDENT * (r1 + r2);
         let (na, nonfinite, sing) = (Status::NotAssemblable.code(), Status::NonFinite.code(), Status::Singular.code());
-        // coincident known points: a continuum with equal links, no assembly otherwise
-        let (coincident_st, coincident_det) = if (r1 - r2).abs() <= tiny { (sing, 0.0) } else { (na, f64::NAN) };
-        const SOLVED: f64 = 0.0;
-        const COINCIDE: f64 = 1.0;
-        const APART: f64 = 2.0;
-        let mut case = [SOLVED; B];
+        let mut case = [0.0; B];
         for j in 0..m {
-            let (ux, uy) = (x2[j] - x1[j], y2[j] - y1[j]);
-            let d2 = ux * ux + uy * uy;
-            let dd = d2.sqrt();
-            let round = ROUNDING * (dd + r1 + r2);
-            let q1 = dd + r1 - r2;
-            let q2 = dd - r1 + r2;
-            let q3 = r1 + r2 - dd;
-            let meets = (q1 >= -round) & (q2 >= -round) & (q3 >= -round);
-            let two_dh = ((r1 + r2 + dd) * q1.max(0.0) * q2.max(0.0) * q3.max(0.0)).sqrt();
-            let along = d2 + (r1 - r2) * (r1 + r2);
-            let h = side * two_dh;
-            let inv = 0.5 / d2;
             // (a point that did not solve is masked where it is written out)
-            xq[j] = x1[j] + (along * ux + h * -uy) * inv;
-            yq[j] = y1[j] + (along * uy + h * ux) * inv;
-            let coincident = dd <= tiny;
-            det[j] = if coincident {
-                coincident_det
-            } else if meets {
-                h / (2.0 * r1 * r2)
-            } else {
-                f64::NAN
-            };
-            case[j] = if coincident {
-                COINCIDE
-            } else if meets {
-                SOLVED
-            } else {
-                APART
-            };
+            let (p, dt, cs) = closed_form([x1[j], y1[j]], [x2[j], y2[j]], d.side, d.r1, d.r2);
+            (xq[j], yq[j], det[j], case[j]) = (p[0], p[1], dt, cs);
         }
         let (s1, s2, sq) = two_in_one_out(&mut c.st, d.k1, d.k2, d.p, m);
         for j in 0..m {
@@ -450,7 +416,12 @@ fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det
             } else if s2[j] != OK {
                 s2[j]
             } else if case[j] == COINCIDE {
-                coincident_st
+                // a continuum with equal links (conditioning 0), no assembly otherwise
+                if dt == 0.0 {
+                    sing
+                } else {
+                    na
+                }
             } else if case[j] == APART {
                 na
             } else if dt.abs() >= singular {
@@ -840,9 +811,12 @@ mod tests {
         }
     }
 
-    /// The branch-free dyad over a block is `Dyad::solve` value for value, bit for bit:
-    /// random known points, and the cases at the edges (coincident points with equal and
-    /// unequal links, out of reach, exactly in line, a non-finite input, a failed input).
+    /// The dyad over a block is `Dyad::solve` value for value, bit for bit (both run
+    /// `closed_form`; what this checks is the block's statuses, conditioning and masking
+    /// against the scalar solve's cases, which its own tests hold to circle
+    /// intersections): random known points, and the cases at the edges (coincident points
+    /// with equal and unequal links, out of reach, exactly in line, a non-finite input, a
+    /// failed input).
     #[test]
     fn the_dyad_block_is_dyad_solve_bit_for_bit() {
         let mut seed = 0x2545_f491_4f6c_dd1d_u64;

@@ -4,9 +4,68 @@
 use super::vec2::{cross, dot, perp, sub, Xy};
 
 /// Known points closer than this fraction of r1 + r2 coincide.
-pub(super) const COINCIDENT: f64 = 1e-12;
+const COINCIDENT: f64 = 1e-12;
 /// Rounding of |k1 k2| and of the Heron factors, relative to d + r1 + r2.
-pub(super) const ROUNDING: f64 = 4.0 * f64::EPSILON;
+const ROUNDING: f64 = 4.0 * f64::EPSILON;
+
+/// What [`closed_form`] found, as a number (a block's cases are then a plain array).
+pub(super) const SOLVED: f64 = 0.0;
+/// The known points coincide (to rounding).
+pub(super) const COINCIDE: f64 = 1.0;
+/// |r1 - r2| <= |k1 k2| <= r1 + r2 fails.
+pub(super) const APART: f64 = 2.0;
+
+/// The circle intersection, with no branch: the point on `side` at `r1` from `a` and `r2`
+/// from `b`, its signed conditioning, and the case ([`SOLVED`], [`COINCIDE`], [`APART`]).
+/// One square root for d = |ab| and one for 2 d h from Heron's formula in factored form
+/// (nothing cancels near a dead point, and power-of-two scaling is exact), no
+/// trigonometry. Coincident points give conditioning 0 with equal links (every point of
+/// the circle closes the dyad: a continuum) and NaN otherwise; points out of reach NaN;
+/// the point means something only where the case is `SOLVED`. [`Dyad::solve`] and the
+/// column sweep's block of 128 values (where, with no branch, it vectorizes) both run it.
+#[inline(always)]
+pub(super) fn closed_form(a: Xy, b: Xy, side: f64, r1: f64, r2: f64) -> (Xy, f64, f64) {
+    let u = sub(b, a);
+    let d2 = dot(u, u);
+    let d = d2.sqrt();
+    // known points that coincide to rounding: with equal links every point of the circle
+    // closes the dyad (a continuum, not two assemblies)
+    let tiny = COINCIDENT * (r1 + r2);
+    // a factor below zero by no more than the rounding of d is a dead point (the two links
+    // in line), not a failure to close: sweeps step over it
+    let round = ROUNDING * (d + r1 + r2);
+    let q1 = d + r1 - r2;
+    let q2 = d - r1 + r2;
+    let q3 = r1 + r2 - d;
+    let meets = (q1 >= -round) & (q2 >= -round) & (q3 >= -round);
+    let two_dh = ((r1 + r2 + d) * q1.max(0.0) * q2.max(0.0) * q3.max(0.0)).sqrt();
+    let along = d2 + (r1 - r2) * (r1 + r2);
+    let h = side * two_dh;
+    let w = perp(u);
+    let inv = 0.5 / d2;
+    let p = [a[0] + (along * u[0] + h * w[0]) * inv, a[1] + (along * u[1] + h * w[1]) * inv];
+    let coincident = d <= tiny;
+    let equal = (r1 - r2).abs() <= tiny;
+    let det = if coincident {
+        if equal {
+            0.0
+        } else {
+            f64::NAN
+        }
+    } else if meets {
+        h / (2.0 * r1 * r2)
+    } else {
+        f64::NAN
+    };
+    let case = if coincident {
+        COINCIDE
+    } else if meets {
+        SOLVED
+    } else {
+        APART
+    };
+    (p, det, case)
+}
 
 /// Point `p` at distance `r1` from known point `k1` and `r2` from `k2`, on side `side`
 /// (+1: left of k1 -> k2) — the side of the drawn pose.
@@ -35,9 +94,7 @@ pub(super) enum DyadOut {
 }
 
 impl Dyad {
-    /// Circle intersection: one square root for d = |k1 k2| and one for 2 d h from
-    /// Heron's formula in factored form (nothing cancels near a dead point, and
-    /// power-of-two scaling is exact), no trigonometry.
+    /// The dyad's point on its drawn side ([`closed_form`], its case as [`DyadOut`]).
     #[inline]
     pub(super) fn solve(&self, a: Xy, b: Xy) -> DyadOut {
         self.solve_side(a, b, self.side)
@@ -53,32 +110,14 @@ impl Dyad {
     /// on a fused guide).
     #[inline]
     pub(super) fn solve_radii(&self, a: Xy, b: Xy, side: f64, r1: f64, r2: f64) -> DyadOut {
-        let u = sub(b, a);
-        let d2 = dot(u, u);
-        let d = d2.sqrt();
-        // known points that coincide to rounding: with equal links every point of the
-        // circle closes the dyad (a continuum, not two assemblies)
-        let tiny = COINCIDENT * (r1 + r2);
-        if d <= tiny {
-            return if (r1 - r2).abs() <= tiny { DyadOut::Indeterminate } else { DyadOut::NotAssemblable };
+        let (p, det, case) = closed_form(a, b, side, r1, r2);
+        if case == SOLVED {
+            DyadOut::Solved(p, det)
+        } else if case == COINCIDE && det == 0.0 {
+            DyadOut::Indeterminate
+        } else {
+            DyadOut::NotAssemblable
         }
-        // a factor below zero by no more than the rounding of d is a dead point (the two
-        // links in line), not a failure to close: sweeps step over it
-        let round = ROUNDING * (d + r1 + r2);
-        let q1 = d + r1 - r2;
-        let q2 = d - r1 + r2;
-        let q3 = r1 + r2 - d;
-        if !(q1 >= -round && q2 >= -round && q3 >= -round) {
-            return DyadOut::NotAssemblable;
-        }
-        let (q1, q2, q3) = (q1.max(0.0), q2.max(0.0), q3.max(0.0));
-        let two_dh = ((r1 + r2 + d) * q1 * q2 * q3).sqrt();
-        let along = d2 + (r1 - r2) * (r1 + r2);
-        let h = side * two_dh;
-        let w = perp(u);
-        let inv = 0.5 / d2;
-        let p = [a[0] + (along * u[0] + h * w[0]) * inv, a[1] + (along * u[1] + h * w[1]) * inv];
-        DyadOut::Solved(p, h / (2.0 * r1 * r2))
     }
 
     /// Signed sine of the angle at `p` of the triangle k1-p-k2, from positions.
