@@ -1001,9 +1001,7 @@ fn solve_n<const N: usize>(
             // well that it converged at once (nit 0) that correction is about the tolerance,
             // and the rates would be off by as much. The rotations' sines and cosines are
             // kept for the placement.
-            let mut buf = [[0.0; 2]; MAX];
-            let nr = g.turns(&phi[..N], &mut buf);
-            cs[..nr].copy_from_slice(&buf[..nr]);
+            g.turns(&phi[..N], &mut cs);
             let mut jacobian = SMatrix::<f64, N, N>::zeros();
             g.closure_terms_with(&phi[..N], &cs[..g.nrot], anchors, |_, _| {}, |r, c, v| jacobian[(r, c)] += v);
             let d = g.rate_terms(&phi[..N], vel);

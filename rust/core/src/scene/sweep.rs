@@ -147,8 +147,8 @@ struct Tangent {
 /// Continuation state of one group.
 #[derive(Clone, Copy, Debug)]
 struct GroupState {
+    /// The input value of the last solution (the drawn one before the first).
     theta: f64,
-    phi: [f64; MAX],
     /// The last three solutions with their tangents, the newest at `head`: a ring, where
     /// a new solution takes the oldest one's place and nothing is moved.
     tangents: [Option<Tangent>; 3],
@@ -159,14 +159,22 @@ struct GroupState {
     /// Sign of the conditioning on the branch followed (as drawn; it changes at a change
     /// point).
     sign: f64,
-    /// The conditioning at the last solution (NaN before the first).
-    det: f64,
 }
 
 impl GroupState {
     /// The last solution's tangent.
     fn tangent(&self) -> Option<&Tangent> {
         self.tangents[self.head].as_ref()
+    }
+
+    /// The last solution (the drawn pose, all zero, before the first).
+    fn phi(&self) -> [f64; MAX] {
+        self.tangent().map_or([0.0; MAX], |t| t.phi)
+    }
+
+    /// The conditioning at the last solution (NaN before the first).
+    fn det(&self) -> f64 {
+        self.tangent().map_or(f64::NAN, |t| t.det)
     }
 
     /// The one before it.
@@ -212,7 +220,7 @@ impl GroupState {
     fn predict(&self, theta: f64, g: &Group, max_step: f64) -> [f64; MAX] {
         let n = g.n();
         let h = theta - self.theta;
-        let mut x = self.phi;
+        let mut x = self.phi();
         if h.abs() > 4.0 * max_step {
             return x;
         }
@@ -220,7 +228,7 @@ impl GroupState {
         let t0 = self.previous().filter(|t0| t0.theta != t1.theta);
         // the quintic: three solutions, each step at least half as long as this one
         let tm = match (t0, self.older()) {
-            (Some(t0), Some(tm)) if self.det.abs() >= NEAR_DEAD => {
+            (Some(t0), Some(tm)) if self.det().abs() >= NEAR_DEAD => {
                 let (s0, s1) = (t1.theta - t0.theta, t0.theta - tm.theta);
                 (s0 * h > 0.0 && s1 * h > 0.0 && s0.abs() >= 0.5 * h.abs() && s1.abs() >= 0.5 * h.abs()).then_some(tm)
             }
@@ -248,7 +256,7 @@ impl GroupState {
             // a steep tangent (near a dead point) predicts worse than none: start from the
             // last solution (the branch is then picked by the conditioning's sign)
             if !(dx.abs() <= 0.5 * JUMP) {
-                return self.phi;
+                return self.phi();
             }
             *xk += dx;
         }
@@ -354,15 +362,9 @@ impl<'p> Solver<'p> {
                 .ops
                 .iter()
                 .map(|o| match o {
-                    Op::Group(g) => Some(GroupState {
-                        theta: plan.theta0,
-                        phi: [0.0; MAX],
-                        tangents: [None; 3],
-                        head: 0,
-                        limit: None,
-                        sign: g.sign,
-                        det: f64::NAN,
-                    }),
+                    Op::Group(g) => {
+                        Some(GroupState { theta: plan.theta0, tangents: [None; 3], head: 0, limit: None, sign: g.sign })
+                    }
                     _ => None,
                 })
                 .collect(),
@@ -615,7 +617,7 @@ impl<'p> Solver<'p> {
             }
         }
         let guess = state.predict(theta, g, self.opts.max_step);
-        let (det0, sign0) = (state.det, state.sign);
+        let (det0, sign0) = (state.det(), state.sign);
         anchors.clear();
         anchors.extend(g.anchors.iter().map(|&a| self.pos[a]));
         anchor_vel.clear();
@@ -679,9 +681,7 @@ impl<'p> Solver<'p> {
         let st = self.groups[i].as_mut().expect("a group has a state");
         st.push(t);
         st.theta = theta;
-        st.phi = out.phi;
         st.sign = sign;
-        st.det = out.det;
         st.limit = None;
         (Status::Converged, out.det)
     }

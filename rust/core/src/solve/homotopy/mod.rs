@@ -628,34 +628,39 @@ impl Reduced {
             let end = self.path(start, gamma, opts, &mut work, poll)?;
             Ok((end, work.steps))
         };
-        let ends: Vec<(PathEnd, usize)> = if cfg!(feature = "parallel") && starts.len() >= PARALLEL_PATHS {
-            // (from inside a pool's worker, no watcher: the pool is already busy with us)
-            let size = if crate::parallel::in_worker() { 0 } else { starts.len() as u128 * u128::from(opts.max_steps) };
-            let ends = crate::parallel::run(None, size, poll.source(), |stop| {
-                let flag = Flag(stop);
-                starts
-                    .par_iter()
-                    .map(
-                        |&start| {
-                            if flag.interrupted() {
-                                Err(Error::Interrupted)
-                            } else {
-                                one(start, &Poll::new(&flag))
-                            }
-                        },
-                    )
-                    .collect::<Result<Vec<_>, Error>>()
-            })?;
-            // the caller's countdown counts the steps as if it had taken them (it asks the
-            // interrupt as often as on one thread)
-            for _ in 0..ends.iter().map(|e| e.1).sum::<usize>() {
+        // (the paths tracked here tick the caller's countdown as they step)
+        let (ends, ticked): (Vec<(PathEnd, usize)>, bool) =
+            if cfg!(feature = "parallel") && starts.len() >= PARALLEL_PATHS {
+                // (from inside a pool's worker, no watcher: the pool is already busy with us)
+                let size =
+                    if crate::parallel::in_worker() { 0 } else { starts.len() as u128 * u128::from(opts.max_steps) };
+                let ends =
+                    crate::parallel::run(None, size, poll.source(), |stop| {
+                        let flag = Flag(stop);
+                        starts
+                            .par_iter()
+                            .map(|&start| {
+                                if flag.interrupted() {
+                                    Err(Error::Interrupted)
+                                } else {
+                                    one(start, &Poll::new(&flag))
+                                }
+                            })
+                            .collect::<Result<Vec<_>, Error>>()
+                    })?;
+                (ends, false)
+            } else {
+                (starts.iter().map(|&start| one(start, poll)).collect::<Result<Vec<_>, Error>>()?, true)
+            };
+        let taken: usize = ends.iter().map(|e| e.1).sum();
+        if !ticked {
+            // the caller's countdown counts the pool's steps as if it had taken them (it
+            // asks the interrupt as often as on one thread)
+            for _ in 0..taken {
                 poll.tick()?;
             }
-            ends
-        } else {
-            starts.iter().map(|&start| one(start, poll)).collect::<Result<Vec<_>, Error>>()?
-        };
-        *steps += ends.iter().map(|e| e.1).sum::<usize>();
+        }
+        *steps += taken;
         Ok(ends.into_iter().map(|e| e.0).collect())
     }
 
@@ -1124,9 +1129,6 @@ fn lu_solve(a: &mut [C], m: usize, b: &mut [C]) -> bool {
 
 /// [`lu_solve`] for an M x M system: the same operations in the same order.
 fn lu_fixed<const M: usize>(a: &mut [C], b: &mut [C]) -> bool {
-    if a.len() != M * M || b.len() != M {
-        return false;
-    }
     lu_dynamic(&mut a[..M * M], M, &mut b[..M])
 }
 
