@@ -25,10 +25,20 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPS = 5
 M = 200
+#: kind -> (points one call solves, repetitions per REPS: short calls repeat more)
+KINDS = {
+    "seed": (361, 100),
+    "seed_cf": (361, 100),
+    "batch": (M * 361, 1),
+    "closed_form": (M * 361, 1),
+    "numpy_cf": (M * 361, 1),
+    "group": (361, 10),
+    "jansen": (361, 100),
+}
 
 
-def workload(kind: str, reps: int) -> int:
-    """Runs the workload ``reps`` times after one warm-up; returns the points timed."""
+def workload(kind: str, reps: int) -> None:
+    """Runs the workload ``reps`` times after one warm-up."""
     import numpy as np
     import planarkin as pk
     from planarkin.fourbar.tradeoff import random_crank_rockers
@@ -42,19 +52,18 @@ def workload(kind: str, reps: int) -> int:
     jansen = pk.scenes.load("jansen")
     j_theta = jansen.input_angle + np.radians(np.arange(361.0))
     calls = {
-        "seed": (lambda: fb.sweep(), 361),
-        "seed_cf": (lambda: fb.sweep(predictor="closed-form"), 361),
-        "batch": (lambda: pk.sweep_batch(links, threads=1), M * 361),
-        "closed_form": (lambda: pk.closed_form_batch(links, threads=1), M * 361),
-        "numpy_cf": (lambda: closed_form_vectorized(*cols, pk.DEFAULT_THETA2), M * 361),
-        "group": (lambda: db.sweep(db_theta), 361),
-        "jansen": (lambda: jansen.sweep(j_theta, outputs=["foot"]), 361),
+        "seed": lambda: fb.sweep(),
+        "seed_cf": lambda: fb.sweep(predictor="closed-form"),
+        "batch": lambda: pk.sweep_batch(links, threads=1),
+        "closed_form": lambda: pk.closed_form_batch(links, threads=1),
+        "numpy_cf": lambda: closed_form_vectorized(*cols, pk.DEFAULT_THETA2),
+        "group": lambda: db.sweep(db_theta),
+        "jansen": lambda: jansen.sweep(j_theta, outputs=["foot"]),
     }
-    fn, points = calls[kind]
+    fn = calls[kind]
     fn()
     for _ in range(reps):
         fn()
-    return points * reps
 
 
 def _profile(kind: str, reps: int, tmp: str) -> dict[str, int]:
@@ -79,11 +88,11 @@ def _profile(kind: str, reps: int, tmp: str) -> dict[str, int]:
 def callgrind(kind: str) -> None:
     """Profiles 1 and 1 + REPS repetitions and prints the difference per point, so the
     interpreter start-up, imports and warm-up cancel out."""
-    reps = REPS * {"seed": 100, "seed_cf": 100, "group": 10, "jansen": 100}.get(kind, 1)
+    per, factor = KINDS[kind]
+    reps = REPS * factor
     with tempfile.TemporaryDirectory() as tmp:
         base = _profile(kind, 1, tmp)
         full = _profile(kind, 1 + reps, tmp)
-    per = {"seed": 361, "seed_cf": 361, "group": 361, "jansen": 361}.get(kind, M * 361)
     points = per * reps
     diff = {k: v - base.get(k, 0) for k, v in full.items()}
     total = diff.pop("PROGRAM TOTALS", sum(diff.values()))
@@ -99,8 +108,7 @@ def callgrind(kind: str) -> None:
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    kinds = ("seed", "seed_cf", "batch", "closed_form", "numpy_cf", "group", "jansen")
-    if not args or args[0] not in kinds:
+    if not args or args[0] not in KINDS:
         print(__doc__)
         sys.exit(2)
     if "--run" in args:
