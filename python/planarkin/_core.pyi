@@ -177,6 +177,7 @@ class Plan:
         max_iter: int,
         max_step: float,
         omega: float | None,
+        predictor: str,
     ) -> tuple[
         _F64, _F64, _I8, npt.NDArray[np.uint32], _F64, _F64, _I8, _F64, _I8,
         tuple[_F64, _F64, _F64, _F64] | None,

@@ -13,7 +13,7 @@ import numpy as np
 
 from .. import _kernel
 from .._angles import TAU, wrap
-from .._args import as_angles, as_float, as_i64, as_u64
+from .._args import as_angles, as_float, as_i64, as_str, as_u64
 from .._svg import picture
 from ..fourbar import LINKS, POINTS, FourBar
 from ._parse import check_depth, parse
@@ -513,6 +513,7 @@ class Scene:
         max_iter: int = 100,
         omega: float | None = None,
         max_step: float | None = None,
+        predictor: str = "continuation",
     ) -> SceneSweep:
         """Solves the plan of ``outputs`` at every input angle ``theta`` (radians; default
         361 angles from the drawn angle through one full turn), following the drawn
@@ -528,6 +529,16 @@ class Scene:
         of the drawn circuit that lies the other way round is then solved backwards from the
         drawn pose. ``omega`` (input angular velocity) adds point velocities and link
         angular velocities.
+
+        ``predictor="closed-form"`` follows nothing: every angle is solved on its own, each
+        dyad and slider on its drawn side by its closed form, across angles at once (plans
+        with no group only: a ``ValueError`` naming ``predictor`` otherwise). An angle where
+        the drawn sides do not close is LIMIT where the linkage has some other assembly
+        there and NOT_ASSEMBLABLE where it has none; ``limit`` is NaN. The default
+        (``"continuation"``) already solves a plan with no group this way wherever that is
+        certified to be the drawn circuit's motion (no step near a dead point, angles at
+        most ``max_step`` apart); the two differ only where the drawn circuit does not
+        reach an angle that the drawn sides close at.
         """
         plan, core = self._compiled(outputs)
         kind = self.input_kind
@@ -542,7 +553,8 @@ class Scene:
         tol, max_iter = as_float("tol", tol), as_i64("max_iter", max_iter)
         ms = as_float("max_step", max_step)
         w = None if omega is None else as_float("omega", omega)
-        pts, ang, status, nit, det, limit, sst, sdet, pst, kin = core.sweep(t, tol, max_iter, ms, w)
+        p = as_str("predictor", predictor)
+        pts, ang, status, nit, det, limit, sst, sdet, pst, kin = core.sweep(t, tol, max_iter, ms, w, p)
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
         # the output coordinate is computed when it is first read
         output = None if self._data["output"] is None else self._output_of

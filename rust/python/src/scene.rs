@@ -3,8 +3,8 @@
 
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use planarkin_core::scene::{
-    assemble_sketch, Assemblies, LinearKind, Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, Trace,
-    TraceOptions,
+    assemble_sketch, Assemblies, LinearKind, Plan, Scene, ScenePredictor, SceneSpec, SceneSweepOptions, SceneSweepOut,
+    Trace, TraceOptions,
 };
 use planarkin_core::solve::homotopy::HomotopyOptions;
 use planarkin_core::NewtonOptions;
@@ -282,7 +282,8 @@ impl PyPlan {
     /// Sweep: (points (N,P,2), angles (N,L), status, nit, det, limit, step_status (N,S),
     /// step_det (N,S), point_status (N,P), (velocity (N,P,2), angular velocity (N,L),
     /// acceleration (N,P,2), angular acceleration (N,L))?).
-    #[pyo3(signature = (theta, tol, max_iter, max_step, omega))]
+    #[pyo3(signature = (theta, tol, max_iter, max_step, omega, predictor))]
+    #[allow(clippy::too_many_arguments)]
     fn sweep<'py>(
         &self,
         py: Python<'py>,
@@ -291,9 +292,11 @@ impl PyPlan {
         max_iter: i64,
         max_step: f64,
         omega: Option<f64>,
+        predictor: &str,
     ) -> PyResult<SceneSweepArrays<'py>> {
-        let opts =
-            SceneSweepOptions::new(NewtonOptions::new(tol, max_iter).map_err(err)?, max_step, omega).map_err(err)?;
+        let opts = SceneSweepOptions::new(NewtonOptions::new(tol, max_iter).map_err(err)?, max_step, omega)
+            .map_err(err)?
+            .with_predictor(ScenePredictor::parse(predictor).map_err(err)?);
         let t = slice("theta", &theta)?;
         let plan = &self.inner;
         let (n, np, nl, ns) = (t.len(), plan.points().len(), plan.links().len(), plan.steps().len());

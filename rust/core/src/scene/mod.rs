@@ -30,7 +30,7 @@ use std::collections::HashMap;
 
 pub use assemble::{Assemblies, Assembly};
 pub use gradient::{Free, DET_STEP};
-pub use options::{SceneSweepOptions, SceneSweepOut};
+pub use options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
 pub use plan::{Plan, StepInfo, StepKind};
 pub use sketch::{assemble_sketch, LengthSpec, Sketched, MAX_SKETCH_POINTS};
 pub use slide::{Prismatic, Slot};

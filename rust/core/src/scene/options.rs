@@ -1,7 +1,7 @@
 //! What a scene sweep takes and writes: its validated options and the caller-owned
 //! output slices (row-major over input angles).
 
-use crate::error::{finite, positive_finite, Error};
+use crate::error::{finite, positive_finite, quoted, Error};
 use crate::solve::newton::NewtonOptions;
 
 /// Options of a scene sweep, validated once.
@@ -14,6 +14,34 @@ pub struct SceneSweepOptions {
     /// Input angular velocity (constant): point and link velocities and accelerations are
     /// computed when given.
     pub omega: Option<f64>,
+    /// How each input value's pose is found ([`ScenePredictor::Continuation`] unless set).
+    pub predictor: ScenePredictor,
+}
+
+/// How a scene sweep finds each input value's pose.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ScenePredictor {
+    /// Follows the drawn circuit from the drawn pose: groups by continuation, LIMIT past a
+    /// dead point. A plan with no group is solved by its closed forms across values at once
+    /// where that is certified to be the same motion (no step near a dead point, values no
+    /// more than `max_step` apart), and followed by continuation otherwise.
+    #[default]
+    Continuation,
+    /// No continuation: every value on its own, each dyad and slider on its drawn side by
+    /// its closed form (plans with no group only). Values where the drawn sides do not
+    /// close are LIMIT when some other assembly exists there, NOT_ASSEMBLABLE when none.
+    ClosedForm,
+}
+
+impl ScenePredictor {
+    /// Parses "continuation" / "closed-form".
+    pub fn parse(s: &str) -> Result<Self, Error> {
+        match s {
+            "continuation" => Ok(ScenePredictor::Continuation),
+            "closed-form" => Ok(ScenePredictor::ClosedForm),
+            other => Err(Error::invalid("predictor", "must be 'continuation' or 'closed-form'", quoted(other))),
+        }
+    }
 }
 
 impl SceneSweepOptions {
@@ -23,7 +51,12 @@ impl SceneSweepOptions {
         if let Some(w) = omega {
             finite("omega", w)?;
         }
-        Ok(Self { newton, max_step, omega })
+        Ok(Self { newton, max_step, omega, predictor: ScenePredictor::Continuation })
+    }
+
+    /// The same options with `predictor`.
+    pub fn with_predictor(self, predictor: ScenePredictor) -> Self {
+        Self { predictor, ..self }
     }
 }
 

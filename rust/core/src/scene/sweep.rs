@@ -20,10 +20,10 @@ use super::columns;
 use super::dyad::{Dyad, DyadOut};
 use super::eval::Known;
 use super::group::{Group, GroupSolve, MAX};
-use super::options::{SceneSweepOptions, SceneSweepOut};
+use super::options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
 use super::vec2::{angular_acceleration, cross, dot, perp, sub, Xy};
-use crate::error::Error;
+use crate::error::{quoted, Error};
 use crate::interrupt::{Interrupt, Poll};
 use crate::solve::homotopy::HomotopyOptions;
 use crate::solve::newton::NewtonOptions;
@@ -907,6 +907,8 @@ impl Plan {
     /// that the drawn circuit reaches the other way are then solved by continuing from the
     /// drawn pose backwards over `theta`, from the last LIMIT value to the first. What
     /// stays LIMIT is NOT_ASSEMBLABLE where the linkage has no assembly at all.
+    /// [`ScenePredictor::ClosedForm`] solves every value on its own instead (plans with no
+    /// group; an [`Error::InvalidParameter`] naming `predictor` otherwise).
     /// `interrupt` is asked every few thousand angles (Ctrl-C from Python).
     pub fn sweep(
         &self,
@@ -942,6 +944,9 @@ impl Plan {
             check("acceleration", v.len(), n * np * 2)?;
             check("angular acceleration", w.len(), n * nl)?;
         }
+        if opts.predictor == ScenePredictor::ClosedForm {
+            return self.closed_form_sweep(theta, opts, out, interrupt);
+        }
         if self.columns_ok() {
             columns::sweep(self, theta, opts, &mut out, &poll)?;
             if self.certified(theta, opts, &out) {
@@ -956,6 +961,36 @@ impl Plan {
             (out.status.iter().position(|&s| s == limit), out.status.iter().rposition(|&s| s == limit))
         {
             self.continuation(theta, (first..=last).rev(), opts, &mut out, true, &poll)?;
+        }
+        self.classify_limits(theta, &mut out, interrupt)
+    }
+
+    /// [`ScenePredictor::ClosedForm`]: the column sweep as it is (every value on its own,
+    /// each operation on its drawn side), with the values where the drawn sides do not
+    /// close told apart: LIMIT where some other assembly exists, NOT_ASSEMBLABLE where none.
+    fn closed_form_sweep(
+        &self,
+        theta: &[f64],
+        opts: &SceneSweepOptions,
+        mut out: SceneSweepOut<'_>,
+        interrupt: &dyn Interrupt,
+    ) -> Result<(), Error> {
+        if !self.columns_ok() {
+            return Err(Error::invalid(
+                "predictor",
+                "must be 'continuation' for a plan with a group solved by Newton ('closed-form' \
+                 solves dyads, sliders and carries)",
+                quoted("closed-form"),
+            ));
+        }
+        columns::sweep(self, theta, opts, &mut out, &Poll::new(interrupt))?;
+        // a closed form that does not close says NOT_ASSEMBLABLE of its own step; whether
+        // the linkage has no assembly at all is the classification's to say
+        let (limit, none) = (Status::Limit.code(), Status::NotAssemblable.code());
+        for code in out.status.iter_mut().chain(out.step_status.iter_mut()).chain(out.point_status.iter_mut()) {
+            if *code == none {
+                *code = limit;
+            }
         }
         self.classify_limits(theta, &mut out, interrupt)
     }
