@@ -52,9 +52,12 @@ fn seed_sweep(c: &mut Criterion) {
     let t2 = default_angles(N);
     let mut g = c.benchmark_group("seed_sweep_361");
     g.throughput(Throughput::Elements(N as u64));
-    for (name, p) in
-        [("quadratic", Predictor::Quadratic), ("tangent", Predictor::Tangent), ("previous", Predictor::Previous)]
-    {
+    for (name, p) in [
+        ("quadratic", Predictor::Quadratic),
+        ("tangent", Predictor::Tangent),
+        ("previous", Predictor::Previous),
+        ("closed_form_predicted", Predictor::ClosedForm),
+    ] {
         let o = opts(p);
         let mut b = Bufs::new(N);
         g.bench_function(name, |bch| {

@@ -35,7 +35,7 @@ pub(crate) fn closed_form_predicted(
         // SAFETY: AVX2 and FMA checked at run time.
         return unsafe { body_avx2(fb, theta2, trig, guess, opts, out, motion, poll) };
     }
-    body(fb, theta2, trig, guess, opts, out, motion, poll)
+    body::<false>(fb, theta2, trig, guess, opts, out, motion, poll)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -51,12 +51,15 @@ unsafe fn body_avx2(
     motion: Option<MotionOut<'_>>,
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
-    body(fb, theta2, trig, guess, opts, out, motion, poll)
+    body::<true>(fb, theta2, trig, guess, opts, out, motion, poll)
 }
 
+/// `AVX`: compiled inside [`body_avx2`] (AVX2 and FMA present), where the evaluation is
+/// written in AVX2 intrinsics (the same values as the lane loop, which LLVM vectorizes
+/// only 2 wide).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn body(
+fn body<const AVX: bool>(
     fb: &FourBar,
     theta2: &[f64],
     trig: &[(f64, f64)],
@@ -69,43 +72,23 @@ fn body(
     let n = theta2.len();
     let spec = RowSpec { mode: opts.mode, singular: opts.newton.singular, nan_singular: false };
     closed_form_row(fb, theta2, trig, spec, out.theta3, out.theta4, Some(&mut *out.status));
-    let r: [V; 4] = fb.unit_lengths().map(|v| [v; W]);
-    let scale: V = [fb.longest(); W];
-    let r3r4: V = lanes!(|l| r[2][l] * r[3][l]);
-    let (tol, singular, sign) = (opts.newton.tol, opts.newton.singular, opts.mode.sign());
+    let check = Check::new(fb, opts);
     // per point: solved here (true) or left to the scalar path
     let mut fast = vec![false; n];
     let mut i = 0;
     while i + W <= n {
-        let idx: [usize; W] = lanes!(|l| i + l);
-        let cand: M = lanes!(|l| out.status[idx[l]] == CONVERGED && !(idx[l] == 0 && guess.is_some()));
+        let cand: M = lanes!(|l| out.status[i + l] == CONVERGED && !(i + l == 0 && guess.is_some()));
         if cand.iter().any(|&c| c) {
-            let x: [V; 2] = [lanes!(|l| out.theta3[idx[l]]), lanes!(|l| out.theta4[idx[l]])];
-            let (s2, c2): (V, V) = (lanes!(|l| trig[idx[l]].0), lanes!(|l| trig[idx[l]].1));
-            let Eval { f1, f2, residual, det, sin34, dx: [dx0, dx1], step, .. } =
-                eval_lanes(&r, &scale, &r3r4, &s2, &c2, &x);
-            let ok: M = lanes!(|l| {
-                let finite = f1[l].is_finite()
-                    & f2[l].is_finite()
-                    & (x[0][l].abs() <= SIN_COS_MAX)
-                    & (x[1][l].abs() <= SIN_COS_MAX);
-                cand[l]
-                    & finite
-                    & (det[l] != 0.0)
-                    & (fb.conditioning(sin34[l]) >= singular)
-                    & (residual[l] < tol)
-                    & (step[l] < tol)
-                    & (sin34[l] * sign > 0.0)
-            });
-            let t3 = wrap(lanes!(|l| x[0][l] + dx0[l]));
-            let t4 = wrap(lanes!(|l| x[1][l] + dx1[l]));
+            let block = Block {
+                theta3: &mut out.theta3[i..i + W],
+                theta4: &mut out.theta4[i..i + W],
+                residual: &mut out.residual[i..i + W],
+                trig: &trig[i..i + W],
+            };
+            let ok = if AVX { accept_avx2(&check, cand, block) } else { accept(&check, cand, block) };
             for l in (0..W).filter(|&l| ok[l]) {
-                let k = idx[l];
-                out.theta3[k] = t3[l];
-                out.theta4[k] = t4[l];
-                out.nit[k] = 0;
-                out.residual[k] = residual[l];
-                fast[k] = true;
+                out.nit[i + l] = 0;
+                fast[i + l] = true;
             }
         }
         i += W;
@@ -113,6 +96,9 @@ fn body(
     for (k, &t2) in theta2.iter().enumerate() {
         poll.tick()?;
         let point = if fast[k] {
+            if motion.is_none() {
+                continue; // written by the check above
+            }
             Point {
                 theta3: out.theta3[k],
                 theta4: out.theta4[k],
@@ -145,4 +131,85 @@ fn body(
         }
     }
     Ok(())
+}
+
+/// What the check of a point needs besides the point: the linkage and the criteria.
+pub(crate) struct Check {
+    pub r: [V; 4],
+    pub scale: V,
+    pub r3r4: V,
+    pub cond_scale: f64,
+    pub tol: f64,
+    pub singular: f64,
+    pub sign: f64,
+}
+
+impl Check {
+    fn new(fb: &FourBar, opts: &SweepOptions) -> Self {
+        let r: [V; 4] = fb.unit_lengths().map(|v| [v; W]);
+        let r3r4: V = lanes!(|l| r[2][l] * r[3][l]);
+        Check {
+            r,
+            scale: [fb.longest(); W],
+            r3r4,
+            cond_scale: fb.conditioning(1.0),
+            tol: opts.newton.tol,
+            singular: opts.newton.singular,
+            sign: opts.mode.sign(),
+        }
+    }
+}
+
+/// [`W`] consecutive points: their closed forms (replaced where accepted) and where the
+/// accepted ones' residuals go.
+pub(crate) struct Block<'a> {
+    pub theta3: &'a mut [f64],
+    pub theta4: &'a mut [f64],
+    pub residual: &'a mut [f64],
+    pub trig: &'a [(f64, f64)],
+}
+
+/// One Newton evaluation at the closed forms of a block's candidates: a lane is accepted
+/// where its residual and correction are below the tolerance, its angles and residuals
+/// finite, its conditioning clears the threshold and its mode is the one asked for; its
+/// angles become the corrected ones (wrapped) and its residual is written. Returns the
+/// accepted lanes.
+#[inline(always)]
+fn accept(c: &Check, cand: M, b: Block<'_>) -> M {
+    let x: [V; 2] = [lanes!(|l| b.theta3[l]), lanes!(|l| b.theta4[l])];
+    let (s2, c2): (V, V) = (lanes!(|l| b.trig[l].0), lanes!(|l| b.trig[l].1));
+    let Eval { f1, f2, residual, det, sin34, dx: [dx0, dx1], step, .. } =
+        eval_lanes(&c.r, &c.scale, &c.r3r4, &s2, &c2, &x);
+    let ok: M = lanes!(|l| {
+        let finite =
+            f1[l].is_finite() & f2[l].is_finite() & (x[0][l].abs() <= SIN_COS_MAX) & (x[1][l].abs() <= SIN_COS_MAX);
+        cand[l]
+            & finite
+            & (det[l] != 0.0)
+            & (sin34[l].abs() * c.cond_scale >= c.singular)
+            & (residual[l] < c.tol)
+            & (step[l] < c.tol)
+            & (sin34[l] * c.sign > 0.0)
+    });
+    let t3 = wrap(lanes!(|l| x[0][l] + dx0[l]));
+    let t4 = wrap(lanes!(|l| x[1][l] + dx1[l]));
+    for l in (0..W).filter(|&l| ok[l]) {
+        b.theta3[l] = t3[l];
+        b.theta4[l] = t4[l];
+        b.residual[l] = residual[l];
+    }
+    ok
+}
+
+/// [`accept`] in AVX2 registers (the same decisions and values): called only from
+/// `body::<true>`, inside [`body_avx2`].
+#[inline(always)]
+fn accept_avx2(c: &Check, cand: M, b: Block<'_>) -> M {
+    #[cfg(target_arch = "x86_64")]
+    {
+        // SAFETY: reached only inside `body_avx2`, whose caller checked AVX2 and FMA.
+        unsafe { super::avx2::accept4(c, cand, b) }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    accept(c, cand, b)
 }

@@ -6,18 +6,27 @@
 
 use std::arch::x86_64::*;
 
-use super::lane::Eval;
+use super::across::{Block, Check};
+use super::lane::{wrap, Eval, M};
 use crate::simd::avx2::{abs, ld, neg, sin_cos4, splat, st, V};
 
-/// [`super::lane::eval_lanes`] with AVX2: the same values, bit for bit.
+/// [`super::lane::eval_lanes`] with AVX2 at one crank angle for every lane: the same
+/// values, bit for bit.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 pub(crate) fn eval4(r: &[V; 4], scale: &V, r3r4: &V, s2: f64, c2: f64, x: &[V; 2]) -> Eval {
+    eval4_at(r, scale, r3r4, splat(s2), splat(c2), x)
+}
+
+/// [`super::lane::eval_lanes`] with AVX2, each lane at its own crank angle (s2, c2): the
+/// same values, bit for bit.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(crate) fn eval4_at(r: &[V; 4], scale: &V, r3r4: &V, s2: __m256d, c2: __m256d, x: &[V; 2]) -> Eval {
     let (add, sub, mul, div) = (_mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_div_pd);
     let (r1, r2, r3, r4) = (ld(&r[0]), ld(&r[1]), ld(&r[2]), ld(&r[3]));
     let (s3, c3) = sin_cos4(ld(&x[0]));
     let (s4, c4) = sin_cos4(ld(&x[1]));
-    let (s2, c2) = (splat(s2), splat(c2));
     let f1 = sub(sub(add(mul(r2, c2), mul(r3, c3)), mul(r4, c4)), r1);
     let f2 = sub(add(mul(r2, s2), mul(r3, s3)), mul(r4, s4));
     let j00 = mul(neg(r3), s3);
@@ -146,4 +155,49 @@ pub(crate) fn iterate4(p: &Params<'_>, s2: f64, c2: f64, l: Lanes<'_>) {
         l.fail[k] |= fl[k];
     }
     *l.active = go;
+}
+
+/// `across::accept` in AVX2 registers: the same evaluation ([`eval4_at`]), the same
+/// criteria and the same wrap, lane for lane.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+pub(crate) fn accept4(c: &Check, cand: M, b: Block<'_>) -> M {
+    let (and, cmp_lt) = (_mm256_and_pd, |a, b| _mm256_cmp_pd::<_CMP_LT_OQ>(a, b));
+    let x: [V; 2] = [lane4(b.theta3), lane4(b.theta4)];
+    let (x0, x1) = (ld(&x[0]), ld(&x[1]));
+    let t = b.trig;
+    let s2 = _mm256_set_pd(t[3].0, t[2].0, t[1].0, t[0].0);
+    let c2 = _mm256_set_pd(t[3].1, t[2].1, t[1].1, t[0].1);
+    let e = eval4_at(&c.r, &c.scale, &c.r3r4, s2, c2, &x);
+    let (f1, f2, sin34, step) = (ld(&e.f1), ld(&e.f2), ld(&e.sin34), ld(&e.step));
+    let inf = splat(f64::INFINITY);
+    let max = splat(crate::simd::math::SIN_COS_MAX);
+    let finite = and(
+        and(cmp_lt(abs(f1), inf), cmp_lt(abs(f2), inf)),
+        and(_mm256_cmp_pd::<_CMP_LE_OQ>(abs(x0), max), _mm256_cmp_pd::<_CMP_LE_OQ>(abs(x1), max)),
+    );
+    let well = and(
+        _mm256_cmp_pd::<_CMP_NEQ_OQ>(ld(&e.det), splat(0.0)),
+        _mm256_cmp_pd::<_CMP_GE_OQ>(_mm256_mul_pd(abs(sin34), splat(c.cond_scale)), splat(c.singular)),
+    );
+    let small = and(cmp_lt(ld(&e.residual), splat(c.tol)), cmp_lt(step, splat(c.tol)));
+    let mode = _mm256_cmp_pd::<_CMP_GT_OQ>(_mm256_mul_pd(sin34, splat(c.sign)), splat(0.0));
+    let bits = _mm256_movemask_pd(and(and(finite, well), and(small, mode)));
+    let ok: M = [0, 1, 2, 3].map(|l| cand[l] & (bits >> l & 1 != 0));
+    if ok.iter().any(|&o| o) {
+        let t3 = wrap(st(_mm256_add_pd(x0, ld(&e.dx[0]))));
+        let t4 = wrap(st(_mm256_add_pd(x1, ld(&e.dx[1]))));
+        for l in (0..4).filter(|&l| ok[l]) {
+            b.theta3[l] = t3[l];
+            b.theta4[l] = t4[l];
+            b.residual[l] = e.residual[l];
+        }
+    }
+    ok
+}
+
+/// The first 4 values of a block's slice.
+#[inline(always)]
+fn lane4(v: &[f64]) -> V {
+    [v[0], v[1], v[2], v[3]]
 }
