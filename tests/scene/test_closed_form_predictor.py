@@ -8,9 +8,8 @@ import math
 import os
 
 import numpy as np
-import pytest
-
 import planarkin as pk
+import pytest
 from planarkin.reference import closed_form_vectorized
 
 BUILTIN = os.path.join(os.path.dirname(pk.__file__), "scene", "builtin")
@@ -76,13 +75,15 @@ def test_a_second_loop_that_closes_on_part_of_the_turn():
         closes[mode] = (d <= cd + o6d) & (d >= abs(cd - o6d))
         dists[mode], cs[mode] = d, c
     # away from the second loop's toggles (SINGULAR there, by the conditioning threshold)
-    clear = (np.abs(dists["open"] - (cd + o6d)) > 1e-6) & (np.abs(dists["open"] - abs(cd - o6d)) > 1e-6)
+    d = dists["open"]
+    clear = (np.abs(d - (cd + o6d)) > 1e-6) & (np.abs(d - abs(cd - o6d)) > 1e-6)
     expect = np.where(
         closes["open"],
         int(pk.Status.CONVERGED),
         np.where(closes["crossed"], int(pk.Status.LIMIT), int(pk.Status.NOT_ASSEMBLABLE)),
     )
-    assert set(np.unique(expect[clear])) == {0, int(pk.Status.LIMIT), int(pk.Status.NOT_ASSEMBLABLE)}
+    limit, none = int(pk.Status.LIMIT), int(pk.Status.NOT_ASSEMBLABLE)
+    assert set(np.unique(expect[clear])) == {0, limit, none}
     np.testing.assert_array_equal(sw.status[clear], expect[clear])
     assert np.isnan(sw.limit).all()
     assert (sw.nit == 0).all()
@@ -111,7 +112,8 @@ def test_the_same_motion_as_the_continuation_where_the_drawn_circuit_goes(name):
     velocities and accelerations, and the same status where neither solves it. The closed
     forms also solve the values where the drawn sides close but the drawn circuit does
     not go (LIMIT to the continuation: the hydraulic boom's cylinder shortened past zero
-    length, beyond a gap where it cannot assemble), with every link rigid there. Plans with a group are refused."""
+    length, beyond a gap where it cannot assemble), with every link rigid there. Plans with
+    a group are refused."""
     sc = pk.scenes.load(name)
     size = float(np.ptp(np.array(list(sc.points.values())), axis=0).max())
     if sc.input_kind == "angle":

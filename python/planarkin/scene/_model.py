@@ -554,7 +554,9 @@ class Scene:
         ms = as_float("max_step", max_step)
         w = None if omega is None else as_float("omega", omega)
         p = as_str("predictor", predictor)
-        pts, ang, status, nit, det, limit, sst, sdet, pst, kin = core.sweep(t, tol, max_iter, ms, w, p)
+        pts, ang, status, nit, det, limit, sst, sdet, pst, kin = core.sweep(
+            t, tol, max_iter, ms, w, p
+        )
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
         # the output coordinate is computed when it is first read
         output = None if self._data["output"] is None else self._output_of

@@ -8,7 +8,7 @@
 //! `sweep_point` from the closed form, so statuses are the scalar path's.
 
 use super::closed_form::{closed_form_row, RowSpec};
-use super::lane::{eval_lanes, lanes, wrap, Eval, M, V, W};
+use super::lane::{eval_lanes, lanes, wrap, Block, Check, Eval, M, V, W};
 use crate::error::Error;
 use crate::fourbar::model::{FourBar, Point};
 use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut};
@@ -72,7 +72,7 @@ fn body<const AVX: bool>(
     let n = theta2.len();
     let spec = RowSpec { mode: opts.mode, singular: opts.newton.singular, nan_singular: false };
     closed_form_row(fb, theta2, trig, spec, out.theta3, out.theta4, Some(&mut *out.status));
-    let check = Check::new(fb, opts);
+    let check = check_of(fb, opts);
     // per point: solved here (true) or left to the scalar path
     let mut fast = vec![false; n];
     let mut i = 0;
@@ -133,42 +133,6 @@ fn body<const AVX: bool>(
     Ok(())
 }
 
-/// What the check of a point needs besides the point: the linkage and the criteria.
-pub(crate) struct Check {
-    pub r: [V; 4],
-    pub scale: V,
-    pub r3r4: V,
-    pub cond_scale: f64,
-    pub tol: f64,
-    pub singular: f64,
-    pub sign: f64,
-}
-
-impl Check {
-    fn new(fb: &FourBar, opts: &SweepOptions) -> Self {
-        let r: [V; 4] = fb.unit_lengths().map(|v| [v; W]);
-        let r3r4: V = lanes!(|l| r[2][l] * r[3][l]);
-        Check {
-            r,
-            scale: [fb.longest(); W],
-            r3r4,
-            cond_scale: fb.conditioning(1.0),
-            tol: opts.newton.tol,
-            singular: opts.newton.singular,
-            sign: opts.mode.sign(),
-        }
-    }
-}
-
-/// [`W`] consecutive points: their closed forms (replaced where accepted) and where the
-/// accepted ones' residuals go.
-pub(crate) struct Block<'a> {
-    pub theta3: &'a mut [f64],
-    pub theta4: &'a mut [f64],
-    pub residual: &'a mut [f64],
-    pub trig: &'a [(f64, f64)],
-}
-
 /// One Newton evaluation at the closed forms of a block's candidates: a lane is accepted
 /// where its residual and correction are below the tolerance, its angles and residuals
 /// finite, its conditioning clears the threshold and its mode is the one asked for; its
@@ -212,4 +176,19 @@ fn accept_avx2(c: &Check, cand: M, b: Block<'_>) -> M {
     }
     #[cfg(not(target_arch = "x86_64"))]
     accept(c, cand, b)
+}
+
+/// The check's parameters for `fb` and `opts`.
+fn check_of(fb: &FourBar, opts: &SweepOptions) -> Check {
+    let r: [V; 4] = fb.unit_lengths().map(|v| [v; W]);
+    let r3r4: V = lanes!(|l| r[2][l] * r[3][l]);
+    Check {
+        r,
+        scale: [fb.longest(); W],
+        r3r4,
+        cond_scale: fb.conditioning(1.0),
+        tol: opts.newton.tol,
+        singular: opts.newton.singular,
+        sign: opts.mode.sign(),
+    }
 }

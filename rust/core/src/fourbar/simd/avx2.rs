@@ -6,8 +6,7 @@
 
 use std::arch::x86_64::*;
 
-use super::across::{Block, Check};
-use super::lane::{wrap, Eval, M};
+use super::lane::{wrap, Block, Check, Eval, M};
 use crate::simd::avx2::{abs, ld, neg, sin_cos4, splat, st, V};
 
 /// [`super::lane::eval_lanes`] with AVX2 at one crank angle for every lane: the same

@@ -103,3 +103,24 @@ pub(crate) fn eval_lanes(r: &[V; 4], scale: &V, r3r4: &V, s2: &V, c2: &V, x: &[V
     let step: V = lanes!(|l| dx0[l].abs().max(dx1[l].abs()));
     Eval { f1, f2, j: [j00, j01, j10, j11], residual, det, sin34, dx: [dx0, dx1], step }
 }
+
+/// What the closed-form predictor's check of a point needs besides the point (`across`):
+/// the linkage and the criteria.
+pub(crate) struct Check {
+    pub r: [V; 4],
+    pub scale: V,
+    pub r3r4: V,
+    pub cond_scale: f64,
+    pub tol: f64,
+    pub singular: f64,
+    pub sign: f64,
+}
+
+/// [`W`] consecutive points of that check: their closed forms (replaced where accepted)
+/// and where the accepted ones' residuals go.
+pub(crate) struct Block<'a> {
+    pub theta3: &'a mut [f64],
+    pub theta4: &'a mut [f64],
+    pub residual: &'a mut [f64],
+    pub trig: &'a [(f64, f64)],
+}
