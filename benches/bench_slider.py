@@ -49,7 +49,7 @@ def test_slider_planarkin(benchmark, slider):
 def test_slider_binding(benchmark, slider):
     sc, r, rod, theta = slider
     _, core = sc._compiled(["B"])
-    args = (theta, 1e-9, 100, math.radians(3.0), None)
+    args = (theta, 1e-9, 100, math.radians(3.0), None, "continuation")
     out = benchmark(core.sweep, *args)
     err = float(np.abs(out[0][:, 3, 0] - numpy_piston(theta, r, rod)).max())
     assert err < 1e-12 * rod
