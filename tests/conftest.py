@@ -4,8 +4,17 @@ folder: ``pythonpath = ["tests"]`` in pyproject.toml)."""
 
 from __future__ import annotations
 
+import signal
+
 import numpy as np
 import pytest
+
+# A runner started as a background job of a shell without job control (`cmd &`) has
+# SIGINT ignored, and every process it starts inherits that: the Ctrl-C tests' children
+# would never see their SIGINT. A handler, unlike "ignored", is reset to the default in
+# a child at exec, so the children start as they would from a terminal.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 @pytest.fixture
