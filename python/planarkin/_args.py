@@ -25,6 +25,8 @@ if TYPE_CHECKING:
 MODES = ("open", "crossed")
 PREDICTORS = ("previous", "tangent", "quadratic", "closed-form")
 METHODS = ("newton", "closed-form")
+#: The native float64 dtype (NumPy's builtin dtypes are singletons).
+_F64 = np.dtype(np.float64)
 
 
 def as_float(name: str, value: object) -> float:
@@ -86,6 +88,8 @@ def as_str(name: str, value: object) -> str:
 
 def as_angles(name: str, value: object) -> np.ndarray:
     """A float64 array (any shape), or ValueError naming the parameter."""
+    if type(value) is np.ndarray and value.dtype is _F64 and value.flags.c_contiguous:
+        return value  # what np.asarray below returns for it, without its two calls
     try:
         arr = np.asarray(value)
     except Exception:  # ragged nested sequences and the like
