@@ -987,9 +987,10 @@ impl Plan {
         // a closed form that does not close says NOT_ASSEMBLABLE of its own step; whether
         // the linkage has no assembly at all is the classification's to say
         let (limit, none) = (Status::Limit.code(), Status::NotAssemblable.code());
-        for code in out.status.iter_mut().chain(out.step_status.iter_mut()).chain(out.point_status.iter_mut()) {
-            if *code == none {
-                *code = limit;
+        for codes in [&mut *out.status, &mut *out.step_status, &mut *out.point_status] {
+            // a select per code, no branch: the loop vectorizes
+            for code in codes.iter_mut() {
+                *code = if *code == none { limit } else { *code };
             }
         }
         self.classify_limits(theta, &mut out, interrupt)
