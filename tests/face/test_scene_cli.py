@@ -159,3 +159,24 @@ def test_circuits_of_a_linear_input_out_of_its_stroke_names_the_reachable_range(
     (near,) = [r for r in s["reachable"] if r[0] <= 0.0 <= r[1]]
     step = 8 * 2000.0 / 800
     assert lo <= near[0] < lo + step and hi - step < near[1] <= hi
+
+
+def test_analyze_scene_with_the_closed_form_predictor(tmp_path, capsys):
+    """``--predictor closed-form`` with a scene: every angle on its own, on the drawn sides.
+    Jansen's leg (dyads only) gives the positions the NumPy reference follows; a scene
+    with a group, or a four-bar continuation predictor, is a one-line error naming it."""
+    out = tmp_path / "cf"
+    argv = ["analyze", "jansen", "--out", str(out), "--no-figures", "--step", "5"]
+    assert cli.main([*argv, "--predictor", "closed-form"]) == 0
+    rows = list(csv.DictReader((out / "results.csv").open()))
+    u = pk.scenes.load("jansen").units
+    theta = np.radians([float(r["theta [deg]"]) for r in rows])
+    foot = np.array([[float(r[f"foot_x [{u}]"]), float(r[f"foot_y [{u}]"])] for r in rows])
+    ref = scene_sweep(pk.scenes.data("jansen"), theta)
+    np.testing.assert_allclose(foot, ref.points["foot"], atol=1e-9)
+    capsys.readouterr()
+    bad = ["analyze", "stephenson3", "--out", str(tmp_path / "g"), "--no-figures"]
+    assert cli.main([*bad, "--predictor", "closed-form"]) == 2
+    assert "predictor must be 'continuation' for a plan with a group" in capsys.readouterr().err
+    assert cli.main([*argv, "--predictor", "quadratic"]) == 2
+    assert "--predictor does not apply to a scene" in capsys.readouterr().err

@@ -88,7 +88,9 @@ def linkage_options(*, rpm: bool) -> Parser:
     g.add_argument(
         "--predictor",
         choices=PREDICTORS,
-        help="four-bar continuation predictor along the sweep (default: quadratic)",
+        help="four-bar continuation predictor along the sweep (default: quadratic); with a "
+        "SCENE, closed-form only: every angle on its own, on the drawn sides (default: the "
+        "drawn circuit followed)",
     )
     if rpm:
         g.add_argument(
@@ -178,13 +180,26 @@ def refuse_fourbar_options(args: argparse.Namespace, extra: Iterable[tuple[str, 
     """ValueError (exit 2) when a four-bar option was given with a SCENE: it would be
     silently dropped. ``extra``: a command's own four-bar options as (dest, flag)."""
     flags = [(d, f) for d, (f, _) in FOURBAR_OPTIONS.items()] + list(extra)
-    given = [f for d, f in flags if getattr(args, d, None) is not None]
+    # "--predictor closed-form" is a scene's too (scene_predictor)
+    given = [
+        f
+        for d, f in flags
+        if getattr(args, d, None) not in (None, *(("closed-form",) if d == "predictor" else ()))
+    ]
     if given:
         what = f"{given[0]} does" if len(given) == 1 else f"{', '.join(given)} do"
         raise ValueError(
             f"{what} not apply to a scene (they set up the four-bar analyzed when no "
             "SCENE is given; a scene is solved as drawn)"
         )
+
+
+def scene_predictor(args: argparse.Namespace) -> str:
+    """A scene sweep's predictor: ``--predictor closed-form`` solves every angle on its own,
+    each dyad and slider on its drawn side (plans with no group); by default the sweep
+    follows the drawn circuit. The four-bar's other predictors are refused with the rest
+    of its options (:func:`refuse_fourbar_options`)."""
+    return "closed-form" if getattr(args, "predictor", None) == "closed-form" else "continuation"
 
 
 def finite(name: str, value: float, *, positive: bool = False) -> float:

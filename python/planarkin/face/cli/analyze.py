@@ -5,6 +5,7 @@ table, written as results.csv and summary.json, and drawn (the figures listed in
 from __future__ import annotations
 
 import argparse
+import functools
 import math
 import os
 import time
@@ -36,6 +37,7 @@ from ._common import (
     refuse_fourbar_options,
     scene_angles,
     scene_argument,
+    scene_predictor,
     table,
     warm_median,
     write_csv,
@@ -700,13 +702,15 @@ def _run_scene(args: argparse.Namespace) -> int:
     # a linear input is driven at 1 length unit per second (--rpm is for cranks)
     omega = args.rpm * math.tau / 60 if sc.input_kind == "angle" else 1.0
     figures = {} if args.no_figures else SCENE_FIGURES
+    sweep = functools.partial(
+        sc.sweep, theta, tol=args.tol, max_iter=args.max_iter, omega=omega,
+        predictor=scene_predictor(args),
+    )  # fmt: skip
     with bar(3 + len(figures), "analyze", quiet=args.quiet) as b:
-        sw = sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, omega=omega)
+        sw = sweep()
         b.update()
         # timed warm, as the four-bar's sweep is (the first call also compiled the plan)
-        t_sweep, n_runs = warm_median(
-            lambda: sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, omega=omega), runs=5
-        )
+        t_sweep, n_runs = warm_median(sweep, runs=5)
         b.update()
         out: Path = args.out
         out.mkdir(parents=True, exist_ok=True)
@@ -716,9 +720,7 @@ def _run_scene(args: argparse.Namespace) -> int:
         skipped = []
         if figures:
             # the figures draw every link: sweep the whole scene for them
-            whole = sc.sweep(
-                theta, outputs="all", tol=args.tol, max_iter=args.max_iter, omega=omega
-            )
+            whole = sweep(outputs="all")
             for name, draw, data in (
                 ("scene_linkage.png", scene_fig.linkage, whole),
                 ("scene_conditioning.png", scene_fig.conditioning, sw),

@@ -21,6 +21,7 @@ from ._common import (
     refuse_fourbar_options,
     scene_angles,
     scene_argument,
+    scene_predictor,
 )
 
 ANIMATION_GIF = "linkage.gif"
@@ -97,7 +98,8 @@ def _run_scene(args: argparse.Namespace) -> int:
     sc = load_scene(args.scene)
     _check(args)
     finite("--dpi", args.dpi, positive=True)
-    sw = sc.sweep(scene_angles(sc, args.step), tol=args.tol, max_iter=args.max_iter)
+    theta = scene_angles(sc, args.step)
+    sw = sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, predictor=scene_predictor(args))
     anim = animate.scene(sc, sw, frames=args.frames, fps=args.fps, dpi=args.dpi)
     _, points, _, rocks = animate.motion(sc, sw)
     n = len(animate.scene_frames(points, args.frames))
