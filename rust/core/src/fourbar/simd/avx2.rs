@@ -176,7 +176,8 @@ pub(crate) fn accept4(c: &Check, cand: M, b: Block<'_>) -> M {
         and(_mm256_cmp_pd::<_CMP_LE_OQ>(abs(x0), max), _mm256_cmp_pd::<_CMP_LE_OQ>(abs(x1), max)),
     );
     let well = and(
-        _mm256_cmp_pd::<_CMP_NEQ_OQ>(ld(&e.det), splat(0.0)),
+        // `!=` is true of NaN (unordered), as the lane loop's `det != 0.0` is
+        _mm256_cmp_pd::<_CMP_NEQ_UQ>(ld(&e.det), splat(0.0)),
         _mm256_cmp_pd::<_CMP_GE_OQ>(_mm256_mul_pd(abs(sin34), splat(c.cond_scale)), splat(c.singular)),
     );
     let small = and(cmp_lt(ld(&e.residual), splat(c.tol)), cmp_lt(step, splat(c.tol)));
