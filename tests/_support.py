@@ -19,6 +19,25 @@ import planarkin as pk
 from planarkin.fourbar import tradeoff as tr
 
 
+def circles(p, rp, q, rq):  # noqa: ANN001, ANN201
+    """Both intersections of circle (p, rp) and circle (q, rq), arrays of points (N, 2):
+    (left of p -> q, right of p -> q); NaN where the circles do not meet."""
+    u = q - p
+    d = np.hypot(u[..., 0], u[..., 1])
+    a = (rp * rp - rq * rq + d * d) / (2 * d)
+    with np.errstate(invalid="ignore"):
+        h = np.sqrt(rp * rp - a * a)
+    m = p + (a / d)[..., None] * u
+    n = np.stack([-u[..., 1], u[..., 0]], -1) / d[..., None]
+    return m + h[..., None] * n, m - h[..., None] * n
+
+
+def dyad_point(p, rp, q, rq, side):  # noqa: ANN001, ANN201
+    """The intersection of circles (p, rp) and (q, rq) on ``side`` of p -> q (+1 left)."""
+    left, right = circles(p, rp, q, rq)
+    return left if side > 0 else right
+
+
 def out_rotation(sc: pk.Scene, phi: np.ndarray) -> np.ndarray:
     """The output link's rotation from the drawn pose, read from swept points."""
     link, pivot = sc.output

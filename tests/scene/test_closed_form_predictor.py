@@ -1,5 +1,5 @@
 """``Scene.sweep(predictor="closed-form")``: every angle on its own, each dyad on its drawn
-side, checked against NumPy closed forms written here (circle intersections), and against
+side, checked against NumPy closed forms (the four-bar's, and circle intersections), against
 the continuation where the drawn circuit reaches an angle."""
 
 from __future__ import annotations
@@ -10,50 +10,27 @@ import os
 import numpy as np
 import planarkin as pk
 import pytest
+from _support import dyad_point
 from planarkin.reference import closed_form_vectorized
 
 BUILTIN = os.path.join(os.path.dirname(pk.__file__), "scene", "builtin")
 NAMES = sorted(f[: -len(".json")] for f in os.listdir(BUILTIN) if f.endswith(".json"))
 
 
-def _circle_meet(p, q, rp, rq, side):
-    """The point at distances rp from p and rq from q on ``side`` (the sign of
-    cross(q - p, x - p)), NaN where the circles do not meet; arrays of points (N, 2)."""
-    d = q - p
-    dd = np.hypot(d[:, 0], d[:, 1])
-    a = (rp * rp - rq * rq + dd * dd) / (2 * dd)
-    with np.errstate(invalid="ignore"):
-        h = np.sqrt(rp * rp - a * a)
-    u = d / dd[:, None]
-    n = np.stack([-u[:, 1], u[:, 0]], axis=1)
-    return p + a[:, None] * u + side * h[:, None] * n
-
-
 def _watt(gamma_deg: float, cd: float, o6d: float) -> dict:
-    """The seed four-bar (O2-O4 6, crank 2, coupler 5, O4-B 5) driving a second dyad from
-    the ternary's corner C (|O4 C| 2.5 at gamma from O4 -> B) to ground O6 = (13, 0), with
-    |C D| = cd and |O6 D| = o6d, drawn at crank angle 0 with D on the left of C -> O6."""
-    o4, o6 = np.array([6.0, 0.0]), np.array([13.0, 0.0])
-    b = np.array([4.0, math.sqrt(21.0)])
-    t4 = math.atan2(b[1], b[0] - 6.0)
-    g = t4 + math.radians(gamma_deg)
-    c = o4 + 2.5 * np.array([math.cos(g), math.sin(g)])
-    d = _circle_meet(c[None], o6[None], cd, o6d, 1.0)[0]
-    assert np.isfinite(d).all(), "the drawing must assemble"
-    pts = {"O2": [0.0, 0.0], "O4": o4, "O6": o6, "A": [2.0, 0.0], "B": b, "C": c, "D": d}
-    return {
-        "points": {k: [float(v[0]), float(v[1])] for k, v in pts.items()},
-        "links": {
-            "ground": ["O2", "O4", "O6"],
-            "crank": ["O2", "A"],
-            "coupler1": ["A", "B"],
-            "ternary": ["O4", "B", "C"],
-            "coupler2": ["C", "D"],
-            "rocker": ["O6", "D"],
-        },
-        "ground": "ground",
-        "input": {"link": "crank", "pivot": "O2"},
-    }
+    """The built-in Watt II (the seed four-bar driving a second loop from the ternary's
+    corner C to ground O6 = (13, 0)) with C moved to |O4 C| 2.5 at gamma from O4 -> B,
+    |C D| = cd and |O6 D| = o6d, D drawn on the left of C -> O6 (crank angle 0)."""
+    d = pk.scenes.data("watt2")
+    p = {k: np.asarray(v, dtype=float) for k, v in d["points"].items()}
+    g = math.atan2(p["B"][1] - p["O4"][1], p["B"][0] - p["O4"][0]) + math.radians(gamma_deg)
+    c = p["O4"] + 2.5 * np.array([math.cos(g), math.sin(g)])
+    dd = dyad_point(c, cd, p["O6"], o6d, side=+1)
+    assert np.isfinite(dd).all(), "the drawing must assemble"
+    d["points"].update({"C": c.tolist(), "D": dd.tolist()})
+    for k in ("name", "description", "outputs"):  # the built-in's, not this linkage's
+        del d[k]
+    return d
 
 
 def test_a_second_loop_that_closes_on_part_of_the_turn():
@@ -88,7 +65,7 @@ def test_a_second_loop_that_closes_on_part_of_the_turn():
     assert np.isnan(sw.limit).all()
     assert (sw.nit == 0).all()
 
-    d_exp = _circle_meet(cs["open"], np.broadcast_to(o6, cs["open"].shape), cd, o6d, 1.0)
+    d_exp = dyad_point(cs["open"], cd, np.broadcast_to(o6, cs["open"].shape), o6d, side=+1)
     ok = sw.status == 0
     np.testing.assert_allclose(sw.points["D"][ok], d_exp[ok], rtol=0, atol=1e-12 * 13)
     assert np.isnan(sw.points["D"][~ok]).all()

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 import pytest
+from _support import dyad_point
 from planarkin import scenes
 from planarkin.reference import scene_assemble_check, scene_sweep
 
@@ -22,27 +23,10 @@ def _xy(d, name):
     return np.asarray(d["points"][name], dtype=float)
 
 
-def _circles(p, rp, q, rq):
-    """Both intersections of circle (p, rp) and circle (q, rq), arrays of points (N, 2):
-    (left of p -> q, right of p -> q)."""
-    u = q - p
-    d = np.hypot(u[..., 0], u[..., 1])
-    a = (rp * rp - rq * rq + d * d) / (2 * d)
-    h = np.sqrt(rp * rp - a * a)
-    m = p + (a / d)[..., None] * u
-    n = np.stack([-u[..., 1], u[..., 0]], -1) / d[..., None]
-    return m + h[..., None] * n, m - h[..., None] * n
-
-
 def _side(p, q, r):
     """+1 where r is left of p -> q, -1 where right (the cross product's sign)."""
     u, v = q - p, r - p
     return np.sign(u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0])
-
-
-def _dyad(p, rp, q, rq, side):
-    left, right = _circles(p, rp, q, rq)
-    return left if side > 0 else right
 
 
 def _wrapdiff(a, b):
@@ -192,7 +176,7 @@ def test_fourbar_against_circle_intersection():
     assert np.all(sw.status == 0)
     t2 = sw.theta
     a = np.stack([r2 * np.cos(t2), r2 * np.sin(t2)], -1)
-    b = _dyad(a, r3, np.broadcast_to(o4, a.shape), r4, side=+1)  # open: left of A -> O4
+    b = dyad_point(a, r3, np.broadcast_to(o4, a.shape), r4, side=+1)  # open: left of A -> O4
     t3 = np.arctan2(b[:, 1] - a[:, 1], b[:, 0] - a[:, 0])
     t4 = np.arctan2(b[:, 1] - o4[1], b[:, 0] - o4[0])
     assert np.max(_wrapdiff(sw.angles["coupler"], t3)) < 1e-10
@@ -216,7 +200,7 @@ def test_fourbar_theta_order_and_wrap():
     assert np.all(sw.status == 0)
     assert np.array_equal(sw.theta, th)
     a = np.stack([2 * np.cos(th), 2 * np.sin(th)], -1)
-    b = _dyad(a, 5.0, np.broadcast_to([6.0, 0.0], a.shape), 5.0, side=+1)
+    b = dyad_point(a, 5.0, np.broadcast_to([6.0, 0.0], a.shape), 5.0, side=+1)
     assert np.max(np.abs(sw.points["B"] - b)) < 1e-10 * 6
 
 
@@ -279,7 +263,7 @@ def test_jansen_foot_against_circle_chain():
     q = {"O": np.broadcast_to(p["O"], (n, 2)), "Z": np.broadcast_to(p["Z"], (n, 2))}
     q["M"] = p["O"] + 15.0 * np.stack([np.cos(t), np.sin(t)], -1)
     for name, f, rf, g, rg in chain:
-        q[name] = _dyad(q[f], rf, q[g], rg, sides[name])
+        q[name] = dyad_point(q[f], rf, q[g], rg, sides[name])
     assert np.max(np.abs(sw.points["foot"] - q["foot"])) < 1e-10 * 100
     for name in ("B", "C", "D", "E"):
         assert np.max(np.abs(sw.points[name] - q[name])) < 1e-10 * 100

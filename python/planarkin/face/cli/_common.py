@@ -39,6 +39,8 @@ FOURBAR_OPTIONS = {
     "predictor": ("--predictor", "quadratic"),
     "coupler": ("--coupler", DEFAULT_COUPLER),
 }
+#: The values of those options that a SCENE takes as well.
+SCENE_VALUES = {"predictor": ("closed-form",)}
 
 
 class Parser(argparse.ArgumentParser):
@@ -180,12 +182,7 @@ def refuse_fourbar_options(args: argparse.Namespace, extra: Iterable[tuple[str, 
     """ValueError (exit 2) when a four-bar option was given with a SCENE: it would be
     silently dropped. ``extra``: a command's own four-bar options as (dest, flag)."""
     flags = [(d, f) for d, (f, _) in FOURBAR_OPTIONS.items()] + list(extra)
-    # "--predictor closed-form" is a scene's too (scene_predictor)
-    given = [
-        f
-        for d, f in flags
-        if getattr(args, d, None) not in (None, *(("closed-form",) if d == "predictor" else ()))
-    ]
+    given = [f for d, f in flags if getattr(args, d, None) not in (None, *SCENE_VALUES.get(d, ()))]
     if given:
         what = f"{given[0]} does" if len(given) == 1 else f"{', '.join(given)} do"
         raise ValueError(
@@ -199,7 +196,8 @@ def scene_predictor(args: argparse.Namespace) -> str:
     each dyad and slider on its drawn side (plans with no group); by default the sweep
     follows the drawn circuit. The four-bar's other predictors are refused with the rest
     of its options (:func:`refuse_fourbar_options`)."""
-    return "closed-form" if getattr(args, "predictor", None) == "closed-form" else "continuation"
+    p = getattr(args, "predictor", None)
+    return p if p in SCENE_VALUES["predictor"] else "continuation"
 
 
 def finite(name: str, value: float, *, positive: bool = False) -> float:

@@ -199,6 +199,12 @@ impl FourBar {
         self.solve_linear(&j, Vector2::new(b1, b2), singular)
     }
 
+    /// min(r3, r4) / L: the conditioning of a position is |sin34| times this.
+    #[inline]
+    pub(crate) fn cond_scale(&self) -> f64 {
+        self.cond_scale
+    }
+
     /// Dimensionless conditioning of a position with branch indicator `sin34`:
     /// |sin(theta4 - theta3)| min(r3, r4) / L. Rounding of the loop residual (~eps L)
     /// moves the angles by about eps / conditioning.

@@ -945,7 +945,7 @@ impl Plan {
             check("angular acceleration", w.len(), n * nl)?;
         }
         if opts.predictor == ScenePredictor::ClosedForm {
-            return self.closed_form_sweep(theta, opts, out, interrupt);
+            return self.closed_form_sweep(theta, opts, out, &poll);
         }
         if self.columns_ok() {
             columns::sweep(self, theta, opts, &mut out, &poll)?;
@@ -973,7 +973,7 @@ impl Plan {
         theta: &[f64],
         opts: &SceneSweepOptions,
         mut out: SceneSweepOut<'_>,
-        interrupt: &dyn Interrupt,
+        poll: &Poll<'_>,
     ) -> Result<(), Error> {
         if !self.columns_ok() {
             return Err(Error::invalid(
@@ -983,7 +983,7 @@ impl Plan {
                 quoted("closed-form"),
             ));
         }
-        columns::sweep(self, theta, opts, &mut out, &Poll::new(interrupt))?;
+        columns::sweep(self, theta, opts, &mut out, poll)?;
         // a closed form that does not close says NOT_ASSEMBLABLE of its own step; whether
         // the linkage has no assembly at all is the classification's to say
         let (limit, none) = (Status::Limit.code(), Status::NotAssemblable.code());
@@ -993,7 +993,7 @@ impl Plan {
                 *code = if *code == none { limit } else { *code };
             }
         }
-        self.classify_limits(theta, &mut out, interrupt)
+        self.classify_limits(theta, &mut out, poll.source())
     }
 
     /// A column sweep (dyads and sliders on their drawn sides) is the drawn circuit's

@@ -186,7 +186,7 @@ fn check_of(fb: &FourBar, opts: &SweepOptions) -> Check {
         r,
         scale: [fb.longest(); W],
         r3r4,
-        cond_scale: fb.conditioning(1.0),
+        cond_scale: fb.cond_scale(),
         tol: opts.newton.tol,
         singular: opts.newton.singular,
         sign: opts.mode.sign(),

@@ -101,6 +101,17 @@ fn bools(m: __m256d) -> [bool; 4] {
     [b & 1 != 0, b & 2 != 0, b & 4 != 0, b & 8 != 0]
 }
 
+/// Lanes whose residuals are finite and whose angles lie where the polynomial sin/cos
+/// holds (|x| <= `SIN_COS_MAX`); NaN fails both tests.
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn finite4(f1: __m256d, f2: __m256d, x0: __m256d, x1: __m256d) -> __m256d {
+    let (inf, max) = (splat(f64::INFINITY), splat(crate::simd::math::SIN_COS_MAX));
+    let residuals = _mm256_and_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(abs(f1), inf), _mm256_cmp_pd::<_CMP_LT_OQ>(abs(f2), inf));
+    let angles = _mm256_and_pd(_mm256_cmp_pd::<_CMP_LE_OQ>(abs(x0), max), _mm256_cmp_pd::<_CMP_LE_OQ>(abs(x1), max));
+    _mm256_and_pd(residuals, angles)
+}
+
 /// One lock-step Newton evaluation with the masks of the portable loop in
 /// `batch::group_body` (the same decisions, lane for lane), all in AVX2 registers.
 #[inline]
@@ -111,12 +122,7 @@ pub(crate) fn iterate4(p: &Params<'_>, s2: f64, c2: f64, l: Lanes<'_>) {
     let cmp_lt = |a, b| _mm256_cmp_pd::<_CMP_LT_OQ>(a, b);
     let (f1, f2, x0, x1) = (ld(&e.f1), ld(&e.f2), ld(&l.x[0]), ld(&l.x[1]));
     let (dx0, dx1, step, sin34) = (ld(&e.dx[0]), ld(&e.dx[1]), ld(&e.step), ld(&e.sin34));
-    let inf = splat(f64::INFINITY);
-    let max = splat(crate::simd::math::SIN_COS_MAX);
-    let finite = and(
-        and(cmp_lt(abs(f1), inf), cmp_lt(abs(f2), inf)),
-        and(_mm256_cmp_pd::<_CMP_LE_OQ>(abs(x0), max), _mm256_cmp_pd::<_CMP_LE_OQ>(abs(x1), max)),
-    );
+    let finite = finite4(f1, f2, x0, x1);
     let sing = or(
         cmp_lt(_mm256_mul_pd(abs(sin34), ld(p.cond_scale)), splat(p.singular)),
         _mm256_cmp_pd::<_CMP_EQ_OQ>(ld(&e.det), splat(0.0)),
@@ -168,13 +174,8 @@ pub(crate) fn accept4(c: &Check, cand: M, b: Block<'_>) -> M {
     let s2 = _mm256_set_pd(t[3].0, t[2].0, t[1].0, t[0].0);
     let c2 = _mm256_set_pd(t[3].1, t[2].1, t[1].1, t[0].1);
     let e = eval4_at(&c.r, &c.scale, &c.r3r4, s2, c2, &x);
-    let (f1, f2, sin34, step) = (ld(&e.f1), ld(&e.f2), ld(&e.sin34), ld(&e.step));
-    let inf = splat(f64::INFINITY);
-    let max = splat(crate::simd::math::SIN_COS_MAX);
-    let finite = and(
-        and(cmp_lt(abs(f1), inf), cmp_lt(abs(f2), inf)),
-        and(_mm256_cmp_pd::<_CMP_LE_OQ>(abs(x0), max), _mm256_cmp_pd::<_CMP_LE_OQ>(abs(x1), max)),
-    );
+    let (sin34, step) = (ld(&e.sin34), ld(&e.step));
+    let finite = finite4(ld(&e.f1), ld(&e.f2), x0, x1);
     let well = and(
         // `!=` is true of NaN (unordered), as the lane loop's `det != 0.0` is
         _mm256_cmp_pd::<_CMP_NEQ_UQ>(ld(&e.det), splat(0.0)),
