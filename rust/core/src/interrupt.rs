@@ -65,6 +65,18 @@ impl<'a> Poll<'a> {
         self.ask()
     }
 
+    /// Counts `n` units of work at once (a block's): asks the interrupt where the
+    /// countdown runs out within them.
+    #[inline]
+    pub fn tick_n(&self, n: usize) -> Result<(), Error> {
+        let left = self.left.get() as usize;
+        if left > n {
+            self.left.set((left - n) as u32);
+            return Ok(());
+        }
+        self.ask()
+    }
+
     /// The rare part of [`Poll::tick`], out of line: the hot loops that tick keep only a
     /// decrement and a branch.
     #[cold]

@@ -9,7 +9,7 @@
 // the column loops index several arrays (and an offset into each) by the same angle
 #![allow(clippy::needless_range_loop)]
 
-use super::dyad::{closed_form, Dyad, APART, COINCIDE};
+use super::dyad::{closed_form, Dyad, APART, COINCIDE, SOLVED};
 use super::eval::Known;
 use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
@@ -120,9 +120,7 @@ fn sweep_body(
     let mut trig = [(0.0, 1.0); B];
     let mut sv = [0.0; B];
     for (b, block) in theta.chunks(B).enumerate() {
-        for _ in block {
-            poll.tick()?;
-        }
+        poll.tick_n(block.len())?;
         let m = block.len();
         let k0 = b * B;
         first_bad[..m].fill(OK);
@@ -161,13 +159,20 @@ fn sweep_body(
                 Op::Carry { q, a, b: bb, m: ratio } => {
                     let (oq, oa, ob) = (q * B, a * B, bb * B);
                     let (m0, m1) = (ratio[0], ratio[1]);
-                    for j in 0..m {
-                        let (ax, ay) = (c.x[oa + j], c.y[oa + j]);
-                        let (dx, dy) = (c.x[ob + j] - ax, c.y[ob + j] - ay);
-                        c.x[oq + j] = ax + (m0 * dx - m1 * dy);
-                        c.y[oq + j] = ay + (m1 * dx + m0 * dy);
-                        let sa = c.st[oa + j];
-                        c.st[oq + j] = if sa != OK { sa } else { c.st[ob + j] };
+                    {
+                        // disjoint columns: the loops vectorize
+                        let (xa, xb, xq) = two_in_one_out(&mut c.x, *a, *bb, *q, m);
+                        let (ya, yb, yq) = two_in_one_out(&mut c.y, *a, *bb, *q, m);
+                        for j in 0..m {
+                            let (ax, ay) = (xa[j], ya[j]);
+                            let (dx, dy) = (xb[j] - ax, yb[j] - ay);
+                            xq[j] = ax + (m0 * dx - m1 * dy);
+                            yq[j] = ay + (m1 * dx + m0 * dy);
+                        }
+                        let (sa, sb, sq) = two_in_one_out(&mut c.st, *a, *bb, *q, m);
+                        for ((q, &a), &b) in sq.iter_mut().zip(sa).zip(sb) {
+                            *q = if a != OK { a } else { b };
+                        }
                     }
                     if vel {
                         for j in 0..m {
@@ -394,7 +399,6 @@ fn slider_rates_block(
 
 #[inline(always)]
 fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det: &mut [f64], sst: &mut [i8]) {
-    let (op, o1, o2) = (d.p * B, d.k1 * B, d.k2 * B);
     {
         // `Dyad::solve`'s closed form over the block's values (it has no branch, so this
         // vectorizes), its cases kept as numbers; the statuses after
@@ -409,6 +413,15 @@ fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det
             (xq[j], yq[j], det[j], case[j]) = (p[0], p[1], dt, cs);
         }
         let (s1, s2, sq) = two_in_one_out(&mut c.st, d.k1, d.k2, d.p, m);
+        // the common block: both known points solved and the dyad closes, away from its
+        // dead points, at every value (folds, not searches: they vectorize)
+        let known = s1.iter().zip(s2).fold(OK, |a, (&x, &y)| a | x | y) == OK;
+        let closes = det.iter().zip(&case[..m]).fold(true, |a, (&dt, &cs)| a & (cs == SOLVED) & (dt.abs() >= singular));
+        if known && closes {
+            sq.fill(OK);
+            sst.fill(OK);
+            return dyad_rates(d, c, m, vel, sst);
+        }
         for j in 0..m {
             let dt = det[j];
             let st = if s1[j] != OK {
@@ -438,6 +451,14 @@ fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det
             sst[j] = st;
         }
     }
+    dyad_rates(d, c, m, vel, sst);
+}
+
+/// The velocities and accelerations of a dyad's point at the block's values where it
+/// solved (a dead point found here makes it SINGULAR).
+#[inline(always)]
+fn dyad_rates(d: &Dyad, c: &mut Columns, m: usize, vel: bool, sst: &mut [i8]) {
+    let (op, o1, o2) = (d.p * B, d.k1 * B, d.k2 * B);
     if vel {
         for j in 0..m {
             if c.st[op + j] != OK {
@@ -495,27 +516,27 @@ fn write_block(
     if np > 0 {
         let pts = &mut out.points[2 * rows.start * np..2 * rows.end * np];
         let pst = &mut out.point_status[rows.start * np..rows.end * np];
-        let all_ok = first_bad.iter().all(|&s| s == OK);
-        for (i, &p) in plan.points.iter().enumerate() {
-            let (xs, ys) = (&c.x[col(p)], &c.y[col(p)]);
-            if all_ok {
-                // every step solved: every point is, with status CONVERGED
+        let all_ok = first_bad.iter().fold(OK, |a, &s| a | s) == OK;
+        if all_ok {
+            // every step solved: every point is, with status CONVERGED
+            for (i, &p) in plan.points.iter().enumerate() {
+                let (xs, ys) = (&c.x[col(p)], &c.y[col(p)]);
                 for ((row, &x), &y) in pts.chunks_exact_mut(2 * np).zip(xs).zip(ys) {
                     let dst = &mut row[2 * i..2 * i + 2];
                     dst[0] = x * sc + org[0];
                     dst[1] = y * sc + org[1];
                 }
-                continue;
             }
+            pst.fill(OK);
+        }
+        for (i, &p) in plan.points.iter().enumerate().filter(|_| !all_ok) {
+            let (xs, ys) = (&c.x[col(p)], &c.y[col(p)]);
             let dst = pts.chunks_exact_mut(2 * np).zip(pst.chunks_exact_mut(np));
             for ((((row, code), &x), &y), (ok, &st)) in dst.zip(xs).zip(ys).zip(good(p).zip(&c.st[col(p)])) {
                 code[i] = st;
                 row[2 * i] = if ok { x * sc + org[0] } else { f64::NAN };
                 row[2 * i + 1] = if ok { y * sc + org[1] } else { f64::NAN };
             }
-        }
-        if all_ok {
-            pst.fill(OK);
         }
     }
     if nl > 0 {
@@ -568,18 +589,22 @@ fn write_block(
             }
         }
     }
+    // the product of the steps' conditioning, step by step down the block's columns
     let det = &mut out.det[rows.clone()];
     det.fill(1.0);
+    for dt in sdet.chunks_exact(B).take(ns) {
+        for (total, &dt) in det.iter_mut().zip(dt) {
+            *total *= dt;
+        }
+    }
     if ns > 0 {
         let (codes, dets) =
             (&mut out.step_status[rows.start * ns..rows.end * ns], &mut out.step_det[rows.start * ns..rows.end * ns]);
         for s in 0..ns {
             let (st, dt) = (&sst[s * B..s * B + m], &sdet[s * B..s * B + m]);
-            let dst = codes.chunks_exact_mut(ns).zip(dets.chunks_exact_mut(ns)).zip(det.iter_mut());
-            for (((code, d), total), (&st, &dt)) in dst.zip(st.iter().zip(dt)) {
+            for (((code, d), &st), &dt) in codes.chunks_exact_mut(ns).zip(dets.chunks_exact_mut(ns)).zip(st).zip(dt) {
                 code[s] = st;
                 d[s] = dt;
-                *total *= dt;
             }
         }
     }
