@@ -174,11 +174,14 @@ class FourBar:
         t3, t4, st, nit, res, w, acc = self._core.sweep(
             a.theta2, a.mode, g, a.tol, a.max_iter, a.predictor, a.method, w2, a2
         )
+        # the rates' fields only where asked for (left out, they keep their defaults)
+        rates = {} if w2 is None else {
+            "omega2": w2, "omega3": w[0], "omega4": w[1],
+            "alpha2": a2, "alpha3": acc[0] if acc else None, "alpha4": acc[1] if acc else None,
+        }  # fmt: skip
         return Sweep.build(
-            self.lengths, a.mode, a.theta2, t3, t4, st, nit, res,
-            omega2=w2, omega3=w[0] if w else None, omega4=w[1] if w else None,
-            alpha2=a2, alpha3=acc[0] if acc else None, alpha4=acc[1] if acc else None,
-            method=a.method, geometry=_KERNEL_GEOMETRY,
+            self._core.lengths, a.mode, a.theta2, t3, t4, st, nit, res,
+            method=a.method, geometry=_KERNEL_GEOMETRY, **rates,
         )  # fmt: skip
 
     def closed_form(self, theta2: object, mode: str = "open") -> tuple:

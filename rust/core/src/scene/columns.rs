@@ -14,7 +14,7 @@ use super::eval::Known;
 use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
 use super::slide::{unit, Rrp};
-use super::vec2::{angular_acceleration, Xy};
+use super::vec2::{angular_acceleration, direction, Xy};
 use crate::error::Error;
 use crate::interrupt::Poll;
 use crate::Status;
@@ -541,12 +541,13 @@ fn write_block(
     }
     if nl > 0 {
         let angles = &mut out.angles[rows.start * nl..rows.end * nl];
+        let fast = crate::simd::enabled();
         for (i, &(a, b)) in plan.link_points.iter().enumerate() {
             let both = good(a).zip(good(b));
             for (j, (row, (oa, ob))) in angles.chunks_exact_mut(nl).zip(both).enumerate() {
                 let (pa, pb) = (a * B + j, b * B + j);
-                let (dx, dy) = (c.x[pb] - c.x[pa], c.y[pb] - c.y[pa]);
-                row[i] = if oa && ob { (dy + 0.0).atan2(dx) } else { f64::NAN };
+                let d = [c.x[pb] - c.x[pa], c.y[pb] - c.y[pa]];
+                row[i] = if oa && ob { direction(d, fast) } else { f64::NAN };
             }
         }
     }

@@ -22,7 +22,7 @@ use super::eval::Known;
 use super::group::{Group, GroupSolve, MAX};
 use super::options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
-use super::vec2::{angular_acceleration, cross, dot, perp, sub, Xy};
+use super::vec2::{angular_acceleration, cross, direction, dot, perp, sub, Xy};
 use crate::error::{quoted, Error};
 use crate::interrupt::{Interrupt, Poll};
 use crate::solve::homotopy::HomotopyOptions;
@@ -338,6 +338,8 @@ struct Solver<'p> {
     aimed_left: u32,
     /// The solution (its input value) the last aimed split was predicted from.
     aimed_from: f64,
+    /// The SIMD kernels are on (asked once): the link angles' polynomial atan2.
+    fast: bool,
 }
 
 impl<'p> Solver<'p> {
@@ -353,6 +355,7 @@ impl<'p> Solver<'p> {
             vel: vec![[0.0; 2]; n],
             acc: vec![[0.0; 2]; n],
             need_acc: opts.omega.is_some(),
+            fast: crate::simd::enabled(),
             pst: vec![Status::Converged; n],
             op_status: vec![Status::Converged; plan.ops.len()],
             op_det: vec![1.0; plan.ops.len()],
@@ -847,7 +850,7 @@ impl<'p> Solver<'p> {
         let angles = &mut out.angles[k * nl..(k + 1) * nl];
         for (dst, &(a, b)) in angles.iter_mut().zip(&plan.link_points) {
             let d = sub(self.pos[b], self.pos[a]);
-            *dst = if ok(a) && ok(b) { (d[1] + 0.0).atan2(d[0]) } else { f64::NAN };
+            *dst = if ok(a) && ok(b) { direction(d, self.fast) } else { f64::NAN };
         }
         if let Some((v, w)) = out.velocity.as_mut() {
             // per unit of the sweep variable (a displacement's rates carry 1 / scale)

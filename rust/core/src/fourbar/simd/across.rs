@@ -70,6 +70,9 @@ fn body<const AVX: bool>(
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
     let n = theta2.len();
+    // the vectorized pass costs nanoseconds a point: counted at once; the points it leaves
+    // to the scalar path tick one by one below
+    poll.tick_n(n)?;
     let spec = RowSpec { mode: opts.mode, singular: opts.newton.singular, nan_singular: false };
     closed_form_row(fb, theta2, trig, spec, out.theta3, out.theta4, Some(&mut *out.status));
     let check = check_of(fb, opts);
@@ -94,11 +97,11 @@ fn body<const AVX: bool>(
         i += W;
     }
     for (k, &t2) in theta2.iter().enumerate() {
+        if fast[k] && motion.is_none() {
+            continue; // written by the check above
+        }
         poll.tick()?;
         let point = if fast[k] {
-            if motion.is_none() {
-                continue; // written by the check above
-            }
             Point {
                 theta3: out.theta3[k],
                 theta4: out.theta4[k],

@@ -139,9 +139,7 @@ pub(crate) fn sweep(
     mut motion: Option<MotionOut<'_>>,
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
-    for _ in theta2 {
-        poll.tick()?; // the whole row is checked first: closed-form points cost nanoseconds
-    }
+    poll.tick_n(theta2.len())?; // the whole row at once: closed-form points cost nanoseconds
     let spec = RowSpec { mode: opts.mode, singular: opts.newton.singular, nan_singular: true };
     closed_form_row(fb, theta2, trig, spec, out.theta3, out.theta4, Some(&mut *out.status));
     out.nit.fill(0);
