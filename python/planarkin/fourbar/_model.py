@@ -175,7 +175,7 @@ class FourBar:
             a.theta2, a.mode, g, a.tol, a.max_iter, a.predictor, a.method, w2, a2
         )
         # the rates' fields only where asked for (left out, they keep their defaults)
-        rates = {} if w2 is None else {
+        rates = {} if w is None else {
             "omega2": w2, "omega3": w[0], "omega4": w[1],
             "alpha2": a2, "alpha3": acc[0] if acc else None, "alpha4": acc[1] if acc else None,
         }  # fmt: skip
