@@ -64,6 +64,8 @@ def as_int(name: str, value: object) -> int:
 def as_i64(name: str, value: object) -> int:
     """An integer the kernel can take (64 bits, signed), or ValueError naming the
     parameter; its range is the kernel's to check."""
+    if type(value) is int and -(2**63) <= value < 2**63:  # the common case, in one test
+        return value
     v = as_int(name, value)
     if not -(2**63) <= v < 2**63:
         raise ValueError(f"{name} must be an integer of at most 64 bits, got {v}")
