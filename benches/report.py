@@ -6,7 +6,8 @@
 ``run`` takes about 4 minutes on 2 cores. It runs, in this order and in one session:
 ``cargo bench -p planarkin-core --bench sweep --bench scene`` (the core alone, criterion),
 ``pytest benches/ --benchmark-enable --benchmark-json=...`` (everything from Python,
-including the peak-RSS subprocesses), and ``planarkin.fourbar.tradeoff.tradeoff()`` with its
+including the peak-RSS subprocesses), ``benches/paired.py`` (issue 21's ratio targets in
+interleaved rounds), and ``planarkin.fourbar.tradeoff.tradeoff()`` with its
 defaults. Raw results go to ``benches/results/``; the hand-written analysis in
 ``benches/analysis.md`` is appended to the generated tables.
 """
@@ -171,6 +172,7 @@ def compact_pytest_json() -> None:
 
 #: The web page's measurement (needs selenium, chromium, chromedriver).
 WEB_CMD = ["python", "benches/web_frame.py"]
+PAIRED_CMD = ["python", "benches/paired.py"]
 
 
 def run_all(quick: bool = False) -> None:
@@ -196,6 +198,9 @@ def run_all(quick: bool = False) -> None:
         env["PLANARKIN_BENCH_MEMORY_M"] = "10000"
     subprocess.run(cmd, check=True, cwd=ROOT, env=env)
     compact_pytest_json()
+    print("== paired ratios:", " ".join(PAIRED_CMD), flush=True)
+    subprocess.run([sys.executable, *PAIRED_CMD[1:], *(["--rounds", "9"] if quick else [])],
+                   check=True, cwd=ROOT, env=env)  # fmt: skip
     print("== tradeoff", flush=True)
     from planarkin.face.figures.tradeoff import save
     from planarkin.fourbar.tradeoff import tradeoff
@@ -388,6 +393,39 @@ def scene_targets(bench: Bench) -> list[tuple[str, str, str, str]]:
     return out
 
 
+def paired_targets(paired: dict) -> list[tuple[str, str, str, str]]:
+    """(target, measured, ratio, verdict) for issue 21's ratio targets, from interleaved
+    rounds (benches/paired.py): both sides timed in the same phase of the host."""
+    out = []
+    rows = [
+        ("seed_across_vs_numpy", "seed sweep, across-angles option / NumPy closed form <= 0.5",
+         lambda r: 1.0 / r <= 0.5, True),
+        ("seed_across_vs_pylinkage",
+         "pylinkage + numba / seed sweep (across-angles option) >= 4", lambda r: r >= 4.0, False),
+        ("jansen_vs_pylinkage", "Jansen's leg: pylinkage + numba / planarkin >= 8",
+         lambda r: r >= 8.0, False),
+    ]  # fmt: skip
+    for key, name, ok, inverse in rows:
+        p = paired.get(key)
+        if not p:
+            continue
+        med, q1, q3 = p["ratio_median"], p["ratio_q1"], p["ratio_q3"]
+        if inverse:  # ours / peer
+            med, q1, q3 = 1.0 / med, 1.0 / q3, 1.0 / q1
+            ratio = f"{med:.2f} (quartiles {q1:.2f}-{q3:.2f})"
+        else:
+            ratio = f"{med:.2f}x faster (quartiles {q1:.2f}-{q3:.2f})"
+        out.append(
+            (
+                f"{name} (issue 21; {p['rounds']} interleaved rounds)",
+                f"{_t(p['ours_s'])} vs {_t(p['peer_s'])}",
+                ratio,
+                _verdict(ok(p["ratio_median"])),
+            )
+        )
+    return out
+
+
 def targets(bench: Bench, crit: dict, trade: dict) -> list[tuple[str, str, str, str]]:
     """(target, measured, ratio, verdict) for each target in the issue."""
     out = scene_targets(bench)
@@ -550,6 +588,19 @@ def render() -> None:
     L += ["## Targets", "", "| target | measured | ratio | verdict |", "|---|---|---|---|"]
     for t in targets(bench, crit, trade):
         L.append("| " + " | ".join(t) + " |")
+    if os.path.exists(os.path.join(RESULTS, "paired.json")):
+        L += [
+            "",
+            "The same ratio targets measured in interleaved rounds (`benches/paired.py`): each "
+            "round times about 2 ms of calls of one side, then of the other, so both see the "
+            "same phase of a host whose speed changes over seconds; the ratio is the median of "
+            "the rounds' ratios (times: medians per call).",
+            "",
+            "| target | measured | ratio | verdict |",
+            "|---|---|---|---|",
+        ]
+        for t in paired_targets(_load("paired.json")):
+            L.append("| " + " | ".join(t) + " |")
 
     L += ["", "## Machine and command", ""]
     for k in (
@@ -581,6 +632,7 @@ def render() -> None:
         "```",
         " ".join(shlex.quote(c) for c in CARGO_CMD),
         " ".join(shlex.quote(c) for c in ["python", *PYTEST_CMD[1:]]),
+        " ".join(PAIRED_CMD),
         "python -c 'from planarkin.fourbar.tradeoff import tradeoff; tradeoff()'"
         "  # = planarkin tradeoff",
         "# environment: OPENBLAS_NUM_THREADS=1 for pytest (no benchmark uses BLAS)",
