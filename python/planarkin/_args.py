@@ -145,6 +145,14 @@ class SweepArgs(NamedTuple):
 def sweep_inputs(theta2, mode, tol, max_iter, predictor, method) -> SweepArgs:  # noqa: ANN001
     """Normalises the arguments every four-bar sweep takes (ValueError naming the
     parameter for a wrong type); the kernel checks their values."""
+    if (
+        theta2 is None
+        and type(mode) is type(predictor) is type(method) is str
+        and type(tol) is float
+        and type(max_iter) is int
+        and -(2**63) <= max_iter < 2**63
+    ):  # the common call, already in the kernel's types: what the checks below return
+        return SweepArgs(DEFAULT_THETA2, mode, tol, max_iter, predictor, method)
     return SweepArgs(
         as_theta2_1d(theta2), as_str("mode", mode), as_float("tol", tol),
         as_i64("max_iter", max_iter), as_str("predictor", predictor), as_str("method", method),
