@@ -806,6 +806,15 @@ def _slider_note(bench: Bench, crit: dict) -> list[str]:
     if not (api and binding and rust):
         return []
     r = rust * 1e-9
+    if not r < binding < api:
+        # each median from its own stretch of the run: on a host whose speed changes,
+        # a later layer can time faster than the one inside it
+        return [
+            "",
+            f"Rust core alone (criterion `slider_crank_361/piston`, into preallocated "
+            f"buffers): {_t(r)}; binding alone {_t(binding)}, the whole call {_t(api)}: not "
+            "split in this run (the rows fell in different phases of the host).",
+        ]
     return [
         "",
         f"Rust core alone (criterion `slider_crank_361/piston`, into preallocated buffers): "
