@@ -36,8 +36,7 @@ sys.path.insert(0, HERE)
 
 import peers  # noqa: E402
 import scene_peers  # noqa: E402
-
-THETA2 = pk.DEFAULT_THETA2
+from conftest import THETA2, max_angle_error  # noqa: E402
 
 
 def _batch(f: Callable[[], object], k: int) -> float:
@@ -76,23 +75,19 @@ def paired(ours: Callable[[], object], peer: Callable[[], object], rounds: int) 
     }
 
 
-def _angle_error(a: np.ndarray, b: np.ndarray) -> float:
-    return float(np.abs(np.angle(np.exp(1j * (a - b)))).max())
-
-
 def pairs() -> dict[str, tuple[str, str, Callable[[], object], Callable[[], object]]]:
     """name -> (ours, peer, their callables), each answer checked first."""
     out: dict[str, tuple[str, str, Callable[[], object], Callable[[], object]]] = {}
     fb = pk.FourBar(*peers.SEED)
     c3, c4 = fb.closed_form(THETA2)
     sw = fb.sweep(predictor="closed-form")
-    assert max(_angle_error(sw.theta3, c3), _angle_error(sw.theta4, c4)) < 1e-12
+    assert max(max_angle_error(sw.theta3, c3), max_angle_error(sw.theta4, c4)) < 1e-12
 
     def seed() -> object:
         return fb.sweep(predictor="closed-form")
 
     t3, t4 = closed_form_vectorized(*peers.SEED, THETA2)
-    assert max(_angle_error(t3, c3), _angle_error(t4, c4)) < 1e-12
+    assert max(max_angle_error(t3, c3), max_angle_error(t4, c4)) < 1e-12
     out["seed_across_vs_numpy"] = (
         "planarkin fb.sweep(predictor='closed-form')",
         "NumPy vectorized closed form",
@@ -104,7 +99,7 @@ def pairs() -> dict[str, tuple[str, str, Callable[[], object], Callable[[], obje
     except ImportError:
         return out
     p3, p4 = pl.angles(pl.run())
-    assert max(_angle_error(p3, c3), _angle_error(p4, c4)) < 1e-10
+    assert max(max_angle_error(p3, c3), max_angle_error(p4, c4)) < 1e-10
     out["seed_across_vs_pylinkage"] = (
         "planarkin fb.sweep(predictor='closed-form')",
         "pylinkage + numba (step_fast)",
@@ -114,8 +109,7 @@ def pairs() -> dict[str, tuple[str, str, Callable[[], object], Callable[[], obje
     sc = pk.scenes.load("jansen")
     foot = sc.sweep(outputs=["foot"]).points["foot"]
     pj = scene_peers.PylinkageScene(sc.to_dict())
-    size = float(np.ptp(np.array(list(sc.points.values())), axis=0).max())
-    assert float(np.abs(pj.run()[:, pj.names.index("foot")] - foot).max()) < 1e-10 * size
+    assert float(np.abs(pj.run()[:, pj.names.index("foot")] - foot).max()) < 1e-10 * sc._size()
     out["jansen_vs_pylinkage"] = (
         "planarkin sc.sweep(outputs=['foot'])",
         "pylinkage + numba (step_fast)",

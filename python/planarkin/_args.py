@@ -64,9 +64,7 @@ def as_int(name: str, value: object) -> int:
 def as_i64(name: str, value: object) -> int:
     """An integer the kernel can take (64 bits, signed), or ValueError naming the
     parameter; its range is the kernel's to check."""
-    if type(value) is int and -(2**63) <= value < 2**63:  # the common case, in one test
-        return value
-    v = as_int(name, value)
+    v = value if type(value) is int else as_int(name, value)  # a plain int: no calls
     if not -(2**63) <= v < 2**63:
         raise ValueError(f"{name} must be an integer of at most 64 bits, got {v}")
     return v
@@ -145,14 +143,6 @@ class SweepArgs(NamedTuple):
 def sweep_inputs(theta2, mode, tol, max_iter, predictor, method) -> SweepArgs:  # noqa: ANN001
     """Normalises the arguments every four-bar sweep takes (ValueError naming the
     parameter for a wrong type); the kernel checks their values."""
-    if (
-        theta2 is None
-        and type(mode) is type(predictor) is type(method) is str
-        and type(tol) is float
-        and type(max_iter) is int
-        and -(2**63) <= max_iter < 2**63
-    ):  # the common call, already in the kernel's types: what the checks below return
-        return SweepArgs(DEFAULT_THETA2, mode, tol, max_iter, predictor, method)
     return SweepArgs(
         as_theta2_1d(theta2), as_str("mode", mode), as_float("tol", tol),
         as_i64("max_iter", max_iter), as_str("predictor", predictor), as_str("method", method),

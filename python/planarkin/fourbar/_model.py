@@ -169,9 +169,8 @@ class FourBar:
         computed); faster, but only the four-bar has one.
         """
         a = sweep_inputs(theta2, mode, tol, max_iter, predictor, method)
-        g = None if guess is None else check_guess(guess)
-        no_rates = omega2 is None and alpha2 is None
-        w2, a2 = (None, None) if no_rates else crank_rates(omega2, alpha2)
+        g = check_guess(guess)
+        w2, a2 = crank_rates(omega2, alpha2)
         t3, t4, st, nit, res, w, acc = self._core.sweep(
             a.theta2, a.mode, g, a.tol, a.max_iter, a.predictor, a.method, w2, a2
         )

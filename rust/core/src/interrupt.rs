@@ -57,12 +57,7 @@ impl<'a> Poll<'a> {
     /// Counts one unit of work; every [`CHECK_EVERY`] units, asks the interrupt.
     #[inline]
     pub fn tick(&self) -> Result<(), Error> {
-        let left = self.left.get();
-        if left > 1 {
-            self.left.set(left - 1);
-            return Ok(());
-        }
-        self.ask()
+        self.tick_n(1)
     }
 
     /// Counts `n` units of work at once (a block's): asks the interrupt where the

@@ -159,20 +159,18 @@ fn sweep_body(
                 Op::Carry { q, a, b: bb, m: ratio } => {
                     let (oq, oa, ob) = (q * B, a * B, bb * B);
                     let (m0, m1) = (ratio[0], ratio[1]);
-                    {
-                        // disjoint columns: the loops vectorize
-                        let (xa, xb, xq) = two_in_one_out(&mut c.x, *a, *bb, *q, m);
-                        let (ya, yb, yq) = two_in_one_out(&mut c.y, *a, *bb, *q, m);
-                        for j in 0..m {
-                            let (ax, ay) = (xa[j], ya[j]);
-                            let (dx, dy) = (xb[j] - ax, yb[j] - ay);
-                            xq[j] = ax + (m0 * dx - m1 * dy);
-                            yq[j] = ay + (m1 * dx + m0 * dy);
-                        }
-                        let (sa, sb, sq) = two_in_one_out(&mut c.st, *a, *bb, *q, m);
-                        for ((q, &a), &b) in sq.iter_mut().zip(sa).zip(sb) {
-                            *q = if a != OK { a } else { b };
-                        }
+                    // disjoint columns: the loops vectorize
+                    let (xa, xb, xq) = two_in_one_out(&mut c.x, *a, *bb, *q, m);
+                    let (ya, yb, yq) = two_in_one_out(&mut c.y, *a, *bb, *q, m);
+                    for j in 0..m {
+                        let (ax, ay) = (xa[j], ya[j]);
+                        let (dx, dy) = (xb[j] - ax, yb[j] - ay);
+                        xq[j] = ax + (m0 * dx - m1 * dy);
+                        yq[j] = ay + (m1 * dx + m0 * dy);
+                    }
+                    let (sa, sb, sq) = two_in_one_out(&mut c.st, *a, *bb, *q, m);
+                    for ((q, &a), &b) in sq.iter_mut().zip(sa).zip(sb) {
+                        *q = if a != OK { a } else { b };
                     }
                     if vel {
                         for j in 0..m {
@@ -399,12 +397,13 @@ fn slider_rates_block(
 
 #[inline(always)]
 fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det: &mut [f64], sst: &mut [i8]) {
+    let sst = &mut sst[..m];
     {
         // `Dyad::solve`'s closed form over the block's values (it has no branch, so this
         // vectorizes), its cases kept as numbers; the statuses after
         let (x1, x2, xq) = two_in_one_out(&mut c.x, d.k1, d.k2, d.p, m);
         let (y1, y2, yq) = two_in_one_out(&mut c.y, d.k1, d.k2, d.p, m);
-        let (det, sst) = (&mut det[..m], &mut sst[..m]);
+        let det = &mut det[..m];
         let (na, nonfinite, sing) = (Status::NotAssemblable.code(), Status::NonFinite.code(), Status::Singular.code());
         let mut case = [0.0; B];
         for j in 0..m {
@@ -420,44 +419,37 @@ fn dyad_block(d: &Dyad, c: &mut Columns, m: usize, singular: f64, vel: bool, det
         if known && closes {
             sq.fill(OK);
             sst.fill(OK);
-            return dyad_rates(d, c, m, vel, sst);
-        }
-        for j in 0..m {
-            let dt = det[j];
-            let st = if s1[j] != OK {
-                s1[j]
-            } else if s2[j] != OK {
-                s2[j]
-            } else if case[j] == COINCIDE {
-                // a continuum with equal links (conditioning 0), no assembly otherwise
-                if dt == 0.0 {
-                    sing
-                } else {
+        } else {
+            for j in 0..m {
+                let dt = det[j];
+                let st = if s1[j] != OK {
+                    s1[j]
+                } else if s2[j] != OK {
+                    s2[j]
+                } else if case[j] == COINCIDE {
+                    // a continuum with equal links (conditioning 0), no assembly otherwise
+                    if dt == 0.0 {
+                        sing
+                    } else {
+                        na
+                    }
+                } else if case[j] == APART {
                     na
+                } else if dt.abs() >= singular {
+                    OK
+                } else if dt.is_nan() {
+                    nonfinite
+                } else {
+                    sing
+                };
+                if (s1[j] != OK) | (s2[j] != OK) {
+                    det[j] = f64::NAN;
                 }
-            } else if case[j] == APART {
-                na
-            } else if dt.abs() >= singular {
-                OK
-            } else if dt.is_nan() {
-                nonfinite
-            } else {
-                sing
-            };
-            if (s1[j] != OK) | (s2[j] != OK) {
-                det[j] = f64::NAN;
+                sq[j] = st;
+                sst[j] = st;
             }
-            sq[j] = st;
-            sst[j] = st;
         }
     }
-    dyad_rates(d, c, m, vel, sst);
-}
-
-/// The velocities and accelerations of a dyad's point at the block's values where it
-/// solved (a dead point found here makes it SINGULAR).
-#[inline(always)]
-fn dyad_rates(d: &Dyad, c: &mut Columns, m: usize, vel: bool, sst: &mut [i8]) {
     let (op, o1, o2) = (d.p * B, d.k1 * B, d.k2 * B);
     if vel {
         for j in 0..m {
@@ -528,14 +520,15 @@ fn write_block(
                 }
             }
             pst.fill(OK);
-        }
-        for (i, &p) in plan.points.iter().enumerate().filter(|_| !all_ok) {
-            let (xs, ys) = (&c.x[col(p)], &c.y[col(p)]);
-            let dst = pts.chunks_exact_mut(2 * np).zip(pst.chunks_exact_mut(np));
-            for ((((row, code), &x), &y), (ok, &st)) in dst.zip(xs).zip(ys).zip(good(p).zip(&c.st[col(p)])) {
-                code[i] = st;
-                row[2 * i] = if ok { x * sc + org[0] } else { f64::NAN };
-                row[2 * i + 1] = if ok { y * sc + org[1] } else { f64::NAN };
+        } else {
+            for (i, &p) in plan.points.iter().enumerate() {
+                let (xs, ys) = (&c.x[col(p)], &c.y[col(p)]);
+                let dst = pts.chunks_exact_mut(2 * np).zip(pst.chunks_exact_mut(np));
+                for ((((row, code), &x), &y), (ok, &st)) in dst.zip(xs).zip(ys).zip(good(p).zip(&c.st[col(p)])) {
+                    code[i] = st;
+                    row[2 * i] = if ok { x * sc + org[0] } else { f64::NAN };
+                    row[2 * i + 1] = if ok { y * sc + org[1] } else { f64::NAN };
+                }
             }
         }
     }

@@ -737,16 +737,11 @@ impl<'p> Solver<'p> {
     }
 
     fn reach_within(&mut self, a: f64, b: f64, depth: u32, floor: f64) -> bool {
-        if depth > 0 && self.aimed_left > 0 && floor > 0.0 && a != self.aimed_from {
-            // inside a failing step's splits, from a new solution: where a group predicts
-            // its dead point well short of `b`, the whole step would fail (a Newton solve
-            // run to its cap for nothing): aim first
-            let (dir, len) = ((b - a).signum(), (b - a).abs());
-            let ahead = self.dead_point_ahead(a, dir, false);
-            if ahead < len - floor {
-                let mid = self.aim(a, dir, len, ahead, floor);
-                return self.reach_within(a, mid, depth + 1, floor) && self.reach_within(mid, b, depth + 1, floor);
-            }
+        // inside a failing step's splits, from a new solution: where a group predicts its
+        // dead point well short of `b`, the whole step would fail (a Newton solve run to its
+        // cap for nothing): aim first
+        if let Some(mid) = (depth > 0).then(|| self.aimed(a, b, floor, false)).flatten() {
+            return self.reach_within(a, mid, depth + 1, floor) && self.reach_within(mid, b, depth + 1, floor);
         }
         self.step = (b - a).abs();
         let failed = self.eval(b);
@@ -782,7 +777,7 @@ impl<'p> Solver<'p> {
     /// the dead point a failing group predicts. Near a dead point the square of a group's
     /// conditioning falls linearly in the input (the two assemblies meet as a square
     /// root), so its last two solutions extrapolate to the dead point; a split a little
-    /// short of it ([`Solver::aim`]) succeeds, and the next prediction, from nearer, is
+    /// short of it ([`Solver::aimed`]) succeeds, and the next prediction, from nearer, is
     /// better; one success within `floor` of the prediction is followed by a probe `floor`
     /// beyond, whose failure ends the search. From a new solution inside a failing step,
     /// [`Solver::reach_within`] aims before it tries the rest of the step where the
@@ -795,22 +790,22 @@ impl<'p> Solver<'p> {
     /// the bracket is what makes the answer, so a poor prediction costs solves, never the
     /// result.
     fn split(&mut self, a: f64, b: f64, floor: f64) -> f64 {
-        let half = 0.5 * (a + b);
-        if self.aimed_left == 0 || !(floor > 0.0) || a == self.aimed_from {
-            return half;
-        }
-        let (dir, len) = ((b - a).signum(), (b - a).abs());
-        let ahead = self.dead_point_ahead(a, dir, true);
-        if !(ahead < len) {
-            return half;
-        }
-        self.aim(a, dir, len, ahead, floor)
+        self.aimed(a, b, floor, true).unwrap_or(0.5 * (a + b))
     }
 
-    /// The distance from `a` (the groups' last solution) to the nearest dead point that a
-    /// group predicts in direction `dir` from its last two solutions (infinite: none).
-    /// `failing`: only the groups that failed by themselves at the last evaluation.
-    fn dead_point_ahead(&self, a: f64, dir: f64, failing: bool) -> f64 {
+    /// The split aimed at the nearest dead point that a group predicts from its last two
+    /// solutions, when that lies short of `b` (by `floor` more where the step has not been
+    /// tried: `failing` false); `None` where none does, or the prediction from `a` was used
+    /// already, or the step's aims are spent. `failing`: only the groups that failed by
+    /// themselves at the last evaluation. The split stops [`AIM_SHORT`] of the predicted
+    /// distance short (the extrapolation's error shrinks with it, so the next aim, from
+    /// nearer, is better) or a quarter of `floor`, whichever is more; within `floor` of
+    /// the prediction, a probe past it.
+    fn aimed(&mut self, a: f64, b: f64, floor: f64, failing: bool) -> Option<f64> {
+        if self.aimed_left == 0 || !(floor > 0.0) || a == self.aimed_from {
+            return None;
+        }
+        let (dir, len) = ((b - a).signum(), (b - a).abs());
         let mut ahead = f64::INFINITY;
         for (i, st) in self.groups.iter().enumerate() {
             let Some(g) = st else { continue };
@@ -828,18 +823,14 @@ impl<'p> Solver<'p> {
                 ahead = ahead.min(d);
             }
         }
-        ahead
-    }
-
-    /// The split just short of a dead point predicted `ahead` of `a`: short by
-    /// [`AIM_SHORT`] of the distance (the extrapolation's error shrinks with it, so the next
-    /// aim, from nearer, is better) or a quarter of `floor`, whichever is more; within
-    /// `floor` of it, a probe past it. One aim per solution, `AIMED_SPLITS` per step.
-    fn aim(&mut self, a: f64, dir: f64, len: f64, ahead: f64, floor: f64) -> f64 {
+        let room = if failing { len } else { len - floor };
+        if !(ahead < room) {
+            return None;
+        }
         self.aimed_left -= 1;
         self.aimed_from = a;
         let d = if ahead <= floor { 0.75 * floor } else { ahead - (AIM_SHORT * ahead).max(0.25 * floor) };
-        a + dir * d.clamp(0.5 * floor, len - 0.5 * floor)
+        Some(a + dir * d.clamp(0.5 * floor, len - 0.5 * floor))
     }
 
     /// The dead point (input angle) that stops the first group at LIMIT, if any.

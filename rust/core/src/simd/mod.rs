@@ -106,13 +106,12 @@ pub fn sin_cos_into(theta: &[f64], out: &mut [(f64, f64)]) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     table_body(theta, out);
-    // |t| <= SIN_COS_MAX is false for NaN: one fold (it vectorizes) finds whether any
-    // argument needs libm, and the loop that gives it runs only then
-    if !theta.iter().fold(true, |ok, &t| ok & (t.abs() <= math::SIN_COS_MAX)) {
-        for (o, &t) in out.iter_mut().zip(theta) {
-            if t.is_nan() || t.abs() > math::SIN_COS_MAX {
-                *o = t.sin_cos();
-            }
+    // beyond the polynomial's range, or NaN (which fails `<=`): one fold (it vectorizes)
+    // finds whether any argument needs libm, and the loop that gives it runs only then
+    let libm = |t: f64| !(t.abs() <= math::SIN_COS_MAX);
+    if theta.iter().fold(false, |any, &t| any | libm(t)) {
+        for (o, &t) in out.iter_mut().zip(theta).filter(|(_, &t)| libm(t)) {
+            *o = t.sin_cos();
         }
     }
 }
