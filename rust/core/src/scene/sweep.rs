@@ -22,8 +22,8 @@ use super::eval::Known;
 use super::group::{Group, GroupSolve, MAX};
 use super::options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
-use super::vec2::{angular_acceleration, cross, direction, dot, perp, sub, Xy};
-use crate::error::{quoted, Error};
+use super::vec2::{angular_acceleration, cross, dot, perp, sub, Xy};
+use crate::error::{quoted, try_zeros, Error};
 use crate::interrupt::{Interrupt, Poll};
 use crate::solve::homotopy::HomotopyOptions;
 use crate::solve::newton::NewtonOptions;
@@ -340,8 +340,6 @@ struct Solver<'p> {
     aimed_left: u32,
     /// The solution (its input value) the last aimed split was predicted from.
     aimed_from: f64,
-    /// The SIMD kernels are on (asked once): the link angles' polynomial atan2.
-    fast: bool,
 }
 
 impl<'p> Solver<'p> {
@@ -357,7 +355,6 @@ impl<'p> Solver<'p> {
             vel: vec![[0.0; 2]; n],
             acc: vec![[0.0; 2]; n],
             need_acc: opts.omega.is_some(),
-            fast: crate::simd::enabled(),
             pst: vec![Status::Converged; n],
             op_status: vec![Status::Converged; plan.ops.len()],
             op_det: vec![1.0; plan.ops.len()],
@@ -847,7 +844,9 @@ impl<'p> Solver<'p> {
         f64::NAN
     }
 
-    fn write(&self, k: usize, out: &mut SceneSweepOut<'_>) {
+    /// Writes row `k` of the outputs; the links' directions go to `dirs` (row `k`, NaN where
+    /// a point is not solved), whose angles [`Plan::sweep`] takes at the end, all at once.
+    fn write(&self, k: usize, out: &mut SceneSweepOut<'_>, dirs: &mut [Xy]) {
         let plan = self.plan;
         let (np, nl, ns) = (plan.points.len(), plan.links.len(), plan.steps.len());
         let (sc, org) = (plan.scale, plan.origin);
@@ -870,10 +869,8 @@ impl<'p> Solver<'p> {
             }
         }
         let ok = |p: usize| all_ok || self.pst[p] == Status::Converged;
-        let angles = &mut out.angles[k * nl..(k + 1) * nl];
-        for (dst, &(a, b)) in angles.iter_mut().zip(&plan.link_points) {
-            let d = sub(self.pos[b], self.pos[a]);
-            *dst = if ok(a) && ok(b) { direction(d, self.fast) } else { f64::NAN };
+        for (dst, &(a, b)) in dirs[k * nl..(k + 1) * nl].iter_mut().zip(&plan.link_points) {
+            *dst = if ok(a) && ok(b) { sub(self.pos[b], self.pos[a]) } else { [f64::NAN; 2] };
         }
         if let Some((v, w)) = out.velocity.as_mut() {
             // per unit of the sweep variable (a displacement's rates carry 1 / scale)
@@ -980,14 +977,17 @@ impl Plan {
             }
         }
         let limit = Status::Limit.code();
-        self.continuation(theta, 0..n, opts, &mut out, false, &poll)?;
+        // the links' directions, turned into angles at the end in one vectorized pass
+        let mut dirs = try_zeros(|| "the links' directions".to_string(), n * nl)?;
+        self.continuation(theta, 0..n, opts, &mut out, &mut dirs, false, &poll)?;
         // the rest of the drawn circuit, backwards from the drawn pose: the angles left
         // LIMIT, from the last of them back to the first (what the other way round reaches)
         if let (Some(first), Some(last)) =
             (out.status.iter().position(|&s| s == limit), out.status.iter().rposition(|&s| s == limit))
         {
-            self.continuation(theta, (first..=last).rev(), opts, &mut out, true, &poll)?;
+            self.continuation(theta, (first..=last).rev(), opts, &mut out, &mut dirs, true, &poll)?;
         }
+        crate::simd::directions_into(&dirs, out.angles);
         self.classify_limits(theta, &mut out, interrupt)
     }
 
@@ -1084,6 +1084,7 @@ impl Plan {
         order: impl Iterator<Item = usize>,
         opts: &SceneSweepOptions,
         out: &mut SceneSweepOut<'_>,
+        dirs: &mut [Xy],
         backward: bool,
         poll: &Poll<'_>,
     ) -> Result<(), Error> {
@@ -1133,7 +1134,7 @@ impl Plan {
             if backward && (!t.is_finite() || out.status[k] != Status::Limit.code()) {
                 continue;
             }
-            s.write(k, out);
+            s.write(k, out, dirs);
             out.limit[k] = s.limit_angle();
         }
         Ok(())
