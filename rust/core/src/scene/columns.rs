@@ -63,7 +63,7 @@ pub(super) fn sweep(
 }
 
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn sweep_avx2(
     plan: &Plan,
     theta: &[f64],

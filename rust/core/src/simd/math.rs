@@ -76,7 +76,8 @@ const PIO2_LO: f64 = 6.123_233_995_736_766_035_9e-17;
 const PI_LO: f64 = 1.224_646_799_147_353_207_2e-16;
 
 /// atan2(y, x) without branches, matching libm's quadrants and signed zeros for finite
-/// arguments (atan2(+-0, -0 or x < 0) = +-pi). NaN in, NaN out.
+/// arguments (atan2(+-0, -0 or x < 0) = +-pi). NaN in, NaN out. Its multiply-adds are
+/// fused: callers are compiled with FMA (elsewhere `mul_add` is a call to libm's `fma`).
 #[inline(always)]
 pub fn atan2(y: f64, x: f64) -> f64 {
     use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
@@ -89,8 +90,10 @@ pub fn atan2(y: f64, x: f64) -> f64 {
     let (n, d) = if big { (num - den, num + den) } else { (num, den) };
     let t = if den == 0.0 { 0.0 } else { n / d };
     let z = t * t;
-    let p = z * ((((P0 * z + P1) * z + P2) * z + P3) * z + P4) / ((((((z + Q0) * z + Q1) * z + Q2) * z + Q3) * z) + Q4);
-    let a = t + t * p;
+    // the kernel's polynomials in fused multiply-adds (callers are compiled with FMA)
+    let pz = P0.mul_add(z, P1).mul_add(z, P2).mul_add(z, P3).mul_add(z, P4) * z;
+    let qz = (z + Q0).mul_add(z, Q1).mul_add(z, Q2).mul_add(z, Q3).mul_add(z, Q4);
+    let a = t.mul_add(pz / qz, t);
     let a = if big { FRAC_PI_4 + (a + PIO4_LO) } else { a };
     let a = if swap { FRAC_PI_2 - (a - PIO2_LO) } else { a };
     let a = if x.is_sign_negative() { PI - (a - PI_LO) } else { a };

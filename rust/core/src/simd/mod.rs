@@ -110,7 +110,7 @@ pub fn directions_into(d: &[[f64; 2]], out: &mut [f64]) {
 }
 
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn directions_avx2(d: &[[f64; 2]], out: &mut [f64]) {
     // a select, no branch: the loop vectorizes
     for (o, v) in out.iter_mut().zip(d) {

@@ -1,7 +1,8 @@
-//! The four-bar closed form over many crank angles, branch-free so that the loop runs 4
+//! The four-bar closed form over many crank angles, branch-free so that its loops run 4
 //! (AVX2) angles at a time: one sqrt for |A O4|, one for the triangle's height, two
-//! polynomial atan2. The same formulas and operation order as `FourBar::geometry` and
-//! `Triangle::angles`, so only the atan2 differs from the scalar path (by <= 2 ulp).
+//! polynomial atan2 (in a loop of their own, a block of angles at a time). The same
+//! formulas and operation order as `FourBar::geometry` and `Triangle::angles`, so only the
+//! atan2 differs from the scalar path (by <= 2 ulp).
 
 use crate::error::Error;
 use crate::fourbar::model::{FourBar, Mode, Point, FLAT_ULPS};
@@ -26,7 +27,7 @@ pub(crate) struct RowSpec {
 }
 
 #[inline(always)]
-fn row_body<const STATUS: bool>(
+fn row_body<const STATUS: bool, const WELL: bool>(
     fb: &FourBar,
     theta2: &[f64],
     trig: &[(f64, f64)],
@@ -43,51 +44,66 @@ fn row_body<const STATUS: bool>(
     let (k, r3r4, sign) = ((r3 - r4) * (r3 + r4), r3 * r4, spec.mode.sign());
     let indeterminate = if r3 == r4 { SINGULAR } else { NOT_ASSEMBLABLE };
     let slack = FLAT_ULPS * f64::EPSILON * fb.longest();
-    for i in 0..n {
-        let (s2, c2) = trig[i];
-        let ux = r1 - r2 * c2;
-        let uy = -(r2 * s2);
-        let d2 = ux * ux + uy * uy;
-        let d = d2.sqrt();
-        // as the scalar geometry: within FLAT_ULPS ulp of closing, a triangle is flat
-        let flat = |q: f64| if (q < 0.0) & (q >= -slack) { 0.0 } else { q };
-        let q1 = flat(d + r3 - r4);
-        let q2 = flat(d - r3 + r4);
-        let q3 = flat(r3 + r4 - d);
-        let tri = (q1 >= 0.0) & (q2 >= 0.0) & (q3 >= 0.0) & (d != 0.0);
-        let two_dh = ((r3 + r4 + d) * q1 * q2 * q3).sqrt();
-        let h = sign * two_dh;
-        let (ca, cb) = (k + d2, k - d2);
-        let t3 = atan2(uy * ca + ux * h + 0.0, ux * ca - uy * h);
-        let t4 = atan2(uy * cb + ux * h + 0.0, ux * cb - uy * h);
-        let sin34 = h / (2.0 * r3r4);
-        let well = (sin34.abs() * cond_scale) >= spec.singular;
-        let finite = theta2[i].is_finite();
-        let st = if !finite {
-            NON_FINITE
-        } else if tri {
-            if well {
-                CONVERGED
-            } else {
-                SINGULAR
+    // in blocks: the geometry first, then the block's atan2s in a loop of their own (the two
+    // loops each keep fewer values live than one loop would, so more of their iterations are
+    // in flight at once)
+    let (mut ys, mut xs) = ([0.0; 2 * BLOCK], [0.0; 2 * BLOCK]);
+    for start in (0..n).step_by(BLOCK) {
+        let m = BLOCK.min(n - start);
+        for j in 0..m {
+            let i = start + j;
+            let (s2, c2) = trig[i];
+            let ux = r1 - r2 * c2;
+            let uy = -(r2 * s2);
+            let d2 = ux * ux + uy * uy;
+            let d = d2.sqrt();
+            // as the scalar geometry: within FLAT_ULPS ulp of closing, a triangle is flat
+            let flat = |q: f64| if (q < 0.0) & (q >= -slack) { 0.0 } else { q };
+            let q1 = flat(d + r3 - r4);
+            let q2 = flat(d - r3 + r4);
+            let q3 = flat(r3 + r4 - d);
+            let tri = (q1 >= 0.0) & (q2 >= 0.0) & (q3 >= 0.0) & (d != 0.0);
+            let two_dh = ((r3 + r4 + d) * q1 * q2 * q3).sqrt();
+            let h = sign * two_dh;
+            let (ca, cb) = (k + d2, k - d2);
+            // the conditioning, where a status or the kept angles need it
+            let well = !WELL || (h / (2.0 * r3r4)).abs() * cond_scale >= spec.singular;
+            let finite = theta2[i].is_finite();
+            let keep = finite & tri & (well | !spec.nan_singular);
+            // a NaN abscissa marks an angle that is not kept
+            (ys[j], xs[j]) = (uy * ca + ux * h + 0.0, if keep { ux * ca - uy * h } else { f64::NAN });
+            (ys[BLOCK + j], xs[BLOCK + j]) = (uy * cb + ux * h + 0.0, if keep { ux * cb - uy * h } else { f64::NAN });
+            if STATUS {
+                status[i] = if !finite {
+                    NON_FINITE
+                } else if tri {
+                    if well {
+                        CONVERGED
+                    } else {
+                        SINGULAR
+                    }
+                } else if d == 0.0 {
+                    indeterminate
+                } else {
+                    NOT_ASSEMBLABLE
+                };
             }
-        } else if d == 0.0 {
-            indeterminate
-        } else {
-            NOT_ASSEMBLABLE
-        };
-        let keep = finite & tri & (well | !spec.nan_singular);
-        theta3[i] = if keep { t3 } else { f64::NAN };
-        theta4[i] = if keep { t4 } else { f64::NAN };
-        if STATUS {
-            status[i] = st;
+        }
+        for (dst, off) in [(&mut theta3[start..start + m], 0), (&mut theta4[start..start + m], BLOCK)] {
+            for ((o, &y), &x) in dst.iter_mut().zip(&ys[off..off + m]).zip(&xs[off..off + m]) {
+                let a = atan2(y, x);
+                *o = if x.is_nan() { f64::NAN } else { a };
+            }
         }
     }
 }
 
+/// Angles a block of [`row_body`] takes at once.
+const BLOCK: usize = 128;
+
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn row_avx2<const STATUS: bool>(
+unsafe fn row_avx2<const STATUS: bool, const WELL: bool>(
     fb: &FourBar,
     theta2: &[f64],
     trig: &[(f64, f64)],
@@ -96,7 +112,7 @@ unsafe fn row_avx2<const STATUS: bool>(
     theta4: &mut [f64],
     status: &mut [i8],
 ) {
-    row_body::<STATUS>(fb, theta2, trig, spec, theta3, theta4, status)
+    row_body::<STATUS, WELL>(fb, theta2, trig, spec, theta3, theta4, status)
 }
 
 /// The closed form of one linkage at every crank angle (with its precomputed (sin, cos)),
@@ -111,21 +127,23 @@ pub(crate) fn closed_form_row(
     theta4: &mut [f64],
     status: Option<&mut [i8]>,
 ) {
+    // the conditioning is computed only where a status or the kept angles need it
+    macro_rules! row {
+        ($f:ident) => {
+            match (status, spec.nan_singular) {
+                (Some(s), _) => $f::<true, true>(fb, theta2, trig, spec, theta3, theta4, s),
+                (None, true) => $f::<false, true>(fb, theta2, trig, spec, theta3, theta4, &mut []),
+                (None, false) => $f::<false, false>(fb, theta2, trig, spec, theta3, theta4, &mut []),
+            }
+        };
+    }
     #[cfg(target_arch = "x86_64")]
     if crate::simd::available() {
         // SAFETY: the CPU has AVX2 and FMA (checked at run time just above).
-        unsafe {
-            match status {
-                Some(s) => row_avx2::<true>(fb, theta2, trig, spec, theta3, theta4, s),
-                None => row_avx2::<false>(fb, theta2, trig, spec, theta3, theta4, &mut []),
-            }
-        }
+        unsafe { row!(row_avx2) };
         return;
     }
-    match status {
-        Some(s) => row_body::<true>(fb, theta2, trig, spec, theta3, theta4, s),
-        None => row_body::<false>(fb, theta2, trig, spec, theta3, theta4, &mut []),
-    }
+    row!(row_body)
 }
 
 /// The closed-form sweep (`Method::ClosedForm`) of one linkage: NaN angles unless
