@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import os
 
+import numpy as np
 import peers
 import planarkin as pk
 import pytest
@@ -77,6 +78,23 @@ def test_planarkin_closed_form_batch(benchmark, m, threads):
         f"planarkin closed_form_batch, {name}",
         m=m,
         threads=threads or CORES,
+        max_error=_check(m, t3, t4, 1e-15),
+    )
+
+
+@pytest.mark.parametrize("m", SIZES)
+def test_planarkin_closed_form_batch_out(benchmark, m):
+    """The same, written into arrays the caller keeps (out=): no new memory to clear."""
+    benchmark.group = _group(m)
+    arr = links(m)
+    out = (np.empty((m, THETA2.size)), np.empty((m, THETA2.size)))
+    t3, t4 = benchmark(pk.closed_form_batch, arr, THETA2, threads=1, out=out)
+    record(
+        benchmark,
+        "pk_cf_batch_t1_out",
+        "planarkin closed_form_batch(out=...), 1 thread",
+        m=m,
+        threads=1,
         max_error=_check(m, t3, t4, 1e-15),
     )
 

@@ -101,7 +101,11 @@ def sweep_batch(
     npt.NDArray[np.float64],
 ]: ...
 def closed_form_batch(
-    links: npt.NDArray[np.float64], theta2: _F64, mode: str, threads: int | None
+    links: npt.NDArray[np.float64],
+    theta2: _F64,
+    mode: str,
+    threads: int | None,
+    out: tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]] | None = None,
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
 
 _I8: TypeAlias = npt.NDArray[np.int8]

@@ -259,6 +259,45 @@ def test_links_bad_entry_named(bad, pos):
             call()
 
 
+def _out_cases():
+    """Each a bad `out` for 2 linkages at 5 angles, with the entry its error names."""
+    ok = np.zeros((2, 5))
+    shared = np.zeros((4, 5))
+    readonly = np.zeros((2, 5))
+    readonly.flags.writeable = False
+    return {
+        "list": (list((ok, ok.copy())), "out"),
+        "one array": ((ok,), "out"),
+        "int": ((np.zeros((2, 5), dtype=np.int64), ok), "out[0]"),
+        "float32": ((ok, np.zeros((2, 5), dtype=np.float32)), "out[1]"),
+        "not an array": ((ok, [[0.0] * 5] * 2), "out[1]"),
+        "transposed shape": ((np.zeros((5, 2)), ok), "out[0]"),
+        "one row short": ((ok, np.zeros((1, 5))), "out[1]"),
+        "strided": ((np.zeros((2, 10))[:, ::2], ok), "out[0]"),
+        "Fortran order": ((np.asfortranarray(np.zeros((2, 5))), ok), "out[0]"),
+        "read-only": ((ok, readonly), "out[1]"),
+        "same array": ((ok, ok), "out[0]"),
+        "overlapping views": ((shared[:2], shared[1:3]), "out[0]"),
+    }
+
+
+@pytest.mark.parametrize("case", list(_out_cases()))
+def test_closed_form_batch_bad_out_named(case):
+    out, name = _out_cases()[case]
+    links = np.array([SEED_LINKAGE, SEED_LINKAGE])
+    with raises_named(name):
+        pk.closed_form_batch(links, np.linspace(0.0, 1.0, 5), out=out)
+
+
+def test_closed_form_batch_out_sharing_theta2_named():
+    """An output that holds the crank angles it is computed from: the kernel's borrow check
+    refuses it, naming the output."""
+    out0 = np.zeros((1, 5))
+    out0[0] = np.linspace(0.0, 1.0, 5)
+    with raises_named("out[0]"):
+        pk.closed_form_batch(np.array([SEED_LINKAGE]), out0[0], out=(out0, np.zeros((1, 5))))
+
+
 def test_links_empty_is_fine():
     b = pk.sweep_batch(np.ones((0, 4)))
     assert b.theta3.shape == (0, 361)

@@ -232,6 +232,21 @@ def test_closed_form_parity(grashof_links, non_grashof_links):
             assert_array_equal(b4[i], r4)
 
 
+def test_closed_form_batch_out_is_written_in_place(grashof_links, non_grashof_links):
+    """out=(theta3, theta4): the reference's closed form written into the caller's arrays
+    (filled with other values first), which are the arrays returned."""
+    t = np.concatenate([np.linspace(-7.0, 7.0, 301), [np.nan, np.inf]])
+    links = np.vstack([grashof_links[:40], non_grashof_links[:40]])
+    for mode in MODES:
+        out = (np.full((80, t.size), 5.0), np.full((80, t.size), -5.0))
+        b3, b4 = pk.closed_form_batch(links, t, mode, out=out)
+        assert b3 is out[0] and b4 is out[1]
+        for i, r in enumerate(links):
+            r3, r4 = ref.closed_form(pk.FourBar(*r), t, mode)
+            assert_array_equal(b3[i], r3)
+            assert_array_equal(b4[i], r4)
+
+
 def test_closed_form_keeps_array_shape():
     fb = pk.FourBar(*SEED_LINKAGE)
     t = np.linspace(0, 6, 12).reshape(3, 4)

@@ -43,11 +43,41 @@ def sweep_batch(
 
 
 def closed_form_batch(
-    links: object, theta2: object = None, mode: str = "open", *, threads: int | None = None
+    links: object,
+    theta2: object = None,
+    mode: str = "open",
+    *,
+    threads: int | None = None,
+    out: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Closed-form (theta3, theta4) for M linkages at N crank angles: (M, N) arrays, NaN
-    where a linkage cannot assemble."""
+    where a linkage cannot assemble.
+
+    ``out=(theta3, theta4)``: two writable, C-contiguous float64 arrays of shape (M, N)
+    that share no memory, written in place and returned (a loop over many batches then
+    writes into memory it already has, rather than new arrays the system must first
+    clear)."""
     arr = _links(links)
     t2 = as_theta2_1d(theta2)
     mode = as_str("mode", mode)
-    return _kernel.closed_form_batch(arr, t2, mode, _threads(threads))
+    if out is not None:
+        _check_out(out, (arr.shape[0], t2.shape[0]))
+    return _kernel.closed_form_batch(arr, t2, mode, _threads(threads), out)
+
+
+def _check_out(out: object, shape: tuple[int, int]) -> None:
+    """A ValueError naming ``out`` unless it is two arrays the kernel can write into."""
+    if not (isinstance(out, tuple) and len(out) == 2):
+        got = type(out).__name__
+        raise ValueError(f"out must be a tuple of two arrays (theta3, theta4), got {got}")
+    for i, a in enumerate(out):
+        what = f"out[{i}]"
+        if not isinstance(a, np.ndarray) or a.dtype != np.float64:
+            got = a.dtype if isinstance(a, np.ndarray) else type(a).__name__
+            raise ValueError(f"{what} must be a float64 array, got {got}")
+        if a.shape != shape:
+            raise ValueError(f"{what} must have shape {shape}, got {a.shape}")
+        if not (a.flags.c_contiguous and a.flags.writeable):
+            raise ValueError(f"{what} must be a writable, C-contiguous array")
+    if np.may_share_memory(out[0], out[1]):
+        raise ValueError("out[0] and out[1] must not share memory")

@@ -3,7 +3,10 @@
 //! a copy.
 
 use numpy::ndarray::{Array2, Array3};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray1};
+use numpy::{
+    IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray2,
+    PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyMemoryError, PyValueError};
 use pyo3::prelude::*;
 
@@ -55,6 +58,29 @@ fn huge_pages<T>(v: &mut Vec<T>) {
 /// m * n for an (m, n) output, or MemoryError when it does not fit in memory's address space.
 pub(crate) fn grid_len(what: &str, m: usize, n: usize) -> PyResult<usize> {
     m.checked_mul(n).ok_or_else(|| PyMemoryError::new_err(format!("{what}: {m} x {n} values do not fit in memory")))
+}
+
+/// An (m, n) output array given by the caller, borrowed for writing: a ValueError naming it
+/// when its shape differs or it is read-only or shares memory with another argument.
+pub(crate) fn writable<'py>(
+    name: &str,
+    a: &Arr2<'py, f64>,
+    m: usize,
+    n: usize,
+) -> PyResult<PyReadwriteArray2<'py, f64>> {
+    if a.shape() != [m, n] {
+        return Err(PyValueError::new_err(format!("{name} must have shape ({m}, {n}), got {:?}", a.shape())));
+    }
+    a.try_readwrite().map_err(|e| {
+        PyValueError::new_err(format!(
+            "{name} must be a writable array that shares no memory with another argument ({e})"
+        ))
+    })
+}
+
+/// The values of a borrowed output array, which must be C-contiguous.
+pub(crate) fn contiguous<'a>(name: &str, a: &'a mut PyReadwriteArray2<'_, f64>) -> PyResult<&'a mut [f64]> {
+    a.as_slice_mut().map_err(|_| PyValueError::new_err(format!("{name} must be a C-contiguous float64 array")))
 }
 
 /// The contiguous values of a 1-D float64 array.

@@ -14,7 +14,7 @@ use planarkin_core::{FourBar, Mode, NewtonOptions, SweepOptions};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::buffers::{grid, grid_len, slice, zeros, zeros_named, Arr1, Arr2};
+use crate::buffers::{contiguous, grid, grid_len, slice, writable, zeros, zeros_named, Arr1, Arr2};
 use crate::errors::{err, Signals};
 
 /// A four-bar linkage with validated lengths (r1 ground, r2 crank, r3 coupler, r4 rocker).
@@ -289,15 +289,17 @@ fn sweep_batch_py<'py>(
     Ok((grid(py, m, n, t3), grid(py, m, n, t4), grid(py, m, n, st), grid(py, m, n, nit), grid(py, m, n, res)))
 }
 
-/// Closed form for M linkages at N crank angles in parallel: (theta3, theta4) (M, N) arrays.
+/// Closed form for M linkages at N crank angles in parallel: (theta3, theta4) (M, N) arrays,
+/// new or the two writable, C-contiguous float64 arrays of `out`, written in place.
 #[pyfunction(name = "closed_form_batch")]
-#[pyo3(signature = (links, theta2, mode, threads))]
+#[pyo3(signature = (links, theta2, mode, threads, out=None))]
 fn closed_form_batch_py<'py>(
     py: Python<'py>,
     links: PyReadonlyArray2<'py, f64>,
     theta2: PyReadonlyArray1<'py, f64>,
     mode: &str,
     threads: Option<i64>,
+    out: Option<(Arr2<'py, f64>, Arr2<'py, f64>)>,
 ) -> PyResult<(Arr2<'py, f64>, Arr2<'py, f64>)> {
     let mode = Mode::parse(mode).map_err(err)?;
     let threads = parallel::threads(threads).map_err(err)?;
@@ -305,11 +307,21 @@ fn closed_form_batch_py<'py>(
     let t2 = slice("theta2", &theta2)?;
     let (m, n) = (fbs.len(), t2.len());
     let mn = grid_len("closed_form_batch", m, n)?;
+    let run = |t3: &mut [f64], t4: &mut [f64]| {
+        Signals::detach(py, |signals| {
+            closed_form_batch(&fbs, t2, mode, SINGULAR_THRESHOLD, t3, t4, None, threads, signals)
+        })
+    };
+    if let Some((a3, a4)) = out {
+        {
+            let (mut w3, mut w4) = (writable("out[0]", &a3, m, n)?, writable("out[1]", &a4, m, n)?);
+            run(contiguous("out[0]", &mut w3)?, contiguous("out[1]", &mut w4)?)?;
+        }
+        return Ok((a3, a4));
+    }
     let what = format!("closed_form_batch: 2 output arrays of {m} x {n} points ({} bytes in all)", mn as u128 * 16);
     let (mut t3, mut t4) = (zeros_named(&what, mn)?, zeros_named(&what, mn)?);
-    Signals::detach(py, |signals| {
-        closed_form_batch(&fbs, t2, mode, SINGULAR_THRESHOLD, &mut t3, &mut t4, None, threads, signals)
-    })?;
+    run(&mut t3, &mut t4)?;
     Ok((grid(py, m, n, t3), grid(py, m, n, t4)))
 }
 
