@@ -44,19 +44,24 @@ fn row_body<const STATUS: bool, const WELL: bool>(
     let (k, r3r4, sign) = ((r3 - r4) * (r3 + r4), r3 * r4, spec.mode.sign());
     let indeterminate = if r3 == r4 { SINGULAR } else { NOT_ASSEMBLABLE };
     let slack = FLAT_ULPS * f64::EPSILON * fb.longest();
-    // in blocks: the geometry first, then the block's atan2s in a loop of their own (the two
-    // loops each keep fewer values live than one loop would, so more of their iterations are
-    // in flight at once)
+    // in blocks, each in three loops: |A O4|, then the rest of the geometry, then the two
+    // atan2s (short loops keep few values live, so more of their iterations are in flight:
+    // the square roots' and divisions' latencies overlap)
     let (mut ys, mut xs) = ([0.0; 2 * BLOCK], [0.0; 2 * BLOCK]);
+    let mut ds = [0.0; BLOCK];
+    let crank = |(s2, c2): (f64, f64)| {
+        let (ux, uy) = (r1 - r2 * c2, -(r2 * s2));
+        (ux, uy, ux * ux + uy * uy)
+    };
     for start in (0..n).step_by(BLOCK) {
         let m = BLOCK.min(n - start);
+        for (d, &t) in ds[..m].iter_mut().zip(&trig[start..start + m]) {
+            *d = crank(t).2.sqrt();
+        }
         for j in 0..m {
             let i = start + j;
-            let (s2, c2) = trig[i];
-            let ux = r1 - r2 * c2;
-            let uy = -(r2 * s2);
-            let d2 = ux * ux + uy * uy;
-            let d = d2.sqrt();
+            let (ux, uy, d2) = crank(trig[i]);
+            let d = ds[j];
             // as the scalar geometry: within FLAT_ULPS ulp of closing, a triangle is flat
             let flat = |q: f64| if (q < 0.0) & (q >= -slack) { 0.0 } else { q };
             let q1 = flat(d + r3 - r4);
