@@ -56,29 +56,54 @@ impl Error {
     }
 }
 
-/// A vector of `len` default values, allocated fallibly: an [`Error::Allocation`] naming
-/// `what` instead of an abort when the memory is not there.
-pub fn try_zeros<T: Clone + Default>(what: impl FnOnce() -> String, len: usize) -> Result<Vec<T>, Error> {
+/// Numbers whose all-zero bits are their zero: a buffer of them can come zeroed from the
+/// allocator (`calloc`), which does not write pages fresh from the system a second time.
+///
+/// # Safety
+/// The all-zero bit pattern must be a valid value of the type.
+pub unsafe trait Zeroed: Copy {}
+
+// SAFETY: all zero bits are 0 (or 0.0) for each of these, and for pairs of them.
+unsafe impl Zeroed for f64 {}
+unsafe impl Zeroed for i8 {}
+unsafe impl Zeroed for u8 {}
+unsafe impl Zeroed for u32 {}
+unsafe impl Zeroed for i64 {}
+unsafe impl Zeroed for u64 {}
+unsafe impl Zeroed for usize {}
+unsafe impl Zeroed for (f64, f64) {}
+unsafe impl Zeroed for [f64; 2] {}
+
+/// A vector of `len` zeros, allocated fallibly: an [`Error::Allocation`] naming `what`
+/// instead of an abort when the memory is not there.
+pub fn try_zeros<T: Zeroed>(what: impl FnOnce() -> String, len: usize) -> Result<Vec<T>, Error> {
     try_zeros_advised(what, len, |_| {})
 }
 
-/// [`try_zeros`] that hands the reserved, not yet written buffer to `advise` first (a
-/// caller that knows the operating system may ask for its memory policy there, as the
-/// Python bindings ask for huge pages).
-pub fn try_zeros_advised<T: Clone + Default>(
+/// [`try_zeros`] that hands the buffer to `advise` before anything writes to it (a caller
+/// that knows the operating system may ask for its memory policy there, as the Python
+/// bindings ask for huge pages).
+pub fn try_zeros_advised<T: Zeroed>(
     what: impl FnOnce() -> String,
     len: usize,
     advise: impl FnOnce(&mut Vec<T>),
 ) -> Result<Vec<T>, Error> {
-    let mut v = Vec::new();
-    match v.try_reserve_exact(len) {
-        Ok(()) => {
-            advise(&mut v);
-            v.resize(len, T::default());
-            Ok(v)
-        }
-        Err(_) => Err(Error::Allocation { what: what(), bytes: len as u128 * std::mem::size_of::<T>() as u128 }),
+    let size = std::mem::size_of::<T>();
+    if len == 0 || size == 0 {
+        return Ok(Vec::new());
     }
+    let fail = || Error::Allocation { what: what(), bytes: len as u128 * size as u128 };
+    let Ok(layout) = std::alloc::Layout::array::<T>(len) else { return Err(fail()) };
+    // SAFETY: the layout's size is not zero (len > 0, T not zero-sized).
+    let ptr = unsafe { std::alloc::alloc_zeroed(layout) }.cast::<T>();
+    if ptr.is_null() {
+        return Err(fail());
+    }
+    // SAFETY: `ptr` comes from the global allocator with the layout of `len` values of T,
+    // all of whose bits are zero, a valid T (`Zeroed`); the vector owns it from here.
+    let mut v = unsafe { Vec::from_raw_parts(ptr, len, len) };
+    advise(&mut v);
+    Ok(v)
 }
 
 /// Makes room for `additional` more values in `v`, fallibly: an [`Error::Allocation`]
@@ -165,12 +190,19 @@ mod tests {
     }
 
     #[test]
-    fn advice_sees_the_reserved_buffer_before_it_is_written() {
+    fn advice_sees_the_zeroed_buffer_before_the_caller_writes_it() {
         let mut seen = None;
-        let v: Vec<f64> =
-            try_zeros_advised(|| "x".into(), 1000, |v: &mut Vec<f64>| seen = Some((v.len(), v.capacity()))).unwrap();
-        assert_eq!(seen, Some((0, 1000)));
+        let v: Vec<f64> = try_zeros_advised(
+            || "x".into(),
+            1000,
+            |v: &mut Vec<f64>| seen = Some((v.len(), v.capacity(), v.iter().all(|x| x.to_bits() == 0))),
+        )
+        .unwrap();
+        assert_eq!(seen, Some((1000, 1000, true)));
         assert!(v.len() == 1000 && v.iter().all(|x| *x == 0.0));
+        let pairs: Vec<(f64, f64)> = try_zeros(|| "pairs".into(), 3).unwrap();
+        assert_eq!(pairs, vec![(0.0, 0.0); 3]);
+        assert!(try_zeros::<i8>(|| "none".into(), 0).unwrap().is_empty());
         let e = try_zeros_advised::<f64>(|| "huge".into(), usize::MAX / 4, |_| panic!("not reserved")).unwrap_err();
         assert!(matches!(e, Error::Allocation { .. }), "{e}");
     }

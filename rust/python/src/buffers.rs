@@ -17,12 +17,12 @@ pub(crate) type Arr2<'py, T> = Bound<'py, PyArray2<T>>;
 pub(crate) type Arr3<'py, T> = Bound<'py, PyArray3<T>>;
 
 /// `len` zeros, or MemoryError naming what and how many.
-pub(crate) fn zeros<T: Clone + Default>(what: &str, len: usize) -> PyResult<Vec<T>> {
+pub(crate) fn zeros<T: planarkin_core::error::Zeroed>(what: &str, len: usize) -> PyResult<Vec<T>> {
     planarkin_core::error::try_zeros_advised(|| format!("{what} of {len} values"), len, huge_pages).map_err(err)
 }
 
 /// `len` zeros, or MemoryError with the description `what` as given.
-pub(crate) fn zeros_named<T: Clone + Default>(what: &str, len: usize) -> PyResult<Vec<T>> {
+pub(crate) fn zeros_named<T: planarkin_core::error::Zeroed>(what: &str, len: usize) -> PyResult<Vec<T>> {
     planarkin_core::error::try_zeros_advised(|| what.to_string(), len, huge_pages).map_err(err)
 }
 
