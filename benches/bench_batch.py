@@ -66,35 +66,25 @@ def test_planarkin_sweep_batch_across_angles(benchmark, m):
 
 
 @pytest.mark.parametrize("m", SIZES)
-@pytest.mark.parametrize("threads", [1, None], ids=["1thread", "allthreads"])
-def test_planarkin_closed_form_batch(benchmark, m, threads):
+@pytest.mark.parametrize(
+    "threads, into",
+    [(1, False), (None, False), (1, True)],
+    ids=["1thread", "allthreads", "1thread-out"],
+)
+def test_planarkin_closed_form_batch(benchmark, m, threads, into):
+    """``into``: written into arrays the caller keeps (``out=``), no new memory to clear."""
     benchmark.group = _group(m)
     arr = links(m)
-    t3, t4 = benchmark(pk.closed_form_batch, arr, THETA2, threads=threads)
+    out = (np.empty((m, THETA2.size)), np.empty((m, THETA2.size))) if into else None
+    t3, t4 = benchmark(pk.closed_form_batch, arr, THETA2, threads=threads, out=out)
     name = "1 thread" if threads == 1 else f"all threads ({CORES})"
+    key = f"pk_cf_batch_{'t1' if threads == 1 else 'tall'}{'_out' if into else ''}"
     record(
         benchmark,
-        f"pk_cf_batch_{'t1' if threads == 1 else 'tall'}",
-        f"planarkin closed_form_batch, {name}",
+        key,
+        f"planarkin closed_form_batch{'(out=...)' if into else ''}, {name}",
         m=m,
         threads=threads or CORES,
-        max_error=_check(m, t3, t4, 1e-15),
-    )
-
-
-@pytest.mark.parametrize("m", SIZES)
-def test_planarkin_closed_form_batch_out(benchmark, m):
-    """The same, written into arrays the caller keeps (out=): no new memory to clear."""
-    benchmark.group = _group(m)
-    arr = links(m)
-    out = (np.empty((m, THETA2.size)), np.empty((m, THETA2.size)))
-    t3, t4 = benchmark(pk.closed_form_batch, arr, THETA2, threads=1, out=out)
-    record(
-        benchmark,
-        "pk_cf_batch_t1_out",
-        "planarkin closed_form_batch(out=...), 1 thread",
-        m=m,
-        threads=1,
         max_error=_check(m, t3, t4, 1e-15),
     )
 
