@@ -14,7 +14,7 @@ use super::eval::Known;
 use super::options::{SceneSweepOptions, SceneSweepOut};
 use super::plan::{Op, Plan};
 use super::slide::{unit, Rrp};
-use super::vec2::{angular_acceleration, direction, Xy};
+use super::vec2::{angular_acceleration, Xy};
 use crate::error::Error;
 use crate::interrupt::Poll;
 use crate::Status;
@@ -540,7 +540,7 @@ fn write_block(
             for (j, (row, (oa, ob))) in angles.chunks_exact_mut(nl).zip(both).enumerate() {
                 let (pa, pb) = (a * B + j, b * B + j);
                 let d = [c.x[pb] - c.x[pa], c.y[pb] - c.y[pa]];
-                row[i] = if oa && ob { direction(d, fast) } else { f64::NAN };
+                row[i] = if oa && ob { crate::simd::direction(d, fast) } else { f64::NAN };
             }
         }
     }

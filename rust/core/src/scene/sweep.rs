@@ -844,9 +844,10 @@ impl<'p> Solver<'p> {
         f64::NAN
     }
 
-    /// Writes row `k` of the outputs; the links' directions go to `dirs` (row `k`, NaN where
-    /// a point is not solved), whose angles [`Plan::sweep`] takes at the end, all at once.
-    fn write(&self, k: usize, out: &mut SceneSweepOut<'_>, dirs: &mut [Xy]) {
+    /// Writes row `k` of the outputs; the links' directions go to `dirs` (row `k` of its x
+    /// half and of its y half, NaN where a point is not solved), whose angles
+    /// [`Plan::sweep`] takes at the end, all at once.
+    fn write(&self, k: usize, out: &mut SceneSweepOut<'_>, dirs: &mut [f64]) {
         let plan = self.plan;
         let (np, nl, ns) = (plan.points.len(), plan.links.len(), plan.steps.len());
         let (sc, org) = (plan.scale, plan.origin);
@@ -869,8 +870,10 @@ impl<'p> Solver<'p> {
             }
         }
         let ok = |p: usize| all_ok || self.pst[p] == Status::Converged;
-        for (dst, &(a, b)) in dirs[k * nl..(k + 1) * nl].iter_mut().zip(&plan.link_points) {
-            *dst = if ok(a) && ok(b) { sub(self.pos[b], self.pos[a]) } else { [f64::NAN; 2] };
+        let (dx, dy) = dirs.split_at_mut(dirs.len() / 2);
+        let row = dx[k * nl..(k + 1) * nl].iter_mut().zip(&mut dy[k * nl..(k + 1) * nl]);
+        for ((x, y), &(a, b)) in row.zip(&plan.link_points) {
+            [*x, *y] = if ok(a) && ok(b) { sub(self.pos[b], self.pos[a]) } else { [f64::NAN; 2] };
         }
         if let Some((v, w)) = out.velocity.as_mut() {
             // per unit of the sweep variable (a displacement's rates carry 1 / scale)
@@ -978,7 +981,7 @@ impl Plan {
         }
         let limit = Status::Limit.code();
         // the links' directions, turned into angles at the end in one vectorized pass
-        let mut dirs = try_zeros(|| "the links' directions".to_string(), n * nl)?;
+        let mut dirs = try_zeros(|| "the links' directions".to_string(), 2 * n * nl)?;
         self.continuation(theta, 0..n, opts, &mut out, &mut dirs, false, &poll)?;
         // the rest of the drawn circuit, backwards from the drawn pose: the angles left
         // LIMIT, from the last of them back to the first (what the other way round reaches)
@@ -987,7 +990,8 @@ impl Plan {
         {
             self.continuation(theta, (first..=last).rev(), opts, &mut out, &mut dirs, true, &poll)?;
         }
-        crate::simd::directions_into(&dirs, out.angles);
+        let (dx, dy) = dirs.split_at(n * nl);
+        crate::simd::directions_into(dx, dy, out.angles);
         self.classify_limits(theta, &mut out, interrupt)
     }
 
@@ -1085,7 +1089,7 @@ impl Plan {
         order: impl Iterator<Item = usize>,
         opts: &SceneSweepOptions,
         out: &mut SceneSweepOut<'_>,
-        dirs: &mut [Xy],
+        dirs: &mut [f64],
         backward: bool,
         poll: &Poll<'_>,
     ) -> Result<(), Error> {

@@ -27,19 +27,6 @@ pub(crate) fn perp(v: Xy) -> Xy {
     [-v[1], v[0]]
 }
 
-/// The direction of `d` in (-pi, pi] (a link's angle in a sweep's outputs; a zero `y` of
-/// either sign counts as +0, so a link along -x reads +pi): the branch-free polynomial,
-/// within 2 ulp of libm, where `fast` (the SIMD kernels on, asked once by the caller); libm
-/// otherwise, the NumPy reference's numbers.
-#[inline(always)]
-pub(super) fn direction(d: Xy, fast: bool) -> f64 {
-    if fast {
-        crate::simd::math::atan2(d[1] + 0.0, d[0])
-    } else {
-        (d[1] + 0.0).atan2(d[0])
-    }
-}
-
 /// d2/dt2 of a direction's angle atan2(d), from d, d' and d'':
 /// cross(d, d'') / |d|^2 - 2 (d . d') cross(d, d') / |d|^4.
 #[inline]

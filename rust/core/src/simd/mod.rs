@@ -93,29 +93,47 @@ pub fn sin_cos_block(theta: &[f64], out: &mut [(f64, f64)]) {
     }
 }
 
-/// The direction of every vector `d` (`atan2(y + 0.0, x)`, in (-pi, pi]; a NaN `x` gives
-/// NaN): the branch-free polynomial ([`math::atan2`], within 2 ulp of libm), 4 at a time,
-/// where the SIMD kernels are on; libm otherwise, the NumPy reference's numbers. Each value
-/// is the one the scalar call gives, bit for bit.
-pub fn directions_into(d: &[[f64; 2]], out: &mut [f64]) {
+/// The direction of `d` = (x, y) in (-pi, pi] (`atan2(y + 0.0, x)`: a zero `y` of either
+/// sign counts as +0, so a vector along -x reads +pi): the branch-free polynomial
+/// ([`math::atan2`], within 2 ulp of libm) where `fast` (the SIMD kernels on, asked once by
+/// the caller, whose code must be compiled with FMA); libm otherwise, the NumPy
+/// reference's numbers.
+#[inline(always)]
+pub fn direction(d: [f64; 2], fast: bool) -> f64 {
+    if fast {
+        math::atan2(d[1] + 0.0, d[0])
+    } else {
+        (d[1] + 0.0).atan2(d[0])
+    }
+}
+
+/// [`direction`] of every vector (`x[i]`, `y[i]`) (a NaN `x` gives NaN), 4 at a time with
+/// the polynomial where the SIMD kernels are on; each value is the one the scalar call
+/// gives, bit for bit.
+pub fn directions_into(x: &[f64], y: &[f64], out: &mut [f64]) {
     #[cfg(target_arch = "x86_64")]
     if enabled() {
         // SAFETY: the SIMD kernels are on only where the CPU has AVX2 (and FMA).
-        unsafe { directions_avx2(d, out) };
+        unsafe { directions_avx2(x, y, out) };
         return;
     }
-    for (o, v) in out.iter_mut().zip(d) {
-        *o = if v[0].is_nan() { f64::NAN } else { (v[1] + 0.0).atan2(v[0]) };
-    }
+    directions_body(x, y, out, false);
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn directions_avx2(d: &[[f64; 2]], out: &mut [f64]) {
-    // a select, no branch: the loop vectorizes
-    for (o, v) in out.iter_mut().zip(d) {
-        let a = math::atan2(v[1] + 0.0, v[0]);
-        *o = if v[0].is_nan() { f64::NAN } else { a };
+unsafe fn directions_avx2(x: &[f64], y: &[f64], out: &mut [f64]) {
+    directions_body(x, y, out, true);
+}
+
+/// The loop of [`directions_into`], compiled into each caller (a kernel compiled with FMA
+/// calls it with `fast`): coordinates in two arrays and a select, no branch, so it
+/// vectorizes.
+#[inline(always)]
+pub(crate) fn directions_body(x: &[f64], y: &[f64], out: &mut [f64], fast: bool) {
+    for ((o, &x), &y) in out.iter_mut().zip(x).zip(y) {
+        let a = direction([x, y], fast);
+        *o = if x.is_nan() { f64::NAN } else { a };
     }
 }
 

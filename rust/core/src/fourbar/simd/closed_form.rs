@@ -9,7 +9,7 @@ use crate::fourbar::model::{FourBar, Mode, Point, FLAT_ULPS};
 use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut};
 use crate::fourbar::point::fill_motion;
 use crate::interrupt::Poll;
-use crate::simd::math::atan2;
+use crate::simd::directions_body;
 use crate::Status;
 
 const CONVERGED: i8 = Status::Converged as i8;
@@ -47,7 +47,8 @@ fn row_body<const STATUS: bool, const WELL: bool>(
     // in blocks, each in three loops: |A O4|, then the rest of the geometry, then the two
     // atan2s (short loops keep few values live, so more of their iterations are in flight:
     // the square roots' and divisions' latencies overlap)
-    let (mut ys, mut xs) = ([0.0; 2 * BLOCK], [0.0; 2 * BLOCK]);
+    // the two atan2s' arguments, theta3's then theta4's
+    let (mut xs, mut ys) = ([0.0; 2 * BLOCK], [0.0; 2 * BLOCK]);
     let mut ds = [0.0; BLOCK];
     let crank = |(s2, c2): (f64, f64)| {
         let (ux, uy) = (r1 - r2 * c2, -(r2 * s2));
@@ -76,8 +77,8 @@ fn row_body<const STATUS: bool, const WELL: bool>(
             let finite = theta2[i].is_finite();
             let keep = finite & tri & (well | !spec.nan_singular);
             // a NaN abscissa marks an angle that is not kept
-            (ys[j], xs[j]) = (uy * ca + ux * h + 0.0, if keep { ux * ca - uy * h } else { f64::NAN });
-            (ys[BLOCK + j], xs[BLOCK + j]) = (uy * cb + ux * h + 0.0, if keep { ux * cb - uy * h } else { f64::NAN });
+            (xs[j], ys[j]) = (if keep { ux * ca - uy * h } else { f64::NAN }, uy * ca + ux * h);
+            (xs[BLOCK + j], ys[BLOCK + j]) = (if keep { ux * cb - uy * h } else { f64::NAN }, uy * cb + ux * h);
             if STATUS {
                 status[i] = if !finite {
                     NON_FINITE
@@ -94,12 +95,8 @@ fn row_body<const STATUS: bool, const WELL: bool>(
                 };
             }
         }
-        for (dst, off) in [(&mut theta3[start..start + m], 0), (&mut theta4[start..start + m], BLOCK)] {
-            for ((o, &y), &x) in dst.iter_mut().zip(&ys[off..off + m]).zip(&xs[off..off + m]) {
-                let a = atan2(y, x);
-                *o = if x.is_nan() { f64::NAN } else { a };
-            }
-        }
+        directions_body(&xs[..m], &ys[..m], &mut theta3[start..start + m], true);
+        directions_body(&xs[BLOCK..BLOCK + m], &ys[BLOCK..BLOCK + m], &mut theta4[start..start + m], true);
     }
 }
 
