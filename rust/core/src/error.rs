@@ -63,16 +63,11 @@ impl Error {
 /// The all-zero bit pattern must be a valid value of the type.
 pub unsafe trait Zeroed: Copy {}
 
-// SAFETY: all zero bits are 0 (or 0.0) for each of these, and for pairs of them.
+// SAFETY: all zero bits are 0 (or 0.0) for each of these, and for a pair of them.
 unsafe impl Zeroed for f64 {}
 unsafe impl Zeroed for i8 {}
-unsafe impl Zeroed for u8 {}
 unsafe impl Zeroed for u32 {}
-unsafe impl Zeroed for i64 {}
-unsafe impl Zeroed for u64 {}
-unsafe impl Zeroed for usize {}
 unsafe impl Zeroed for (f64, f64) {}
-unsafe impl Zeroed for [f64; 2] {}
 
 /// A vector of `len` zeros, allocated fallibly: an [`Error::Allocation`] naming `what`
 /// instead of an abort when the memory is not there.
