@@ -289,6 +289,23 @@ def test_closed_form_batch_bad_out_named(case):
         pk.closed_form_batch(links, np.linspace(0.0, 1.0, 5), out=out)
 
 
+def test_binding_refuses_fortran_ordered_arrays():
+    """The kernel's own checks (the public functions make their inputs C-ordered first): a
+    Fortran-ordered array, whose flat values run down its columns, is refused by name rather
+    than read or written in the wrong order."""
+    from planarkin import _kernel
+
+    links = np.array([SEED_LINKAGE, [2.0, 0.5, 1.5, 1.8], [1.0, 0.2, 1.2, 0.9]])
+    t = np.linspace(0.0, 1.0, 5)
+    with raises_named("links"):
+        _kernel.closed_form_batch(np.asfortranarray(links), t, "open", 1)
+    with raises_named("links"):
+        _kernel.sweep_batch(np.asfortranarray(links), t, "open", 1e-9, 100, "quadratic", "newton", 1)
+    out = (np.zeros((3, 5), order="F"), np.zeros((3, 5)))
+    with raises_named("out[0]"):
+        _kernel.closed_form_batch(links, t, "open", 1, out)
+
+
 def test_closed_form_batch_out_sharing_theta2_named():
     """An output that holds the crank angles it is computed from: the kernel's borrow check
     refuses it, naming the output."""

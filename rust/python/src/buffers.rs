@@ -78,9 +78,15 @@ pub(crate) fn writable<'py>(
     })
 }
 
-/// The values of a borrowed output array, which must be C-contiguous.
+/// The values of a borrowed output array, in row-major order: it must be C-contiguous
+/// (`as_slice_mut` alone also takes a Fortran-ordered array, whose values it would give in
+/// the other order).
 pub(crate) fn contiguous<'a>(name: &str, a: &'a mut PyReadwriteArray2<'_, f64>) -> PyResult<&'a mut [f64]> {
-    a.as_slice_mut().map_err(|_| PyValueError::new_err(format!("{name} must be a C-contiguous float64 array")))
+    let fail = || PyValueError::new_err(format!("{name} must be a C-contiguous float64 array"));
+    if !a.is_c_contiguous() {
+        return Err(fail());
+    }
+    a.as_slice_mut().map_err(|_| fail())
 }
 
 /// The contiguous values of a 1-D float64 array.

@@ -245,7 +245,9 @@ fn links_of(links: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<FourBar>> {
     if shape[1] != 4 {
         return Err(PyValueError::new_err(format!("links must have shape (M, 4), got {shape:?}")));
     }
-    let flat = links.as_slice().map_err(|_| PyValueError::new_err("links must be a C-contiguous float64 array"))?;
+    // (`as_slice` alone also takes a Fortran-ordered array, its values in the other order)
+    let c_order = if links.is_c_contiguous() { links.as_slice().ok() } else { None };
+    let flat = c_order.ok_or_else(|| PyValueError::new_err("links must be a C-contiguous float64 array"))?;
     validate_links(flat).map_err(err)
 }
 
