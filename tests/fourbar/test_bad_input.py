@@ -300,7 +300,8 @@ def test_binding_refuses_fortran_ordered_arrays():
     with raises_named("links"):
         _kernel.closed_form_batch(np.asfortranarray(links), t, "open", 1)
     with raises_named("links"):
-        _kernel.sweep_batch(np.asfortranarray(links), t, "open", 1e-9, 100, "quadratic", "newton", 1)
+        args = ("open", 1e-9, 100, "quadratic", "newton", 1)
+        _kernel.sweep_batch(np.asfortranarray(links), t, *args)
     out = (np.zeros((3, 5), order="F"), np.zeros((3, 5)))
     with raises_named("out[0]"):
         _kernel.closed_form_batch(links, t, "open", 1, out)
