@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the README's images (docs/*.png, docs/linkage.gif) and the captured
-# `planarkin analyze` output (docs/analyze_output.txt) with the CLI itself, at a small
+# Regenerates the images of the README and the site (docs/*.png, docs/linkage.gif) and the
+# captured `planarkin analyze` output (docs/analyze_output.txt) with the CLI itself, at a small
 # size: figures at 80 dpi instead of 300, palette-quantised; a short, low-dpi animation.
 set -euo pipefail
 docs=$(cd "$(dirname "$0")" && pwd)

@@ -203,7 +203,7 @@ def near_toggle(r, theta2, within=1e-12) -> bool:
 EPS = 2.220446049250313e-16
 
 
-#: The documented SINGULAR threshold on |sin(t4 - t3)| min(r3, r4) / L (README); kept
+#: The documented SINGULAR threshold on |sin(t4 - t3)| min(r3, r4) / L (docs/site/fourbar.rst); kept
 #: here so the truth helpers import nothing from planarkin (test_properties checks it).
 DOCUMENTED_SINGULAR_THRESHOLD = 1e-6
 

@@ -404,7 +404,7 @@ def test_near_toggle_never_silently_wrong(r, t2, mode):
 def test_near_toggle_random_approach_is_flagged_or_right():
     """Random linkages approached at random distances 1e-15.5 .. 1e-12.5 rad from a toggle:
     never a status other than CONVERGED / SINGULAR / NOT_ASSEMBLABLE-within-rounding, and
-    every CONVERGED point within 1e-9 rad of the truth (the README's claim)."""
+    every CONVERGED point within 1e-9 rad of the truth (docs/site/fourbar.rst's claim)."""
     rng = np.random.default_rng(34)
     for r, tg in _toggle_cases(rng, 25):
         fb = pk.FourBar(*r)
