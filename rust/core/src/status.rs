@@ -86,3 +86,19 @@ impl Status {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Status;
+
+    #[test]
+    fn names_are_distinct_upper_snake_case_and_codes_round_trip() {
+        for (i, s) in Status::ALL.iter().enumerate() {
+            assert!(s.name().chars().all(|c| c.is_ascii_uppercase() || c == '_'), "{s:?}");
+            assert!(Status::ALL[..i].iter().all(|t| t.name() != s.name() && t.code() != s.code()));
+            assert_eq!(Status::from_code(s.code()), Some(*s));
+        }
+        assert_eq!(Status::from_code(1), None);
+        assert_eq!(Status::NotAssemblable.name(), "NOT_ASSEMBLABLE");
+    }
+}
