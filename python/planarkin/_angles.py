@@ -1,5 +1,7 @@
 """Angle conventions shared by the API and the NumPy reference: one turn (TAU), the
-default crank angles of a sweep, and the wrap to (-pi, pi] that every solver applies."""
+default crank angles of a sweep, and the one wrap to (-pi, pi] (the core's ``wrap_angle``,
+which every solver applies), for one angle and for arrays. The face's ``wrap_deg`` is the
+same interval in degrees, for display only."""
 
 from __future__ import annotations
 
@@ -25,3 +27,10 @@ def wrap(a: float) -> float:
         r += TAU
     r -= math.pi
     return math.pi if r <= -math.pi else r
+
+
+def wrap_array(a: object) -> np.ndarray:
+    """An array of angles (radians) wrapped to (-pi, pi], through the unit circle (the
+    argument of e^(ia)): for differences of computed angles (synthesis), where a result
+    within an ulp or two of :func:`wrap`'s is what is wanted; NaN stays NaN."""
+    return np.angle(np.exp(1j * np.asarray(a)))

@@ -1,7 +1,8 @@
-"""The vocabulary every sweep result shares, whichever subject (four-bar, scene) or
-implementation (kernel, NumPy reference) made it: the base classes, the summary they
-give, and the runs of a per-point mask. scipy's ``OptimizeResult`` is the model: a shared
-name means the same thing everywhere, and each subject adds its own names."""
+"""The vocabulary every result over the input shares, whichever subject (four-bar, scene)
+or implementation (kernel, NumPy reference) made it: the base classes (a result over the
+input, with a status, a sweep), the summary they give, and the runs of a per-point mask.
+scipy's ``OptimizeResult`` is the model: a shared name means the same thing everywhere,
+and each subject adds its own names."""
 
 from __future__ import annotations
 
@@ -51,21 +52,76 @@ def true_runs(mask: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(np.flatnonzero(d == 1).tolist(), np.flatnonzero(d == -1).tolist(), strict=True))
 
 
-class StatusResult:
-    """A result with a status code per point: ``theta`` (the input at each point),
-    ``status`` (int8 codes of :class:`planarkin.Status`), ``success``, ``statuses()``
-    and a one-line repr. Subclasses say what they are in :meth:`_describe`."""
+#: The input kinds and the words a result's repr uses for each: what its points are
+#: called, the coordinate's symbol and its unit (a displacement's unit is the scene's
+#: ``units`` when it names one).
+INPUT_KINDS = ("angle", "displacement")
+LENGTH_UNITS = "length units"
+
+
+class InputResult:
+    """A result over N values of the input: ``theta`` (N,) the input coordinate at each
+    (an angle in radians, or a linear input's displacement s from the drawn pose, in
+    length units), ``input_kind`` ("angle" or "displacement"), ``units`` (the length unit's
+    name, None: not named), ``len()`` and a one-line repr naming the input's span in its
+    unit. Subclasses say what they are in :meth:`_describe`."""
 
     __slots__ = ()
-    #: What ``len(theta)`` counts, as the repr names it.
+    #: What ``len(theta)`` counts when the input is an angle, as the repr names it.
     _points_name = "input angles"
+    #: The input angle's symbol in the repr.
+    _symbol = "theta"
+    #: "angle" or "displacement" (a subclass's field where it can be either).
+    input_kind = "angle"
+    #: The name of the length unit (None: not named; "length units" in the repr).
+    units: str | None = None
 
     if TYPE_CHECKING:  # provided by the subclasses (fields or properties)
 
         @property
         def theta(self) -> np.ndarray: ...
+
+    def __len__(self) -> int:
+        return len(self.theta)
+
+    def _describe(self) -> str:
+        """What the result is, for the repr (after the class name)."""
+        return ""
+
+    def _span(self) -> str:
+        """The input's count and span, e.g. ``361 input angles, theta from 0 to 6.28319
+        rad`` or ``361 input values, s from -726.477 to 715.743 mm``."""
+        t = np.asarray(self.theta)
+        if self.input_kind == "angle":
+            words, symbol, unit = self._points_name, self._symbol, "rad"
+        else:
+            words, symbol, unit = "input values", "s", self.units or LENGTH_UNITS
+        span = f", {symbol} from {t[0]:.6g} to {t[-1]:.6g} {unit}" if t.size else ""
+        return f"{t.size} {words}{span}"
+
+    def _tail(self) -> str:
+        """What the repr says after the span (subclasses add theirs)."""
+        return ""
+
+    def __repr__(self) -> str:
+        # one line: the arrays are attributes, not part of the repr
+        what = self._describe()
+        return f"<{type(self).__name__}{' ' + what if what else ''}, {self._span()}{self._tail()}>"
+
+
+class StatusResult(InputResult):
+    """A result with a status code per point: besides :class:`InputResult`'s names,
+    ``status`` (int8 codes of :class:`planarkin.Status`), ``success`` and ``statuses()``;
+    its repr ends with the count of each status."""
+
+    __slots__ = ()
+
+    if TYPE_CHECKING:  # provided by the subclasses (fields or properties)
+
         @property
         def status(self) -> np.ndarray: ...
+        @property
+        def nit(self) -> np.ndarray: ...
 
     @property
     def success(self) -> np.ndarray:
@@ -76,19 +132,32 @@ class StatusResult:
         """Count of points per status name (only statuses that occur)."""
         return status_counts(self.status)
 
-    def _describe(self) -> str:
-        """What the result is, for the repr (after the class name)."""
-        return ""
-
-    def __repr__(self) -> str:
-        # one line: the arrays are attributes, not part of the repr
-        t = np.asarray(self.theta)
-        span = f"{t[0]:.6g}..{t[-1]:.6g} rad" if t.size else "empty"
+    def _tail(self) -> str:
         counts = ", ".join(f"{k}={v}" for k, v in self.statuses().items())
-        what = self._describe()
-        return (
-            f"<{type(self).__name__}{' ' + what if what else ''}, {t.size} "
-            f"{self._points_name} ({span}); {counts or 'no points'}>"
+        return f"; {counts or 'no points'}"
+
+    def summary(self) -> SweepSummary:
+        """Totals over every point (all M x N of a batch): points, how many converged,
+        iterations (total and mean per point), the largest residual of the converged
+        points (None for results that keep no residual) and the count of each status that
+        occurs."""
+        ok = np.asarray(self.success)
+        n = int(ok.size)
+        converged = int(np.count_nonzero(ok))
+        nit_total = int(np.asarray(self.nit).sum(dtype=np.int64))
+        residual = getattr(self, "residual", None)  # only the four-bar keeps one
+        residual_max: float | None = None
+        if residual is not None:
+            res = np.asarray(residual)[ok]
+            residual_max = float(res.max()) if res.size else float("nan")
+        return SweepSummary(
+            points=n,
+            converged=converged,
+            success_rate=converged / n if n else float("nan"),
+            nit_total=nit_total,
+            nit_mean=nit_total / n if n else float("nan"),
+            residual_max=residual_max,
+            statuses=self.statuses(),
         )
 
 
@@ -112,16 +181,11 @@ class SweepResult(StatusResult):
     if TYPE_CHECKING:  # provided by the subclasses (fields or cached properties)
 
         @property
-        def nit(self) -> np.ndarray: ...
-        @property
         def det(self) -> np.ndarray: ...
         @property
         def points(self) -> dict[str, np.ndarray]: ...
         @property
         def angles(self) -> dict[str, np.ndarray]: ...
-
-    def __len__(self) -> int:
-        return len(self.theta)
 
     #: Links (point names) and ground points a notebook picture draws (subclasses set them).
     _svg_links: ClassVar[tuple[tuple[str, ...], ...]] = ()
@@ -138,27 +202,4 @@ class SweepResult(StatusResult):
         title = f"{type(self).__name__}: {len(ok)} of {len(self)} solved"
         return picture(
             pose=pose, links=self._svg_links, ground=self._svg_ground, paths=pts, title=title
-        )
-
-    def summary(self) -> SweepSummary:
-        """Totals over the sweep: points, how many converged, iterations (total and mean
-        per point), the largest residual of the converged points (None for results that
-        keep no residual) and the count of each status that occurs."""
-        n = len(self.theta)
-        ok = self.success
-        converged = int(np.count_nonzero(ok))
-        nit_total = int(np.asarray(self.nit).sum(dtype=np.int64))
-        residual = getattr(self, "residual", None)  # only the four-bar keeps one
-        residual_max: float | None = None
-        if residual is not None:
-            res = np.asarray(residual)[ok]
-            residual_max = float(res.max()) if res.size else float("nan")
-        return SweepSummary(
-            points=n,
-            converged=converged,
-            success_rate=converged / n if n else float("nan"),
-            nit_total=nit_total,
-            nit_mean=nit_total / n if n else float("nan"),
-            residual_max=residual_max,
-            statuses=self.statuses(),
         )

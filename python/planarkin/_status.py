@@ -18,12 +18,13 @@ class Status(IntEnum):
     CONVERGED = 0
     #: ``max_iter`` Newton steps were taken without reaching ``tol``.
     MAX_ITERATIONS = -2
-    #: The crank angle, a residual or an iterate was NaN or infinite.
+    #: The input value, a residual or an iterate was NaN or infinite.
     NON_FINITE = -3
     #: Conditioning |sin(theta4 - theta3)| min(r3, r4) / L below the singular threshold:
     #: a dead (toggle) or change point, where the two assembly modes meet.
     SINGULAR = -4
-    #: The loop cannot close at this crank angle (known before any iteration).
+    #: The loop cannot close at this input value (crank angle or displacement), known
+    #: before any iteration.
     NOT_ASSEMBLABLE = -5
     #: Newton converged, but on the other assembly mode than the one requested.
     BRANCH_JUMP = -6
@@ -47,7 +48,7 @@ _MESSAGES = {
     Status.MAX_ITERATIONS: "maximum number of iterations reached without convergence",
     Status.NON_FINITE: "a non-finite value (NaN or infinity) was met",
     Status.SINGULAR: "singular: dead (toggle) or change point, the two modes meet",
-    Status.NOT_ASSEMBLABLE: "not assemblable: the loop cannot close at this crank angle",
+    Status.NOT_ASSEMBLABLE: "not assemblable: the loop cannot close at this input value",
     Status.BRANCH_JUMP: "converged on the other assembly mode than the one requested",
     Status.PRECISION_LOSS: "tolerance below what double precision resolves at this point",
     Status.LIMIT: "past a dead point of the circuit followed: the input must reverse there",

@@ -7,6 +7,7 @@ import numpy as np
 
 from .. import _kernel
 from .._args import as_angles, as_i64, as_str, as_theta2_1d, sweep_inputs
+from ._model import _KERNEL_GEOMETRY
 from ._results import BatchSweep
 
 
@@ -39,7 +40,7 @@ def sweep_batch(
     a = sweep_inputs(theta2, mode, tol, max_iter, predictor, method)
     th = _threads(threads)
     out = _kernel.sweep_batch(arr, a.theta2, a.mode, a.tol, a.max_iter, a.predictor, a.method, th)
-    return BatchSweep(arr, a.mode, a.theta2, *out, a.method)
+    return BatchSweep(arr, a.mode, a.theta2, *out, a.method, geometry=_KERNEL_GEOMETRY)
 
 
 def closed_form_batch(

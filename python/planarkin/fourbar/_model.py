@@ -247,10 +247,16 @@ class FourBar:
         return _shaped(shape, _kernel.transmission(t3, t4)[0])[0]
 
     @staticmethod
-    def branch_indicator(theta3: object, theta4: object) -> object:
-        """sin(theta4 - theta3) = -det J / (r3 r4): > 0 open, < 0 crossed, 0 at a dead point."""
+    def det(theta3: object, theta4: object) -> object:
+        """sin(theta4 - theta3) = -det J / (r3 r4), the ``det`` of a sweep: > 0 open, < 0
+        crossed, 0 at a dead point."""
         shape, (t3, t4) = _broadcast(theta3=theta3, theta4=theta4)
         return _shaped(shape, _kernel.transmission(t3, t4)[1])[0]
+
+    @staticmethod
+    def branch_indicator(theta3: object, theta4: object) -> object:
+        """Deprecated alias of :meth:`det` (its former name, kept; the same numbers)."""
+        return FourBar.det(theta3, theta4)
 
     def _repr_svg_(self) -> str | None:
         """A notebook's picture: the linkage as :meth:`to_scene` draws it (None when it

@@ -101,6 +101,7 @@ class Sweep(SweepResult):
     geometry: Geometry | None = field(default=None, kw_only=True, compare=False)
 
     _points_name = "crank angles"
+    _symbol = "theta2"
 
     @classmethod
     def build(
@@ -242,9 +243,12 @@ class Limits:
 
 @dataclass(frozen=True, eq=False, repr=False)
 class BatchSweep(StatusResult):
-    """Sweeps of M linkages over N crank angles: (M, N) arrays; ``theta`` is the (N,)
-    crank angles shared by every linkage, ``success`` and ``statuses()`` count all M x N
-    points."""
+    """Sweeps of M linkages over N crank angles: (M, N) arrays, row i the sweep of
+    ``links[i]``. The shared names, with one documented exception: ``theta`` is the (N,)
+    crank angles every linkage shares (not repeated M times), while ``status``,
+    ``success``, ``nit``, ``det`` and each of ``points`` (M, N, 2) and ``angles`` (M, N)
+    have a first axis per linkage; ``theta`` broadcasts against them. ``statuses()`` and
+    ``summary()`` count all M x N points; ``len()`` is M, the number of sweeps."""
 
     links: np.ndarray
     mode: str
@@ -255,13 +259,55 @@ class BatchSweep(StatusResult):
     nit: np.ndarray
     residual: np.ndarray
     method: str = "newton"
+    #: What computes ``det`` and ``points`` (as :attr:`Sweep.geometry`); None: they are
+    #: not available.
+    geometry: Geometry | None = field(default=None, kw_only=True, compare=False)
 
     _points_name = "crank angles"
+    _symbol = "theta2"
 
     @property
     def theta(self) -> np.ndarray:
-        """The input coordinate: the (N,) crank angles theta2."""
+        """The input coordinate: the (N,) crank angles theta2 (shared by every linkage)."""
         return self.theta2
+
+    def __len__(self) -> int:
+        """M, the number of linkages (of sweeps)."""
+        return len(self.links)
 
     def _describe(self) -> str:
         return f"{len(self.links)} linkages, {self.mode} mode, {self.method}"
+
+    def _geometry(self, what: str) -> Geometry:
+        if self.geometry is None:
+            raise ValueError(
+                f"this BatchSweep has no {what}: it was built without a geometry (batches "
+                "from sweep_batch have one)"
+            )
+        return self.geometry
+
+    @cached_property
+    def det(self) -> np.ndarray:
+        """(M, N) sin(theta4 - theta3), as :attr:`Sweep.det` for each linkage."""
+        t3, t4 = np.ascontiguousarray(self.theta3), np.ascontiguousarray(self.theta4)
+        return self._geometry("det").branch(t3.ravel(), t4.ravel()).reshape(t3.shape)
+
+    @cached_property
+    def points(self) -> dict[str, np.ndarray]:
+        """name -> (M, N, 2): O2, O4, A and B of each linkage, as :attr:`Sweep.points`."""
+        g = self._geometry("points")
+        m, n = self.theta3.shape
+        out = {k: np.empty((m, n, 2)) for k in ("A", "B")}
+        for i, r in enumerate(self.links):
+            lengths = (float(r[0]), float(r[1]), float(r[2]), float(r[3]))
+            out["A"][i], out["B"][i] = g.pins(lengths, self.theta2, self.theta3[i])
+        o4 = np.zeros((m, n, 2))
+        o4[:, :, 0] = np.asarray(self.links)[:, :1]
+        return {"O2": np.zeros((m, n, 2)), "O4": o4, **out}
+
+    @cached_property
+    def angles(self) -> dict[str, np.ndarray]:
+        """link -> (M, N): crank theta2 (broadcast, read-only), coupler theta3, rocker
+        theta4."""
+        crank = np.broadcast_to(self.theta2, self.theta3.shape)
+        return {"crank": crank, "coupler": self.theta3, "rocker": self.theta4}

@@ -369,10 +369,10 @@ def scene_sweep(
     max_iter: int = 50,
     max_step: float | None = None,
 ) -> SceneSweep:
-    """Sweeps a scene over input angles ``theta`` (radians), following the drawn assembly;
-    returns a :class:`planarkin.SceneSweep` (no plan: ``plan``, ``limit``, the per-step
-    and per-point status arrays are None; ``det`` is the Hadamard ratio of this
-    reference's own Jacobian, NaN where unsolved).
+    """Sweeps a scene over input values ``theta`` (angles in radians, or a linear input's
+    displacements), following the drawn assembly; returns a :class:`planarkin.SceneSweep`
+    (no plan: ``plan``, ``limit``, the per-step and per-point status arrays are None;
+    ``det`` is the Hadamard ratio of this reference's own Jacobian, NaN where unsolved).
 
     ``scene`` is a scene dict (``points``, ``links``, ``ground``, ``input`` {link, pivot},
     optional ``output``). The input link turns about its pivot by theta minus the drawn
@@ -453,6 +453,8 @@ def scene_sweep(
         plan=None, theta=th, coords=coords, angle_array=angles, status=status, nit=nit,
         det=det, limit=None, step_status=None, step_det=None, point_status_array=None,
         point_names=tuple(names), link_names=tuple(links),
+        input_kind="angle" if sys_.linear is None else "displacement",
+        units=scene.get("units"),
     )  # fmt: skip
 
 

@@ -511,34 +511,43 @@ class Scene:
         outputs: Iterable[str] | str | None = None,
         tol: float = 1e-9,
         max_iter: int = 100,
-        omega: float | None = None,
+        rate: float | None = None,
         max_step: float | None = None,
         predictor: str = "continuation",
+        omega: float | None = None,
     ) -> SceneSweep:
-        """Solves the plan of ``outputs`` at every input angle ``theta`` (radians; default
-        361 angles from the drawn angle through one full turn), following the drawn
-        assembly: from the drawn angle to ``theta[0]``, then along ``theta`` in order.
+        """Solves the plan of ``outputs`` at every input value ``theta``, following the
+        drawn assembly: from the drawn value to ``theta[0]``, then along ``theta`` in order.
+        For an angle input ``theta`` holds input angles (radians; default 361 angles from
+        the drawn angle through one full turn); for a linear input (a slot or prismatic
+        pair) it holds displacements s from the drawn pose (scene units; default 361
+        values in increasing order across the interval reachable from the drawn pose, see
+        :meth:`stroke`). ``sw.input_kind`` says which.
 
-        Every angle gets a status; a point that cannot be solved is NaN with its status, and
-        points that do not depend on it are still solved. Dyads are closed forms on their
-        drawn side. Groups follow by continuation in steps of at most ``max_step``, each
-        given at most ``min(max_iter, 5)`` Newton steps to reach ``tol`` before it is split
-        (down to ``max_step / 2**16``: halved, or just short of where the group's
-        conditioning extrapolates to zero). An angle past a group's dead point is LIMIT,
-        with the dead point's angle (within ``max_step / 2**16``) in ``sw.limit``; the part
-        of the drawn circuit that lies the other way round is then solved backwards from the
-        drawn pose. ``omega`` (input angular velocity) adds point velocities and link
-        angular velocities.
+        Every value gets a status; a point that cannot be solved is NaN with its status,
+        and points that do not depend on it are still solved. Dyads are closed forms on
+        their drawn side. Groups follow by continuation in steps of at most ``max_step``
+        (default 3 degrees; for a linear input, the drawing's size times 3 degrees in
+        radians),
+        each given at most ``min(max_iter, 5)`` Newton steps to reach ``tol`` before it is
+        split (down to ``max_step / 2**16``: halved, or just short of where the group's
+        conditioning extrapolates to zero). A value past a group's dead point is LIMIT,
+        with the dead point's input value (within ``max_step / 2**16``) in ``sw.limit``;
+        the part of the drawn circuit that lies the other way is then solved backwards from
+        the drawn pose. ``rate``, the input's constant rate (an angular velocity in rad/s
+        for an angle input, a linear speed in scene units per second for a linear one),
+        adds point velocities and accelerations and link angular velocities and
+        accelerations; ``omega`` is its former name, still accepted.
 
-        ``predictor="closed-form"`` follows nothing: every angle is solved on its own, each
-        dyad and slider on its drawn side by its closed form, across angles at once (plans
-        with no group only: a ``ValueError`` naming ``predictor`` otherwise). An angle where
+        ``predictor="closed-form"`` follows nothing: every value is solved on its own, each
+        dyad and slider on its drawn side by its closed form, across values at once (plans
+        with no group only: a ``ValueError`` naming ``predictor`` otherwise). A value where
         the drawn sides do not close is LIMIT where the linkage has some other assembly
         there and NOT_ASSEMBLABLE where it has none; ``limit`` is NaN. The default
         (``"continuation"``) already solves a plan with no group this way wherever that is
-        certified to be the drawn circuit's motion (no step near a dead point, angles at
+        certified to be the drawn circuit's motion (no step near a dead point, values at
         most ``max_step`` apart); the two differ only where the drawn circuit does not
-        reach an angle that the drawn sides close at.
+        reach a value that the drawn sides close at.
         """
         plan, core = self._compiled(outputs)
         kind = self.input_kind
@@ -552,7 +561,14 @@ class Scene:
                 raise ValueError(f"theta must be a 1-D array of input angles, got shape {t.shape}")
         tol, max_iter = as_float("tol", tol), as_i64("max_iter", max_iter)
         ms = as_float("max_step", max_step)
-        w = None if omega is None else as_float("omega", omega)
+        if omega is not None:
+            if rate is not None:
+                raise TypeError("sweep() takes rate or its former name omega, not both")
+            w: float | None = as_float("omega", omega)
+        else:
+            w = None if rate is None else as_float("rate", rate)
+            if w is not None and not math.isfinite(w):  # the core would name it omega
+                raise ValueError(f"rate must be finite, got {w}")
         p = as_str("predictor", predictor)
         pts, ang, status, nit, det, limit, sst, sdet, pst, kin = core.sweep(
             t, tol, max_iter, ms, w, p
@@ -562,7 +578,7 @@ class Scene:
         output = None if self._data["output"] is None else self._output_of
         return SceneSweep.build(
             plan, t, pts, ang, status, nit, det, limit, sst, sdet, pst, vel, acc,
-            w, kind, output,
+            w, kind, output, self._data["units"],
         )  # fmt: skip
 
     def _output_of(self, names: tuple[str, ...], coords: np.ndarray) -> np.ndarray | None:
@@ -637,6 +653,8 @@ class Scene:
             turning_points=np.asarray(turning, dtype=np.float64),
             closed=bool(closed),
             coords=coords,
+            input_kind=self.input_kind,
+            units=self._data["units"],
         )
 
     def gradient(

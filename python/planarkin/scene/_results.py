@@ -9,7 +9,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .._results import SweepResult
+from .._results import InputResult, SweepResult
 
 
 @dataclass(frozen=True)
@@ -56,8 +56,9 @@ class Plan:
 
 @dataclass(frozen=True, eq=False, repr=False)
 class SceneSweep(SweepResult):
-    """A scene solved at N input angles, by the kernel (``Scene.sweep``) or by the NumPy
-    reference (``planarkin.reference.scene_sweep``). The dicts (``points``, ``angles``,
+    """A scene solved at N input values (angles, or a linear input's displacements), by
+    the kernel (``Scene.sweep``) or by the NumPy reference
+    (``planarkin.reference.scene_sweep``). The dicts (``points``, ``angles``,
     ``point_status``, ``velocities``, ``angular_velocities``) hold views into the arrays
     (no copies), made on first access. NaN wherever a point or link is not solved.
 
@@ -70,7 +71,8 @@ class SceneSweep(SweepResult):
 
     #: The steps solved (None: the reference, which has no plan).
     plan: Plan | None
-    #: (N,) input angles (radians).
+    #: (N,) the input coordinate: angles (radians), or a linear input's displacements s
+    #: from the drawn pose (scene units) when ``input_kind`` is "displacement".
     theta: np.ndarray
     #: (N, P, 2) every reported position, scene units (``points`` are views of it).
     coords: np.ndarray
@@ -93,19 +95,23 @@ class SceneSweep(SweepResult):
     step_det: np.ndarray | None
     #: (N, P) int8 status of each reported point (None: not computed, the reference).
     point_status_array: np.ndarray | None
-    #: (N, P, 2) velocities and (N, L) angular velocities when ``omega`` was given.
+    #: (N, P, 2) velocities and (N, L) angular velocities when ``rate`` was given.
     velocity_array: np.ndarray | None = None
     angular_velocity_array: np.ndarray | None = None
-    #: (N, P, 2) accelerations and (N, L) angular accelerations at constant ``omega``
+    #: (N, P, 2) accelerations and (N, L) angular accelerations at constant ``rate``
     #: (None: not computed).
     acceleration_array: np.ndarray | None = field(default=None, kw_only=True)
     angular_acceleration_array: np.ndarray | None = field(default=None, kw_only=True)
-    #: The input's angular velocity (rad/s) behind the velocities (None: not given); for a
-    #: linear input, its speed (scene units per second).
-    omega: float | None = field(default=None, kw_only=True)
+    #: The input's rate behind the velocities (None: not given): its angular velocity
+    #: (rad/s) for an angle input, its linear speed (scene units per second) for a linear
+    #: one. ``omega`` is the same number (its former name, kept).
+    rate: float | None = field(default=None, kw_only=True)
     #: "angle": ``theta`` holds input angles (radians); "displacement": a linear input's
-    #: displacements from the drawn pose (scene units).
-    input: str = field(default="angle", kw_only=True)
+    #: displacements from the drawn pose (scene units). ``input`` is the same (its former
+    #: name, kept).
+    input_kind: str = field(default="angle", kw_only=True)
+    #: The scene's length unit (its ``units`` key; None: not named).
+    units: str | None = field(default=None, kw_only=True)
     #: Where ``output`` comes from: the (N,) array, a function of (``point_names``,
     #: ``coords``) computing it on first access (the kernel's sweeps: nothing is spent on
     #: an output nobody reads), or None.
@@ -119,7 +125,7 @@ class SceneSweep(SweepResult):
     @classmethod
     def build(
         cls, plan, theta, pts, ang, status, nit, det, limit, step_status, step_det, pstat, vel,
-        acc=None, omega=None, input="angle", output=None,
+        acc=None, rate=None, input_kind="angle", output=None, units=None,
     ):  # noqa: ANN001, ANN206, E501  # fmt: skip
         """From the kernel's arrays; ``vel`` and ``acc`` are (points, links) pairs or None;
         ``output`` the output coordinate, or a function of (``point_names``, ``coords``)
@@ -150,13 +156,27 @@ class SceneSweep(SweepResult):
             d["velocity_array"], d["angular_velocity_array"] = vel
         if acc is not None:
             d["acceleration_array"], d["angular_acceleration_array"] = acc
-        if omega is not None:
-            d["omega"] = omega
-        if input != "angle":
-            d["input"] = input
+        if rate is not None:
+            d["rate"] = rate
+        if input_kind != "angle":
+            d["input_kind"] = input_kind
         if output is not None:
             d["output_source"] = output
+        if units is not None:
+            d["units"] = units
         return self
+
+    @property
+    def omega(self) -> float | None:
+        """The input's rate (``rate``'s former name, kept: an angular velocity, or a
+        linear input's speed)."""
+        return self.rate
+
+    @property
+    def input(self) -> str:
+        """The input's kind (``input_kind``'s former name, kept): "angle" or
+        "displacement"."""
+        return self.input_kind
 
     @cached_property
     def output(self) -> np.ndarray | None:
@@ -192,23 +212,23 @@ class SceneSweep(SweepResult):
 
     @cached_property
     def velocities(self) -> dict[str, np.ndarray] | None:
-        """name -> (N, 2) velocities (scene units per time) when ``omega`` was given."""
+        """name -> (N, 2) velocities (scene units per time) when ``rate`` was given."""
         return self._columns(self.velocity_array, self.point_names)
 
     @cached_property
     def angular_velocities(self) -> dict[str, np.ndarray] | None:
-        """link -> (N,) angular velocities when ``omega`` was given."""
+        """link -> (N,) angular velocities when ``rate`` was given."""
         return self._columns(self.angular_velocity_array, self.link_names)
 
     @cached_property
     def accelerations(self) -> dict[str, np.ndarray] | None:
         """name -> (N, 2) accelerations (scene units per time squared) at constant
-        ``omega``, when computed."""
+        ``rate``, when computed."""
         return self._columns(self.acceleration_array, self.point_names)
 
     @cached_property
     def angular_accelerations(self) -> dict[str, np.ndarray] | None:
-        """link -> (N,) angular accelerations at constant ``omega``, when computed."""
+        """link -> (N,) angular accelerations at constant ``rate``, when computed."""
         return self._columns(self.angular_acceleration_array, self.link_names)
 
     def _describe(self) -> str:
@@ -273,31 +293,34 @@ class Assemblies(list):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class Trace:
-    """A path traced through dead points (pseudo-arclength continuation)."""
+class Trace(InputResult):
+    """A path traced through dead points (pseudo-arclength continuation): a result over
+    the input (``theta``, ``input_kind``, ``units``, ``len()``, the shared repr) with the
+    sweep's ``points`` and ``det``. Documented exception: no ``status``, ``nit`` or
+    ``angles`` (every path point is a converged pose; the tracer keeps no iterations)."""
 
-    #: (M,) input angle at each path point, continuous (not wrapped).
+    #: (M,) input coordinate at each path point, continuous (not wrapped): an angle
+    #: (radians) or a linear input's displacement (scene units).
     theta: np.ndarray
     #: name -> (M, 2) positions (views of ``coords``).
     points: dict[str, np.ndarray]
     #: (M,) the plan's signed conditioning along the path.
     det: np.ndarray
-    #: Input angles (continuous, like ``theta``) of the dead points passed, refined by
+    #: Input values (continuous, like ``theta``) of the dead points passed, refined by
     #: bisection on the conditioning's sign, in path order.
     turning_points: np.ndarray
     #: The path came back to its start (its last point is the start again).
     closed: bool
     #: (M, P, 2) every point at every path point.
     coords: np.ndarray
+    #: "angle" or "displacement", as :attr:`SceneSweep.input_kind`.
+    input_kind: str = field(default="angle", kw_only=True)
+    #: The scene's length unit (None: not named).
+    units: str | None = field(default=None, kw_only=True)
 
-    def __len__(self) -> int:
-        return len(self.theta)
-
-    def __repr__(self) -> str:
-        return (
-            f"Trace({len(self.theta)} points, {'closed' if self.closed else 'open'}, "
-            f"{len(self.turning_points)} turning points)"
-        )
+    def _describe(self) -> str:
+        k = len(self.turning_points)
+        return f"{'closed' if self.closed else 'open'}, {k} turning point{'' if k == 1 else 's'}"
 
 
 @dataclass(frozen=True, eq=False, repr=False)

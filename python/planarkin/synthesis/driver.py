@@ -49,10 +49,13 @@ TIME_LIMIT, INTERRUPTED = "time limit", "interrupted"
 @dataclass
 class StartResult:
     """One SLSQP run: where it started and ended, scipy's status, and the true figures.
-    ``status``, ``message`` and ``success`` are scipy's, of the phase whose ``x`` this is
-    (99: stopped at the time limit, as scipy reports a callback's stop); ``fun`` is the
-    least-squares phase's final objective; ``feasible``: every constraint and bound holds
-    at ``x``, checked again here (not taken from scipy)."""
+    ``optimizer_status``, ``message`` and ``success`` are scipy's, of the phase whose ``x``
+    this is (scipy's integer exit code; 99: stopped at the time limit, as scipy reports a
+    callback's stop; -1: the start raised); ``fun`` is the least-squares phase's final
+    objective; ``feasible``: every constraint and bound holds at ``x``, checked again here
+    (not taken from scipy). ``status`` is ``optimizer_status`` under its former name (as
+    scipy's ``OptimizeResult.status``): an integer code of scipy's, not a
+    :class:`planarkin.Status`."""
 
     x0: np.ndarray
     x: np.ndarray
@@ -61,7 +64,7 @@ class StartResult:
     rms_error: float
     min_abs_det: float
     feasible: bool
-    status: int
+    optimizer_status: int
     message: str
     nit: int
     phases: list[dict[str, Any]] = field(default_factory=list)
@@ -73,6 +76,11 @@ class StartResult:
     index: int = 0
     #: why the run stopped early ("" ran to scipy's own end; TIME_LIMIT)
     stopped: str = ""
+
+    @property
+    def status(self) -> int:
+        """scipy's integer exit code: :attr:`optimizer_status` (its former name, kept)."""
+        return self.optimizer_status
 
     @property
     def converged(self) -> bool:
@@ -312,7 +320,7 @@ def run_start(
         rms_error=fig["rms_error"],
         min_abs_det=fig["min_abs_det"],
         feasible=_feasible(problem, x),
-        status=status,
+        optimizer_status=status,
         message=message,
         nit=nit,
         phases=phases,
@@ -590,7 +598,7 @@ def _collect(f: Future, x0: np.ndarray, index: int, signs: tuple[int, int, int])
             rms_error=math.inf,
             min_abs_det=0.0,
             feasible=False,
-            status=-1,
+            optimizer_status=-1,
             message=f"start failed: {what}",
             nit=0,
             signs=signs,

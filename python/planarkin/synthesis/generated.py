@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from .._angles import wrap_array
 from .topology import Template
 
 #: The 8 sign combinations (loop 1, loop 2, loop 3), +1 or -1 on the half-angle root.
@@ -39,10 +40,6 @@ def _rot(v: np.ndarray, a: np.ndarray) -> np.ndarray:
 
 def _unit(a: np.ndarray) -> np.ndarray:
     return np.stack([np.cos(a), np.sin(a)], axis=-1)
-
-
-def _wrap(a: np.ndarray) -> np.ndarray:
-    return np.angle(np.exp(1j * np.asarray(a)))
 
 
 @dataclass(frozen=True)
@@ -151,14 +148,15 @@ class SeedPlan:
         c3 = 0.5 * (length * length - (w * w).sum(axis=1) - h @ h)
         sign = signs[2]
         if follow is not None:
-            off = [np.abs(_wrap(half_angle(c1, c2, c3, sg)[0] - follow[1])) for sg in (1, -1)]
+            off = [np.abs(wrap_array(half_angle(c1, c2, c3, sg)[0] - follow[1])) for sg in (1, -1)]
             sign = np.where(off[0] <= off[1], 1, -1)  # type: ignore[assignment]
         elif np.ndim(sign) == 0 and sign == 0:
-            sign = min((1, -1), key=lambda sg: abs(float(_wrap(half_angle(c1, c2, c3, sg)[0][0]))))
+            first = {sg: float(wrap_array(half_angle(c1, c2, c3, sg)[0][0])) for sg in (1, -1)}
+            sign = min((1, -1), key=lambda sg: abs(first[sg]))
         th, rad = half_angle(c1, c2, c3, sign)
         rads.append(rad)
         used.append(sign)
-        return known, _wrap(th), np.stack(rads, axis=1), (used[0], used[1], used[2])
+        return known, wrap_array(th), np.stack(rads, axis=1), (used[0], used[1], used[2])
 
     def _drawn_signs(self) -> tuple[int, int, int]:
         # the signs whose solution is the drawn pose itself (zero input and output)
@@ -203,7 +201,7 @@ class SeedPlan:
             h = 1e-6
             _, th2, _, _ = self._solve(pi, po + h, sg)
             _, th1, _, _ = self._solve(pi, po - h, sg)
-            k = _wrap(th2 - th1) / (2 * h)
+            k = wrap_array(th2 - th1) / (2 * h)
         return Generated(th, rad, k, (int(sg[0]), int(sg[1]), int(sg[2])))
 
     def follow(
@@ -238,5 +236,5 @@ class SeedPlan:
         h = 1e-6
         th2 = self._solve(pi, po + h, tuple(signs.T))[1]  # type: ignore[arg-type]
         th1 = self._solve(pi, po - h, tuple(signs.T))[1]  # type: ignore[arg-type]
-        k = _wrap(th2 - th1) / (2 * h)
+        k = wrap_array(th2 - th1) / (2 * h)
         return Generated(th, rad, k, self._drawn), signs.astype(np.int8)

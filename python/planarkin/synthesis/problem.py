@@ -13,6 +13,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from .._angles import wrap_array
 from ..scene import Scene
 from .generated import SeedPlan
 from .space import SceneSpace
@@ -21,10 +22,6 @@ from .topology import Template
 OBJECTIVES = ("true", "generated", "corrected")
 #: Newton tolerance of the sweeps (tight: finite differences read their angles)
 SWEEP_TOL = 1e-12
-
-
-def _wrap(a: np.ndarray) -> np.ndarray:
-    return np.angle(np.exp(1j * np.asarray(a)))
 
 
 def _monotone(name: str, a: np.ndarray) -> None:
@@ -618,5 +615,5 @@ def output_from_drawn(sc: Scene, output: np.ndarray | None) -> np.ndarray:
         pts = sc.points
         tip = next(p for p in sc.links[link] if p != pivot)
         a0 = math.atan2(pts[tip][1] - pts[pivot][1], pts[tip][0] - pts[pivot][0])
-        return _wrap(output - a0)
+        return wrap_array(output - a0)
     return np.asarray(output, dtype=np.float64)

@@ -10,14 +10,11 @@ from typing import Any
 
 import numpy as np
 
+from .._angles import wrap_array
 from ..scene import Scene
 from .generated import SeedPlan
 from .problem import DesignSpace, FunctionTarget, Problem, link_lengths, output_from_drawn
 from .topology import Template
-
-
-def _wrap(a: np.ndarray) -> np.ndarray:
-    return np.angle(np.exp(1j * np.asarray(a)))
 
 
 def output_rotation(sc: Scene, phi_in: np.ndarray, tol: float = 1e-12) -> tuple[np.ndarray, Any]:
@@ -31,7 +28,7 @@ def output_rotation(sc: Scene, phi_in: np.ndarray, tol: float = 1e-12) -> tuple[
     first = next(p for p in sc.links[link] if p != pivot)
     a0 = math.atan2(pts[first][1] - pts[pivot][1], pts[first][0] - pts[pivot][0])
     sw = sc.sweep(sc.input_angle + np.asarray(phi_in), outputs=[link], tol=tol)
-    return _wrap(sw.angles[link] - a0), sw
+    return wrap_array(sw.angles[link] - a0), sw
 
 
 def sign_changes(det: np.ndarray) -> int:
@@ -50,7 +47,7 @@ def true_error(
     err = rot - phi_out
     ok = bool(np.all(sw.status == 0))
     dphi = np.abs(np.diff(phi_in))
-    jump = float(np.max(np.abs(_wrap(np.diff(rot))) / dphi)) if ok and dphi.size else math.inf
+    jump = float(np.max(np.abs(wrap_array(np.diff(rot))) / dphi)) if ok and dphi.size else math.inf
     info = {
         "converged": ok,
         "det_sign_changes": sign_changes(sw.det),

@@ -555,10 +555,10 @@
       const spans = l.full_rotation ? "the crank turns fully" :
         "crank reaches " + l.intervals.map(([a, b]) => `[${fmtDeg(a)}, ${fmtDeg(b)}]`).join(", ") + " only";
       return `${badge(fb.status)} at \u03b82 = ${fmtDeg(S.theta)} (${fb.mode})\n` +
-        `Grashof: <b>${g.class}</b>, Barker <b>${g.barker}</b> (${g.kind})\n${g.description}\n` +
+        `Grashof: <b>${g.condition}</b>, Barker <b>${g.barker}</b> (${g.kind})\n${g.description}\n` +
         `${spans}\n` +
         `dead points: ${l.dead_points.length ? l.dead_points.map(fmtDeg).join(", ") : "none"}\n` +
-        (fb.status === "CONVERGED" ? `\u03b83 = ${fmtDeg(fb.theta3)}, \u03b84 = ${fmtDeg(fb.theta4)}, \u03bc = ${fmtDeg(fb.transmission)}` : "");
+        (fb.status === "CONVERGED" ? `\u03b83 = ${fmtDeg(fb.theta3)}, \u03b84 = ${fmtDeg(fb.theta4)}, \u03bc = ${fmtDeg(fb.transmission_angle)}` : "");
     }
     if (!S.info) return "invalid scene (see the message above)";
     const p = S.pose;
@@ -597,7 +597,7 @@
         points: fb ? Object.fromEntries(Object.entries(fb.points).map(([k, v]) => [k, v])) : {},
         status: fb ? fb.status : null,
         error: $("message").textContent || null,
-        grashof: fb ? fb.grashof.class : null,
+        grashof: fb ? fb.grashof.condition : null,
         barker: fb ? fb.grashof.barker : null,
       };
     } else {

@@ -25,6 +25,15 @@ pub enum Error {
         /// The length it must have.
         expected: usize,
     },
+    /// An array argument whose shape or memory layout a kernel cannot take (a binding's
+    /// check on what it was handed, e.g. `links must be a C-contiguous float64 array`).
+    #[error("{name} {requirement}")]
+    Array {
+        /// Name of the array as the caller knows it.
+        name: String,
+        /// What it must be, with what it is where that helps.
+        requirement: String,
+    },
     /// A scene (linkage drawn as data) is invalid: names the entry and says why.
     #[error("{entry}: {message}")]
     Scene {
@@ -49,6 +58,11 @@ pub enum Error {
 impl Error {
     pub(crate) fn scene(entry: impl Into<String>, message: impl Into<String>) -> Self {
         Error::Scene { entry: entry.into(), message: message.into() }
+    }
+
+    /// An [`Error::Array`] naming the array `name` and what it must be.
+    pub fn array(name: impl Into<String>, requirement: impl Into<String>) -> Self {
+        Error::Array { name: name.into(), requirement: requirement.into() }
     }
 
     pub(crate) fn invalid(name: impl Into<String>, requirement: &'static str, value: impl std::fmt::Display) -> Self {

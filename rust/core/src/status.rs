@@ -9,12 +9,13 @@ pub enum Status {
     Converged = 0,
     /// `max_iter` Newton steps were taken without reaching `tol`.
     MaxIterations = -2,
-    /// The crank angle, a residual or an iterate was NaN or infinite.
+    /// The input value, a residual or an iterate was NaN or infinite.
     NonFinite = -3,
     /// The conditioning |sin(theta4 - theta3)| min(r3, r4) / L fell below the singular
     /// threshold: a dead (toggle) or change point, where the two assembly modes meet.
     Singular = -4,
-    /// The loop cannot close at this crank angle (known from the geometry, before any iteration).
+    /// The loop cannot close at this input value (crank angle or displacement), known from
+    /// the geometry before any iteration.
     NotAssemblable = -5,
     /// Newton converged, but on the other assembly mode than the one requested.
     BranchJump = -6,
@@ -51,6 +52,26 @@ impl Status {
         self == Status::Converged
     }
 
+    /// The status's name as every binding spells it (Python's `planarkin.Status` member,
+    /// the page's JSON): upper case with underscores, e.g. `"NOT_ASSEMBLABLE"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Converged => "CONVERGED",
+            Status::MaxIterations => "MAX_ITERATIONS",
+            Status::NonFinite => "NON_FINITE",
+            Status::Singular => "SINGULAR",
+            Status::NotAssemblable => "NOT_ASSEMBLABLE",
+            Status::BranchJump => "BRANCH_JUMP",
+            Status::PrecisionLoss => "PRECISION_LOSS",
+            Status::Limit => "LIMIT",
+        }
+    }
+
+    /// The status of an `i8` code, None for a code that is no status.
+    pub fn from_code(code: i8) -> Option<Status> {
+        Status::ALL.into_iter().find(|s| s.code() == code)
+    }
+
     /// A one-line human-readable message.
     pub fn message(self) -> &'static str {
         match self {
@@ -58,10 +79,26 @@ impl Status {
             Status::MaxIterations => "maximum number of iterations reached without convergence",
             Status::NonFinite => "a non-finite value (NaN or infinity) was met",
             Status::Singular => "singular: dead (toggle) or change point, the two modes meet",
-            Status::NotAssemblable => "not assemblable: the loop cannot close at this crank angle",
+            Status::NotAssemblable => "not assemblable: the loop cannot close at this input value",
             Status::BranchJump => "converged on the other assembly mode than the one requested",
             Status::PrecisionLoss => "tolerance below what double precision resolves at this point",
             Status::Limit => "past a dead point of the circuit followed: the input must reverse there",
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Status;
+
+    #[test]
+    fn names_are_distinct_upper_snake_case_and_codes_round_trip() {
+        for (i, s) in Status::ALL.iter().enumerate() {
+            assert!(s.name().chars().all(|c| c.is_ascii_uppercase() || c == '_'), "{s:?}");
+            assert!(Status::ALL[..i].iter().all(|t| t.name() != s.name() && t.code() != s.code()));
+            assert_eq!(Status::from_code(s.code()), Some(*s));
+        }
+        assert_eq!(Status::from_code(1), None);
+        assert_eq!(Status::NotAssemblable.name(), "NOT_ASSEMBLABLE");
     }
 }

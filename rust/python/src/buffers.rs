@@ -7,10 +7,10 @@ use numpy::{
     IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray2,
     PyUntypedArrayMethods,
 };
-use pyo3::exceptions::{PyMemoryError, PyValueError};
+use pyo3::exceptions::PyMemoryError;
 use pyo3::prelude::*;
 
-use crate::errors::err;
+use crate::errors::{array, err};
 
 pub(crate) type Arr1<'py, T> = Bound<'py, PyArray1<T>>;
 pub(crate) type Arr2<'py, T> = Bound<'py, PyArray2<T>>;
@@ -69,20 +69,17 @@ pub(crate) fn writable<'py>(
     n: usize,
 ) -> PyResult<PyReadwriteArray2<'py, f64>> {
     if a.shape() != [m, n] {
-        return Err(PyValueError::new_err(format!("{name} must have shape ({m}, {n}), got {:?}", a.shape())));
+        return Err(array(name, format!("must have shape ({m}, {n}), got {:?}", a.shape())));
     }
-    a.try_readwrite().map_err(|e| {
-        PyValueError::new_err(format!(
-            "{name} must be a writable array that shares no memory with another argument ({e})"
-        ))
-    })
+    a.try_readwrite()
+        .map_err(|e| array(name, format!("must be a writable array that shares no memory with another argument ({e})")))
 }
 
 /// The values of a borrowed output array, in row-major order: it must be C-contiguous
 /// (`as_slice_mut` alone also takes a Fortran-ordered array, whose values it would give in
 /// the other order).
 pub(crate) fn contiguous<'a>(name: &str, a: &'a mut PyReadwriteArray2<'_, f64>) -> PyResult<&'a mut [f64]> {
-    let fail = || PyValueError::new_err(format!("{name} must be a C-contiguous float64 array"));
+    let fail = || array(name, "must be a C-contiguous float64 array");
     if !a.is_c_contiguous() {
         return Err(fail());
     }
@@ -91,7 +88,7 @@ pub(crate) fn contiguous<'a>(name: &str, a: &'a mut PyReadwriteArray2<'_, f64>) 
 
 /// The contiguous values of a 1-D float64 array.
 pub(crate) fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
-    a.as_slice().map_err(|_| PyValueError::new_err(format!("{name} must be a contiguous 1-D float64 array")))
+    a.as_slice().map_err(|_| array(name, "must be a contiguous 1-D float64 array"))
 }
 
 /// `v` (m * n values, row-major) as an (m, n) array.

@@ -18,6 +18,12 @@ pub(crate) fn err(e: Error) -> PyErr {
     }
 }
 
+/// [`err`] of an [`Error::Array`]: the binding's own checks of an array argument (shape,
+/// layout, writability) go through the same map as the kernels' errors.
+pub(crate) fn array(name: &str, requirement: impl Into<String>) -> PyErr {
+    err(Error::array(name, requirement))
+}
+
 /// The kernels' [`Interrupt`]: re-attaches to Python and runs its signal handlers
 /// (`py.check_signals()`); the exception a handler raised (KeyboardInterrupt for Ctrl-C)
 /// is kept and raised once the kernel has stopped.

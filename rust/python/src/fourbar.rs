@@ -5,17 +5,16 @@
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use planarkin_core::fourbar::{
     acceleration_into, classify, closed_form_batch, closed_form_into, coupler_into, sweep_batch, sweep_into,
-    transmission_into, validate_links, velocity_into, BatchOut, GrashofClass, MotionOut, SweepOut,
+    transmission_into, validate_links, velocity_into, BatchOut, MotionOut, SweepOut,
 };
 use planarkin_core::interrupt::Poll;
 use planarkin_core::parallel;
 use planarkin_core::solve::newton::SINGULAR_THRESHOLD;
 use planarkin_core::{FourBar, Mode, NewtonOptions, SweepOptions};
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use crate::buffers::{contiguous, grid, grid_len, slice, writable, zeros, zeros_named, Arr1, Arr2};
-use crate::errors::{err, Signals};
+use crate::errors::{array, err, Signals};
 
 /// A four-bar linkage with validated lengths (r1 ground, r2 crank, r3 coupler, r4 rocker).
 #[pyclass(frozen, module = "planarkin._core", name = "FourBar")]
@@ -217,12 +216,7 @@ impl PyFourBar {
     /// (class, barker code, kind, description, s, l, p, q)
     fn grashof(&self) -> (&'static str, &'static str, &'static str, &'static str, f64, f64, f64, f64) {
         let g = classify(self.inner.lengths());
-        let class = match g.class {
-            GrashofClass::Grashof => "grashof",
-            GrashofClass::ChangePoint => "change-point",
-            GrashofClass::NonGrashof => "non-grashof",
-        };
-        (class, g.barker.code(), g.barker.kind(), g.barker.description(), g.s, g.l, g.p, g.q)
+        (g.class.name(), g.barker.code(), g.barker.kind(), g.barker.description(), g.s, g.l, g.p, g.q)
     }
 }
 
@@ -243,11 +237,11 @@ fn transmission<'py>(
 fn links_of(links: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<FourBar>> {
     let shape = links.shape();
     if shape[1] != 4 {
-        return Err(PyValueError::new_err(format!("links must have shape (M, 4), got {shape:?}")));
+        return Err(array("links", format!("must have shape (M, 4), got {shape:?}")));
     }
     // (`as_slice` alone also takes a Fortran-ordered array, its values in the other order)
     let c_order = if links.is_c_contiguous() { links.as_slice().ok() } else { None };
-    let flat = c_order.ok_or_else(|| PyValueError::new_err("links must be a C-contiguous float64 array"))?;
+    let flat = c_order.ok_or_else(|| array("links", "must be a C-contiguous float64 array"))?;
     validate_links(flat).map_err(err)
 }
 

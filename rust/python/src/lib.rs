@@ -24,8 +24,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fourbar::register(m)?;
     scene::register(m)?;
     simd::register(m)?;
-    let statuses: Vec<(i8, String, &str)> =
-        Status::ALL.iter().map(|s| (s.code(), format!("{s:?}"), s.message())).collect();
+    // (code, name, message): planarkin.Status is checked against this table
+    let statuses: Vec<(i8, &str, &str)> = Status::ALL.iter().map(|s| (s.code(), s.name(), s.message())).collect();
     m.add("STATUSES", statuses)?;
     m.add("SINGULAR_THRESHOLD", SINGULAR_THRESHOLD)?;
     m.add("BUILD_PROFILE", if cfg!(debug_assertions) { "debug" } else { "release" })?;

@@ -7,12 +7,11 @@ use planarkin_core::scene::{
     Trace, TraceOptions,
 };
 use planarkin_core::solve::homotopy::HomotopyOptions;
-use planarkin_core::NewtonOptions;
-use pyo3::exceptions::PyValueError;
+use planarkin_core::{Error, NewtonOptions};
 use pyo3::prelude::*;
 
 use crate::buffers::{cube, grid, grid_len, slice, zeros, Arr1, Arr2, Arr3};
-use crate::errors::{err, Signals};
+use crate::errors::{array, err, Signals};
 
 /// A validated scene (see `planarkin.Scene`, which wraps it).
 #[pyclass(frozen, module = "planarkin._core", name = "Scene")]
@@ -99,7 +98,7 @@ impl PyScene {
         let np = self.inner.point_names().len();
         let pts = points_of("points", &points)?;
         if np > 0 && pts.len() % np != 0 {
-            return Err(PyValueError::new_err(format!("points must hold whole poses of {np} points")));
+            return Err(array("points", format!("must hold whole poses of {np} points")));
         }
         let nf = free.len();
         if nf == 0 || np == 0 {
@@ -126,14 +125,14 @@ impl PyScene {
         let pts = points_of("points", &points)?;
         let nf = free.len();
         if np == 0 || pts.len() % np != 0 {
-            return Err(PyValueError::new_err(format!("points must hold whole poses of {np} points")));
+            return Err(array("points", format!("must hold whole poses of {np} points")));
         }
         let d = slice("dpoints", &dpoints)?;
         if d.len() != pts.len() * 2 * nf {
-            return Err(PyValueError::new_err(format!(
-                "dpoints must hold {} values, the derivatives of points",
-                pts.len() * 2 * nf
-            )));
+            return Err(array(
+                "dpoints",
+                format!("must hold {} values, the derivatives of points", pts.len() * 2 * nf),
+            ));
         }
         let n = pts.len() / np;
         let mut out = zeros("conditioning gradients", n * nf)?;
@@ -189,7 +188,12 @@ fn spec_of(
             match kind.as_str() {
                 "slot" => LinearKind::Slot,
                 "prismatic" => LinearKind::Prismatic,
-                other => return Err(PyValueError::new_err(format!("input: unknown linear input kind {other:?}"))),
+                other => {
+                    return Err(err(Error::Scene {
+                        entry: "input".into(),
+                        message: format!("unknown linear input kind {other:?}"),
+                    }))
+                }
             },
             name,
         )),
@@ -375,7 +379,7 @@ fn trace_out(py: Python<'_>, t: Trace, np: usize) -> PyResult<TraceOut<'_>> {
 fn points_of(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<[f64; 2]>> {
     let v = a.as_array();
     if v.ncols() != 2 {
-        return Err(PyValueError::new_err(format!("{name} must have shape (P, 2)")));
+        return Err(array(name, "must have shape (P, 2)"));
     }
     Ok(v.rows().into_iter().map(|r| [r[0], r[1]]).collect())
 }

@@ -4,9 +4,7 @@
 //! (dead points, the assemblable crank intervals). The same core calls as
 //! `pk.FourBar(...).closed_form`, `.coupler_point`, `.grashof()` and `.limits(mode)`.
 
-use planarkin_core::fourbar::{
-    classify, closed_form_into, coupler_into, default_angles, transmission_angle, GrashofClass,
-};
+use planarkin_core::fourbar::{classify, closed_form_into, coupler_into, default_angles, transmission_angle};
 use planarkin_core::solve::newton::SINGULAR_THRESHOLD;
 use planarkin_core::{FourBar, Mode, Never};
 use serde_json::{json, Value};
@@ -52,11 +50,6 @@ pub(crate) fn solve(req: &Value, nums: &mut Vec<f64>) -> Result<Value, String> {
     nums.extend(x.iter().zip(&y).flat_map(|(&x, &y)| [x, y]));
 
     let g = classify(fb.lengths());
-    let class = match g.class {
-        GrashofClass::Grashof => "grashof",
-        GrashofClass::ChangePoint => "change-point",
-        GrashofClass::NonGrashof => "non-grashof",
-    };
     let l = fb.limits(mode);
     let rocker = l.rocker.map(|(lo, hi)| json!([[lo.theta2, lo.theta4], [hi.theta2, hi.theta4]]));
     Ok(json!({
@@ -66,7 +59,7 @@ pub(crate) fn solve(req: &Value, nums: &mut Vec<f64>) -> Result<Value, String> {
         "theta3": t3[0],
         "theta4": t4[0],
         "status": status_name(st[0]),
-        "transmission": transmission_angle(t3[0], t4[0]),
+        "transmission_angle": transmission_angle(t3[0], t4[0]),
         "points": {
             "O2": pair([0.0, 0.0]),
             "O4": pair([r1, 0.0]),
@@ -74,7 +67,7 @@ pub(crate) fn solve(req: &Value, nums: &mut Vec<f64>) -> Result<Value, String> {
             "B": pair(b),
             "P": pair(cp),
         },
-        "grashof": {"class": class, "barker": g.barker.code(), "kind": g.barker.kind(), "description": g.barker.description()},
+        "grashof": {"condition": g.class.name(), "barker": g.barker.code(), "kind": g.barker.kind(), "description": g.barker.description()},
         "limits": {
             "toggles": l.toggles,
             "dead_points": l.dead_points,

@@ -9,19 +9,9 @@ pub(crate) fn number(req: &Value, key: &str) -> Result<f64, String> {
     req.get(key).and_then(Value::as_f64).ok_or_else(|| format!("{key} must be a real number"))
 }
 
-/// Python's name of a status code (`planarkin.Status(code).name`).
+/// The core's name of a status code (`planarkin.Status(code).name` in Python).
 pub(crate) fn status_name(code: i8) -> &'static str {
-    match Status::ALL.into_iter().find(|s| s.code() == code) {
-        Some(Status::Converged) => "CONVERGED",
-        Some(Status::MaxIterations) => "MAX_ITERATIONS",
-        Some(Status::NonFinite) => "NON_FINITE",
-        Some(Status::Singular) => "SINGULAR",
-        Some(Status::NotAssemblable) => "NOT_ASSEMBLABLE",
-        Some(Status::BranchJump) => "BRANCH_JUMP",
-        Some(Status::PrecisionLoss) => "PRECISION_LOSS",
-        Some(Status::Limit) => "LIMIT",
-        None => "UNKNOWN",
-    }
+    Status::from_code(code).map_or("UNKNOWN", Status::name)
 }
 
 /// A point as `[x, y]` (`null` for a coordinate that is NaN).

@@ -281,6 +281,13 @@ mod tests {
             ask(&mut s, r#"{"op": "fourbar", "r": [4, 3, 2, 1.5], "theta2": 2.0, "mode": "open", "p": 1, "delta": 0}"#);
         assert_eq!(r["status"], "NOT_ASSEMBLABLE");
         assert_eq!(r["grashof"]["barker"], "RRR1");
+        // Python's names: Grashof.condition, FourBar.transmission_angle
+        assert_eq!(r["grashof"]["condition"], "non-grashof");
+        assert!(r.get("transmission_angle").is_some() && r.get("transmission").is_none());
+        assert!(r["grashof"].get("class").is_none());
+        let ok = ask(&mut s, r#"{"op": "fourbar", "r": [6, 2, 5, 5], "theta2": 0.5, "p": 1, "delta": 0}"#);
+        assert_eq!((&ok["status"], &ok["grashof"]["condition"]), (&"CONVERGED".into(), &"grashof".into()));
+        assert!(ok["transmission_angle"].as_f64().is_some_and(|m| m > 0.0 && m <= std::f64::consts::FRAC_PI_2));
         assert_eq!(r["limits"]["full_rotation"], false);
         assert_eq!(r["limits"]["dead_points"].as_array().unwrap().len(), 2);
         let bad = ask(&mut s, r#"{"op": "fourbar", "r": [4, 3, -2, 1.5], "theta2": 0, "p": 1, "delta": 0}"#);

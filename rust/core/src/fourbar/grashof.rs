@@ -14,6 +14,18 @@ pub enum GrashofClass {
     NonGrashof,
 }
 
+impl GrashofClass {
+    /// The condition's name as every binding spells it (Python's `Grashof.condition`, the
+    /// page's JSON): `"grashof"`, `"change-point"` or `"non-grashof"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            GrashofClass::Grashof => "grashof",
+            GrashofClass::ChangePoint => "change-point",
+            GrashofClass::NonGrashof => "non-grashof",
+        }
+    }
+}
+
 /// Barker's fourteen classes. Links: 1 ground, 2 input (crank), 3 coupler, 4 output.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Barker {
