@@ -1,5 +1,6 @@
 """Angle conventions shared by the API and the NumPy reference: one turn (TAU), the
-default crank angles of a sweep, and the wrap to (-pi, pi] that every solver applies."""
+default crank angles of a sweep, the wrap to (-pi, pi] that every solver applies, and
+radians as people read them (degrees in (-180, 180], or unwrapped for a continuous curve)."""
 
 from __future__ import annotations
 
@@ -25,3 +26,31 @@ def wrap(a: float) -> float:
         r += TAU
     r -= math.pi
     return math.pi if r <= -math.pi else r
+
+
+def unwrap_deg(angles: object) -> np.ndarray:
+    """Angles (radians) to degrees, unwrapped over the finite entries so a curve is
+    continuous; NaN entries (unsolved points) stay NaN."""
+    a = np.asarray(angles, dtype=np.float64)
+    out = np.full(a.shape, np.nan)
+    ok = np.isfinite(a)
+    out[ok] = np.degrees(np.unwrap(a[ok]))
+    return out
+
+
+def wrap_deg(angles: object) -> np.ndarray:
+    """Angles (radians, any turn) to degrees in (-180, 180]; NaN stays NaN."""
+    d = np.degrees(np.asarray(angles, dtype=np.float64))
+    w = 180.0 - np.remainder(180.0 - d, 360.0)
+    # remainder of an exact multiple is 0: 180 stays 180, -180 becomes 180
+    return np.where(np.isfinite(w), w, np.nan)
+
+
+def wrapped(angle: float) -> float:
+    """One angle (radians) in degrees in (-180, 180]."""
+    return float(wrap_deg(angle)) if math.isfinite(angle) else math.nan
+
+
+def rpm(omega: float) -> float:
+    """rad/s to rev/min."""
+    return omega * 60.0 / math.tau

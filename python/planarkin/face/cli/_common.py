@@ -24,6 +24,10 @@ from ...scene import builtin as scenes
 #: (papers, laser cutters), PNG at ``--dpi``.
 FORMATS = ("png", "svg", "pdf")
 
+#: The data files ``analyze`` writes, whichever its variant (four-bar or SCENE).
+RESULTS_CSV = "results.csv"
+SUMMARY_JSON = "summary.json"
+
 #: Most input angles a command sweeps: every one becomes a CSV row and plotted points.
 MAX_POINTS = 10_000_000
 
