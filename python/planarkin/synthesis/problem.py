@@ -261,7 +261,7 @@ class Evaluation:
 class Residuals(NamedTuple):
     """A design's objective and constraints as vectors (``Problem.residuals``), every
     constraint >= 0 where it holds, on every point of the dense grid (the optimizer
-    hands SLSQP the critical ones: :func:`~planarkin.synthesis.driver.run_start`)."""
+    hands SLSQP the critical ones: :func:`~planarkin.synthesis.start.run_start`)."""
 
     #: dimensionless residuals at the design points (per objective)
     r: np.ndarray

@@ -371,7 +371,7 @@ def _polish(
     s2 = _p95(truth.scene(x), grid)
     checks = {
         "one_branch": bool(v2["sweep_converged"] and v2["det_sign_changes"] == 0),
-        "feasible": driver._feasible(truth, x),
+        "feasible": driver.feasible(truth, x),
         "within_budget": bool(v2["true_max_error_deg_1001"] <= budget),
         "p95_lower": bool(s2 < (1 - ROBUST_GAIN) * s),
     }
