@@ -37,7 +37,24 @@ def sample_starts(
     grid angle on one branch, ranked by the RMS residual at the design points (ties in
     the order drawn). Screening ends early at ``deadline`` (``time.time()`` seconds);
     ``progress(n)`` is told every :data:`SCREEN_CHUNK` candidates screened."""
-    return _screen(problem, n_samples, n_keep, rng, sampler, deadline, progress)[0]
+    lite, grid = _lite(problem)
+    found: list[tuple[float, np.ndarray]] = []
+    done = told = 0
+    for _ in range(n_samples):
+        if deadline is not None and time.time() >= deadline:
+            break
+        x = _draw(problem, rng, sampler)
+        v = _rms(lite, grid, x)
+        if v is not None:
+            found.append((v, x))
+        done += 1
+        if progress is not None and done - told >= SCREEN_CHUNK:
+            progress(done - told)
+            told = done
+    if progress is not None and done > told:
+        progress(done - told)
+    found.sort(key=lambda t: t[0])
+    return found[:n_keep]
 
 
 def _coarse(problem: Problem) -> Problem:
@@ -125,32 +142,3 @@ def screen_on(
             progress(n)
     found = sorted((v, i) for i, v in enumerate(rms) if v is not None)
     return [(v, xs[i]) for v, i in found[:n_keep]], done
-
-
-def _screen(
-    problem: Problem,
-    n_samples: int,
-    n_keep: int,
-    rng: np.random.Generator,
-    sampler: Callable[[np.random.Generator], np.ndarray] | None,
-    deadline: float | None,
-    progress: Callable[[int], object] | None,
-) -> tuple[list[tuple[float, np.ndarray]], int]:
-    lite, grid = _lite(problem)
-    found: list[tuple[float, np.ndarray]] = []
-    done = told = 0
-    for _ in range(n_samples):
-        if deadline is not None and time.time() >= deadline:
-            break
-        x = _draw(problem, rng, sampler)
-        v = _rms(lite, grid, x)
-        if v is not None:
-            found.append((v, x))
-        done += 1
-        if progress is not None and done - told >= SCREEN_CHUNK:
-            progress(done - told)
-            told = done
-    if progress is not None and done > told:
-        progress(done - told)
-    found.sort(key=lambda t: t[0])
-    return found[:n_keep], done

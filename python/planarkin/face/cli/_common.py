@@ -275,7 +275,10 @@ def load_scene(spec: str) -> Scene:
 
 
 def jsonable(x: object) -> object:
-    """NaN/inf -> None, NumPy scalars -> Python, recursively (strict JSON)."""
+    """NaN/inf -> None, NumPy arrays -> lists, NumPy scalars -> Python, recursively
+    (strict JSON)."""
+    if isinstance(x, np.ndarray):
+        x = x.tolist()
     if isinstance(x, dict):
         return {k: jsonable(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):

@@ -601,7 +601,7 @@ def _finish(
         ).savefig(path, dpi=120)
         paths.append(path)
     if args.json:
-        print(json_text(_plain(report)))
+        print(json_text(report))
     elif res.stopped != driver.INTERRUPTED:
         print(
             f"planarkin synthesize ackermann: true max error {v[key]:.3g} deg (1001 points), "
@@ -656,7 +656,7 @@ def write(
     out.mkdir(parents=True, exist_ok=True)
     paths = [scene.save(out / DESIGN_JSON)]
     p = out / REPORT_JSON
-    p.write_text(json_text(_plain(report)) + "\n", encoding="utf-8")
+    p.write_text(json_text(report) + "\n", encoding="utf-8")
     paths.append(p)
     if figures:
         for name, make in FIGURES.items():
@@ -664,14 +664,3 @@ def write(
             make(problem, x).savefig(path, dpi=120)
             paths.append(path)
     return paths
-
-
-def _plain(o: object) -> object:
-    # arrays as lists; json_text then writes NaN and infinities as null (strict JSON)
-    if isinstance(o, dict):
-        return {k: _plain(v) for k, v in o.items()}
-    if isinstance(o, (list, tuple)):
-        return [_plain(v) for v in o]
-    if isinstance(o, np.ndarray):
-        return o.tolist()
-    return o
