@@ -69,6 +69,14 @@ class InputAxis:
         """The input at the drawn pose."""
         return scene.input_angle
 
+    def sweep(self, scene: Scene, n: int, step_deg: float) -> np.ndarray:
+        """``n`` inputs of a sweep: one turn from the drawn angle in ``step_deg`` steps."""
+        return scene.input_angle + np.arange(n) * math.radians(step_deg)
+
+    def rate(self, rpm: float) -> float:
+        """The input's rate (omega, rad/s) when it is driven at ``rpm``."""
+        return rpm * math.tau / 60
+
     def head(self, scene: Scene, at: float) -> dict[str, Any]:
         """The circuits report's entries naming the input ``at``."""
         return {"theta_deg": self.value(at)}
@@ -116,6 +124,15 @@ class LinearAxis(InputAxis):
 
     def drawn(self, scene: Scene) -> float:
         return 0.0
+
+    def sweep(self, scene: Scene, n: int, step_deg: float) -> np.ndarray:
+        """``n`` displacements across the stroke, both dead points included."""
+        lo, hi = scene.stroke()
+        return np.linspace(lo, hi, n)
+
+    def rate(self, rpm: float) -> float:
+        # driven at 1 length unit per second (rpm is for cranks)
+        return 1.0
 
     def head(self, scene: Scene, at: float) -> dict[str, Any]:
         return {"input_kind": self.kind, "units": scene.units, "theta": at}

@@ -19,6 +19,7 @@ from ..._args import MODES, PREDICTORS
 from ...fourbar import FourBar
 from ...scene import Scene
 from ...scene import builtin as scenes
+from ...scene.report import input_axis
 
 #: The file formats every figure can be written in (``--format``): SVG and PDF are vector
 #: (papers, laser cutters), PNG at ``--dpi``.
@@ -237,10 +238,7 @@ def scene_angles(scene: Scene, step_deg: float) -> np.ndarray:
     linear input, as many displacements across its stroke (both dead points included)."""
     # its own formula (not crank_angles + the drawn angle): scene outputs keep their digits
     n = angle_count(step_deg, "input angles")
-    if scene.input_kind == "displacement":
-        lo, hi = scene.stroke()
-        return np.linspace(lo, hi, n)
-    return scene.input_angle + np.arange(n) * math.radians(step_deg)
+    return input_axis(scene.input_kind, scene.units).sweep(scene, n, step_deg)
 
 
 def fourbar_setup(args: argparse.Namespace) -> tuple[FourBar, np.ndarray]:

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import argparse
 import functools
-import math
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -113,7 +112,7 @@ def run(args: argparse.Namespace) -> int:
     finite("--rpm", args.rpm)
     finite("--dpi", args.dpi, positive=True)
     # a linear input is driven at 1 length unit per second (--rpm is for cranks)
-    omega = args.rpm * math.tau / 60 if sc.input_kind == "angle" else 1.0
+    omega = report.input_axis(sc.input_kind, sc.units).rate(args.rpm)
     figures = {} if args.no_figures else FIGURES
     sweep = functools.partial(
         sc.sweep, theta, tol=args.tol, max_iter=args.max_iter, omega=omega,
