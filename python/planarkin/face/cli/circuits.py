@@ -80,39 +80,26 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     return c
 
 
-class _Words:
-    """How the table speaks of one kind of input (an angle, or a linear input's
-    displacement from the drawn pose in the scene's unit)."""
+class _AngleWords:
+    """How the table speaks of an angle input (degrees, wrapped)."""
+
+    unit = "deg"
+    #: the progress bar's unit while the reachable inputs are searched
+    step = "angle"
+    #: the format of the reachable ranges' ends
+    ends = ".1f"
 
     def __init__(self, sc: Scene) -> None:
-        self.angle = sc.input_kind == "angle"
-        self.unit = "deg" if self.angle else sc.units or "length units"
-        #: the progress bar's unit while the reachable inputs are searched
-        self.step = "angle" if self.angle else "value"
+        self.reach_what = f"theta in (deg, {REACH_STEP_DEG:g} deg grid)"
 
     def at(self, v: float) -> str:
-        return f"theta = {v:.3f} deg" if self.angle else f"input = {v:.6g} {self.unit}"
+        return f"theta = {v:.3f} deg"
 
     def head(self, v: float) -> str:
-        return self.at(v) + ("" if self.angle else " (a displacement from the drawn pose)")
-
-    def reach(self, reach: list[tuple[float, float]] | None) -> str:
-        f = ".1f" if self.angle else ".6g"
-        where = "; ".join(f"{a:{f}} to {b:{f}}" for a, b in reach or []) or "none found"
-        what = (
-            f"theta in (deg, {REACH_STEP_DEG:g} deg grid)"
-            if self.angle
-            else (f"inputs in ({self.unit})")
-        )
-        return f"it has assemblies for {what}: {where}"
+        return self.at(v)
 
     def motion(self, r: dict) -> str:
         """A circuit's motion and turning points."""
-        if not self.angle:
-            lo, hi = r["input_range"]
-            tps = ", ".join(f"{v:.6g}" for v in r["turning_points"]) or "none"
-            return (f"input moves between {lo:.6g} and {hi:.6g} {self.unit}; "
-                    f"turning points ({self.unit}): {tps}")  # fmt: skip
         lo, hi = r["input_range_deg"]
         kind = (
             "input turns fully"
@@ -125,12 +112,40 @@ class _Words:
         return f"{kind}; turning points (deg): {tps}"
 
 
+class _LinearWords(_AngleWords):
+    """How the table speaks of a linear input: a displacement from the drawn pose in the
+    scene's length unit."""
+
+    step = "value"
+    ends = ".6g"
+
+    def __init__(self, sc: Scene) -> None:
+        self.unit = sc.units or "length units"
+        self.reach_what = f"inputs in ({self.unit})"
+
+    def at(self, v: float) -> str:
+        return f"input = {v:.6g} {self.unit}"
+
+    def head(self, v: float) -> str:
+        return self.at(v) + " (a displacement from the drawn pose)"
+
+    def motion(self, r: dict) -> str:
+        lo, hi = r["input_range"]
+        tps = ", ".join(f"{v:.6g}" for v in r["turning_points"]) or "none"
+        return (f"input moves between {lo:.6g} and {hi:.6g} {self.unit}; "
+                f"turning points ({self.unit}): {tps}")  # fmt: skip
+
+
+#: The table's words for each kind of input.
+_WORDS = {"angle": _AngleWords, "displacement": _LinearWords}
+
+
 def run(args: argparse.Namespace) -> int:
     """``planarkin circuits SCENE``: every assembly at an input, grouped by circuit. The
     input is an angle, or for a scene driven by a slot or prismatic pair a displacement
     from the drawn pose in the scene's length unit (no wrapping)."""
     sc = load_scene(args.scene)
-    axis, words = input_axis(sc.input_kind, sc.units), _Words(sc)
+    axis, words = input_axis(sc.input_kind, sc.units), _WORDS[sc.input_kind](sc)
     at = axis.drawn(sc) if args.theta is None else axis.from_user(args.theta)
     if not math.isfinite(at):
         raise ValueError(f"--theta must be finite, got {args.theta}")
@@ -160,8 +175,10 @@ def run(args: argparse.Namespace) -> int:
     shown = axis.value(at)
     print(f"planarkin circuits: {sc.name or args.scene} at {words.head(shown)}")
     if not found:
+        f = words.ends
+        where = "; ".join(f"{a:{f}} to {b:{f}}" for a, b in reach or []) or "none found"
         print(f"  no assembly at {words.at(shown)}: the linkage cannot be put together "
-              f"there; {words.reach(reach)}")  # fmt: skip
+              f"there; it has assemblies for {words.reach_what}: {where}")  # fmt: skip
     else:
         n = summary["assemblies"]
         print(f"  {plural(n, 'real assembly', 'real assemblies')} on "
