@@ -11,8 +11,9 @@ import pytest
 from conftest import record
 from planarkin.face.cli import main
 from planarkin.synthesis import ackermann
-from planarkin.synthesis.driver import FD_STEP, run_start, sample_starts
 from planarkin.synthesis.exact import exact_rows, extrema, fd_rows, picks, subgrid
+from planarkin.synthesis.screening import sample_starts
+from planarkin.synthesis.start import FD_STEP, run_start
 
 ROWS = "synthesis: the residuals' derivatives at one steering design (16 coordinates)"
 START = "synthesis: one SLSQP start of the steering problem (least squares, 60 iterations)"

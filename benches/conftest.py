@@ -1,7 +1,7 @@
 """Shared fixtures for the benchmarks (``pytest benches/ --benchmark-enable``).
 
 Every benchmark records ``extra_info["label"]`` (the row name in BENCHMARKS.md) and
-``extra_info["impl"]`` (a stable key that ``benches/report.py`` uses for ratios and
+``extra_info["impl"]`` (a stable key that ``benches/report_targets.py`` uses for ratios and
 targets). Correctness is checked outside the timed call, so a fast wrong answer fails.
 """
 

@@ -11,7 +11,7 @@ import planarkin as pk
 import pytest
 from _support import texts_outside
 from planarkin.face import animate, cli
-from planarkin.face.cli import analyze
+from planarkin.face.cli import analyze_fourbar
 from planarkin.face.figures import fourbar as plot
 from planarkin.fourbar import analysis
 from truth import angdiff, mp_solve, mp_toggles
@@ -130,10 +130,10 @@ def cli_figures(links, mode="open", newton_at=45.0):
     args = cli.build_parser().parse_args(
         ["analyze", "--links", *map(str, links), "--mode", mode, "--newton-at", str(newton_at)]
     )
-    fb, theta2 = analyze._setup(args)
+    fb, theta2 = analyze_fourbar.setup(args)
     sweep = fb.sweep(theta2, mode=mode, omega2=args.rpm * math.tau / 60, alpha2=0.0)
-    res = analyze.analyze(fb, sweep, args)
-    return res, analyze._figures(res, args)
+    res = analyze_fourbar.analyze(fb, sweep, args)
+    return res, analyze_fourbar.figures(res, args)
 
 
 # drawing a case's eight figures takes about 2 s: the inner loop (-m "not slow") keeps the

@@ -11,7 +11,8 @@ import numpy as np
 import planarkin as pk
 import pytest
 from planarkin.face import cli, progress
-from planarkin.face.cli import analyze, circuits
+from planarkin.face.cli import circuits
+from planarkin.scene import report
 
 ANIMATE = ["animate", "fourbar", "--frames", "3", "--dpi", "20"]
 
@@ -85,12 +86,12 @@ def test_scene_sweep_carries_omega_and_accelerations_into_the_csv():
     sc = pk.scenes.load("fourbar")
     sw = sc.sweep(outputs="all", omega=2.0)
     assert sw.omega == 2.0 and sw.accelerations is not None
-    cols = analyze.scene_columns(sw, "mm")
+    cols = report.columns(sw, "mm")
     assert "B_ax [mm/s^2]" in cols and "B_vx [mm/s]" in cols and "B_x [mm]" in cols
     assert "rocker_alpha [rad/s^2]" in cols and "rocker_omega [rad/s]" in cols
     still = sc.sweep(outputs="all")
     assert still.omega is None and still.accelerations is None
-    assert "B_ax [mm/s^2]" not in analyze.scene_columns(still, "mm")
+    assert "B_ax [mm/s^2]" not in report.columns(still, "mm")
 
 
 def test_one_step_is_singular():

@@ -87,8 +87,8 @@ def test_tolerance_aware_objective_is_the_linearized_p95():
 def test_robust_start_returns_a_verified_design_no_worse_than_its_start():
     import math
 
-    from planarkin.synthesis.driver import _feasible, figures
     from planarkin.synthesis.robust import p95_objective, robust_start
+    from planarkin.synthesis.start import feasible, figures
 
     p = ackermann.problem()
     x0 = p.space.x_of(_steering().points)
@@ -97,5 +97,5 @@ def test_robust_start_returns_a_verified_design_no_worse_than_its_start():
     x, info = robust_start(p, x0, 1e-4, budget / deg, maxiter=15)
     f = p95_objective(p, 1e-4)
     assert f(x) <= f(x0) and info["p95_end"] <= info["p95_start"]
-    assert _feasible(p, x)
+    assert feasible(p, x)
     assert figures(p, x)["max_error"] * deg <= budget * (1 + 1e-6)

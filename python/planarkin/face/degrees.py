@@ -1,6 +1,7 @@
 """Angles as people read them: radians to degrees, in (-180, 180] wherever a user reads an
 angle (tables, JSON, CSV, axes), or unwrapped so a curve through a full turn stays
-continuous (the API keeps radians wrapped to (-pi, pi])."""
+continuous (the API keeps radians wrapped to (-pi, pi]); the conversions themselves are the
+API's (``planarkin._angles``), the axis helpers the face's own."""
 
 from __future__ import annotations
 
@@ -8,33 +9,12 @@ import math
 
 import numpy as np
 
+from .._angles import unwrap_deg, wrap_deg, wrapped
+
 __all__ = ["AXIS_TICKS", "on_wrapped_axis", "unwrap_deg", "wrap_deg", "wrapped"]
 
 #: Ticks of an input-angle axis in (-180, 180].
 AXIS_TICKS = np.arange(-180, 181, 60)
-
-
-def unwrap_deg(angles: object) -> np.ndarray:
-    """Angles (radians) to degrees, unwrapped over the finite entries so a curve is
-    continuous; NaN entries (unsolved points) stay NaN."""
-    a = np.asarray(angles, dtype=np.float64)
-    out = np.full(a.shape, np.nan)
-    ok = np.isfinite(a)
-    out[ok] = np.degrees(np.unwrap(a[ok]))
-    return out
-
-
-def wrap_deg(angles: object) -> np.ndarray:
-    """Angles (radians, any turn) to degrees in (-180, 180]; NaN stays NaN."""
-    d = np.degrees(np.asarray(angles, dtype=np.float64))
-    w = 180.0 - np.remainder(180.0 - d, 360.0)
-    # remainder of an exact multiple is 0: 180 stays 180, -180 becomes 180
-    return np.where(np.isfinite(w), w, np.nan)
-
-
-def wrapped(angle: float) -> float:
-    """One angle (radians) in degrees in (-180, 180]."""
-    return float(wrap_deg(angle)) if math.isfinite(angle) else math.nan
 
 
 def on_wrapped_axis(theta: object, *ys: object) -> tuple[np.ndarray, ...]:

@@ -19,16 +19,19 @@ ones; times cover all of the linkages.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
+from typing import Any
 
 import numpy as np
 
 from .._angles import DEFAULT_THETA2, TAU
 from .._status import Status
 from ._batch import closed_form_batch, sweep_batch
+from ._results import BatchSweep
 
 #: Tolerances swept by default: 1e-3 down to 1e-15.
 DEFAULT_TOLS = tuple(10.0**-k for k in range(3, 16))
@@ -316,58 +319,40 @@ def tradeoff(
     exact = truth(links[:k], t2, mode)
     points = m * n
 
-    rows: list[Row] = []
+    def closed_form(out: tuple[np.ndarray, np.ndarray]) -> tuple:
+        t3, t4 = out
+        return t3, t4, 0.0, 0.0, int(np.count_nonzero(np.isnan(t3)))
+
+    def newton(b: BatchSweep) -> tuple:
+        failed = int(np.count_nonzero(b.status != Status.CONVERGED))
+        return b.theta3, b.theta4, float(b.nit.mean()), float(b.nit[0].mean()), failed
+
+    # one row per closed-form method, one per tolerance of each Newton method: the call
+    # that is timed (the batch alone), and what the row reads from its result
+    cases: list[tuple[str, str, float | None, Callable[[], Any], Callable[[Any], tuple]]] = []
     for method in methods:
         label, predictor = METHODS[method]
         if predictor is None:
-            t3, t4 = closed_form_batch(links, t2, mode, threads=1)
-            secs = _best_time(lambda: closed_form_batch(links, t2, mode, threads=1), repeat)
-            e = _errors(t3, t4, exact)
-            failed = int(np.count_nonzero(np.isnan(t3)))
-            rows.append(
-                Row(
-                    method,
-                    label,
-                    None,
-                    0.0,
-                    0.0,
-                    secs / points * 1e9,
-                    _max(e),
-                    _max(e[0]),
-                    _median(e),
-                    failed,
-                )
-            )
-            if progress is not None:
-                progress()
+            cf = functools.partial(closed_form_batch, links, t2, mode, threads=1)
+            cases.append((method, label, None, cf, closed_form))
             continue
-        for tol in tols:
-
-            def run(tol=tol, predictor=predictor):
-                return sweep_batch(
-                    links, t2, mode=mode, tol=tol, max_iter=max_iter, predictor=predictor, threads=1
-                )
-
-            b = run()
-            secs = _best_time(run, repeat)
-            e = _errors(b.theta3, b.theta4, exact)
-            failed = int(np.count_nonzero(b.status != Status.CONVERGED))
-            rows.append(
-                Row(
-                    method,
-                    label,
-                    tol,
-                    float(b.nit.mean()),
-                    float(b.nit[0].mean()),
-                    secs / points * 1e9,
-                    _max(e),
-                    _max(e[0]),
-                    _median(e),
-                    failed,
-                )
-            )
-            if progress is not None:
-                progress()
+        for t in tols:
+            nr = functools.partial(
+                sweep_batch, links, t2, mode=mode, tol=t, max_iter=max_iter,
+                predictor=predictor, threads=1,
+            )  # fmt: skip
+            cases.append((method, label, t, nr, newton))
+    rows: list[Row] = []
+    for method, label, tol, call, read in cases:
+        t3, t4, nit_mean, nit_seed, failed = read(call())
+        secs = _best_time(call, repeat)
+        e = _errors(t3, t4, exact)
+        ns = secs / points * 1e9
+        rows.append(
+            Row(method, label, tol, nit_mean, nit_seed, ns, _max(e), _max(e[0]), _median(e), failed)
+        )
+        if progress is not None:
+            progress()
     rows = _mark_pareto(rows)
     return TradeoffResult(rows, mode, m, n, k, max_iter, repeat, time.perf_counter() - t_start)
 

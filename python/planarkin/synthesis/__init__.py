@@ -10,16 +10,9 @@ solver), verification, and the Ackermann steering example.
 """
 
 from . import ackermann
-from .driver import (
-    StartResult,
-    SynthesisInterrupted,
-    SynthesisResult,
-    process_pool,
-    run_start,
-    stop_pool,
-    synthesize,
-)
+from .driver import synthesize
 from .generated import SIGN_COMBINATIONS, Generated, SeedPlan, half_angle
+from .pool import process_pool, stop_pool
 from .problem import (
     OBJECTIVES,
     DesignSpace,
@@ -29,8 +22,10 @@ from .problem import (
     Problem,
     Residuals,
 )
+from .results import StartResult, SynthesisInterrupted, SynthesisResult
 from .robust import linearized_tolerance, robust_start
 from .space import SceneSpace
+from .start import run_start
 from .topology import (
     STEERING_KNUCKLE,
     STEERING_LEVER,

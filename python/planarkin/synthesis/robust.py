@@ -17,6 +17,7 @@ import numpy as np
 from ..scene import Scene
 from .exact import subgrid
 from .problem import FunctionTarget, Problem, output_from_drawn
+from .start import FD_STEP, Cache, resolve_gradient
 
 
 def output_jacobian(sc: Scene, phi_in: np.ndarray, tol: float = 1e-12) -> tuple[Any, np.ndarray]:
@@ -138,12 +139,10 @@ def robust_start(
     when none improved on it) and scipy's words; the caller verifies it."""
     from scipy.optimize import minimize
 
-    from .driver import FD_STEP, _Cache, resolve_gradient
-
     f = p95_objective(problem, sigma, samples, seed, measure=measure)
     box = max(float(np.max(problem.upper - problem.lower)), 1e-300)
     h = FD_STEP * 10 * box
-    cache = _Cache(problem, problem.grid(), FD_STEP * box, resolve_gradient(problem, "auto"))
+    cache = Cache(problem, problem.grid(), FD_STEP * box, resolve_gradient(problem, "auto"))
     cache.fix_dense(x0)
     lo, hi = problem.lower, problem.upper
     f0 = f(x0)

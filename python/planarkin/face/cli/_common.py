@@ -19,10 +19,15 @@ from ..._args import MODES, PREDICTORS
 from ...fourbar import FourBar
 from ...scene import Scene
 from ...scene import builtin as scenes
+from ...scene.report import input_axis
 
 #: The file formats every figure can be written in (``--format``): SVG and PDF are vector
 #: (papers, laser cutters), PNG at ``--dpi``.
 FORMATS = ("png", "svg", "pdf")
+
+#: The data files ``analyze`` writes, whichever its variant (four-bar or SCENE).
+RESULTS_CSV = "results.csv"
+SUMMARY_JSON = "summary.json"
 
 #: Most input angles a command sweeps: every one becomes a CSV row and plotted points.
 MAX_POINTS = 10_000_000
@@ -233,10 +238,7 @@ def scene_angles(scene: Scene, step_deg: float) -> np.ndarray:
     linear input, as many displacements across its stroke (both dead points included)."""
     # its own formula (not crank_angles + the drawn angle): scene outputs keep their digits
     n = angle_count(step_deg, "input angles")
-    if scene.input_kind == "displacement":
-        lo, hi = scene.stroke()
-        return np.linspace(lo, hi, n)
-    return scene.input_angle + np.arange(n) * math.radians(step_deg)
+    return input_axis(scene.input_kind, scene.units).sweep(scene, n, step_deg)
 
 
 def fourbar_setup(args: argparse.Namespace) -> tuple[FourBar, np.ndarray]:
@@ -271,7 +273,10 @@ def load_scene(spec: str) -> Scene:
 
 
 def jsonable(x: object) -> object:
-    """NaN/inf -> None, NumPy scalars -> Python, recursively (strict JSON)."""
+    """NaN/inf -> None, NumPy arrays -> lists, NumPy scalars -> Python, recursively
+    (strict JSON)."""
+    if isinstance(x, np.ndarray):
+        x = x.tolist()
     if isinstance(x, dict):
         return {k: jsonable(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):

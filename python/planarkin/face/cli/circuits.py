@@ -10,13 +10,15 @@ import math
 import textwrap
 import time
 from pathlib import Path
-from typing import Any
 
-import numpy as np
-
-from ..._results import true_runs
-from ...scene import Circuit, Scene
-from ..degrees import wrapped
+from ...scene import Scene
+from ...scene.report import (
+    REACH_STEP_DEG,
+    InputAxis,
+    circuits_summary,
+    input_axis,
+    reachable,
+)
 from ..figures.circuits import circuits
 from ..progress import bar
 from ._common import (
@@ -32,8 +34,7 @@ from ._common import (
 
 CIRCUITS_JSON = "circuits.json"
 CIRCUITS_PNG = "circuits.png"
-#: Input angles tried for the reachable ranges when --theta is out of reach (5 deg apart).
-REACH_STEP_DEG = 5.0
+__all__ = ["CIRCUITS_JSON", "CIRCUITS_PNG", "GLOSSARY", "REACH_STEP_DEG", "add_parser", "run"]
 
 #: What the words of the table mean (``--help``, the table and the README say the same).
 GLOSSARY = (
@@ -79,106 +80,26 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     return c
 
 
-def reachable(sc: Scene, *, quiet: bool = False) -> list[tuple[float, float]]:
-    """The input ranges (degrees, in (-180, 180]) where ``sc`` has some assembly, on a
-    grid of :data:`REACH_STEP_DEG` (each range from its first to its last grid angle)."""
-    grid = np.arange(-180.0 + REACH_STEP_DEG, 180.0 + 1e-9, REACH_STEP_DEG)
-    has = np.zeros(len(grid), dtype=bool)
-    with bar(len(grid), "circuits: reachable inputs", quiet=quiet, unit="angle") as b:
-        for i, d in enumerate(grid):
-            has[i] = len(sc.assemblies(math.radians(float(d)))) > 0
-            b.update()
-    runs = true_runs(has)
-    # a range through 180 deg is one range: from its start to its end past 180
-    if len(runs) > 1 and runs[0][0] == 0 and runs[-1][1] == len(grid):
-        (a, b_), *mid, (c, _) = runs
-        return [(float(grid[i]), float(grid[j - 1])) for i, j in mid] + [
-            (float(grid[c]), float(grid[b_ - 1]) + 360.0)
-        ]
-    return [(float(grid[i]), float(grid[j - 1])) for i, j in runs]
+class _AngleWords:
+    """How the table speaks of an angle input (degrees, wrapped)."""
 
+    unit = "deg"
+    #: the progress bar's unit while the reachable inputs are searched
+    step = "angle"
+    #: the format of the reachable ranges' ends
+    ends = ".1f"
 
-def reachable_linear(sc: Scene, *, quiet: bool = False) -> list[tuple[float, float]]:
-    """A linear input's ranges (scene units, from the drawn pose) where ``sc`` has some
-    assembly, on a grid of 801 values over four sizes of the drawing each way."""
-    pts = np.array(list(sc.points.values()), dtype=float)
-    size = float(np.ptp(pts, axis=0).max())
-    grid = np.linspace(-4.0 * size, 4.0 * size, 801)
-    has = np.zeros(len(grid), dtype=bool)
-    with bar(len(grid), "circuits: reachable inputs", quiet=quiet, unit="value") as b:
-        for i, s in enumerate(grid):
-            has[i] = len(sc.assemblies(float(s))) > 0
-            b.update()
-    return [(float(grid[i]), float(grid[j - 1])) for i, j in true_runs(has)]
+    def __init__(self, sc: Scene) -> None:
+        self.reach_what = f"theta in (deg, {REACH_STEP_DEG:g} deg grid)"
 
+    def at(self, v: float) -> str:
+        return f"theta = {v:.3f} deg"
 
-def run(args: argparse.Namespace) -> int:
-    """``planarkin circuits SCENE``: every assembly at an input angle, grouped by circuit."""
-    sc = load_scene(args.scene)
-    if sc.input_kind == "displacement":
-        return run_linear(sc, args)
-    theta = sc.input_angle if args.theta is None else math.radians(args.theta)
-    if not math.isfinite(theta):
-        raise ValueError(f"--theta must be finite, got {args.theta}")
-    finite("--dpi", args.dpi, positive=True)
-    figure = not args.no_figures
-    with bar(2 + figure, "circuits", quiet=args.quiet) as b:
-        t0 = time.perf_counter()
-        found = sc.circuits(theta)
-        wall = time.perf_counter() - t0
-        b.update()
-        counts = sc.assemblies(theta).complex_counts
-        b.update()
-        reach = None if found else reachable(sc, quiet=args.quiet)
-        rows: list[dict[str, Any]] = []
-        for k, c in enumerate(found):
-            lo, hi = (math.degrees(v) for v in shown_range(c, theta))
-            rows.append({
-                "circuit": k + 1,
-                "assemblies": [{"label": a.label, "det": a.det} for a in c.assemblies],
-                "full_turn": c.full_turn,
-                "net_turn_deg": math.degrees(c.net_turn),
-                "turning_points_deg": [wrapped(v) for v in c.turning_points],
-                "input_range_deg": [lo, hi],
-                "closed": c.trace.closed,
-                "trace_points": len(c.trace),
-            })  # fmt: skip
-        summary = {
-            "scene": sc.name,
-            "theta_deg": wrapped(theta),
-            "assemblies": sum(len(c.assemblies) for c in found),
-            "group_complex_solutions": counts,
-            "circuits": rows,
-            "reachable_deg": None if reach is None else [list(r) for r in reach],
-            "glossary": GLOSSARY,
-            "wall_time_s": wall,
-        }
-        out: Path = args.out
-        out.mkdir(parents=True, exist_ok=True)
-        (out / CIRCUITS_JSON).write_text(json_text(summary) + "\n", encoding="utf-8")
-        files = [CIRCUITS_JSON]
-        if figure:
-            name = figure_file(CIRCUITS_PNG, args.format)
-            circuits(sc, found, theta, reachable=reach).savefig(out / name, dpi=args.dpi)
-            files.append(name)
-            b.update()
-    if args.json:
-        print(json_text(summary))
-        return 0
-    at = summary["theta_deg"]
-    print(f"planarkin circuits: {sc.name or args.scene} at theta = {at:.3f} deg")
-    if not found:
-        where = "; ".join(f"{a:.1f} to {b:.1f}" for a, b in reach or []) or "none found"
-        print(f"  no assembly at theta = {at:.3f} deg: the linkage cannot be put together "
-              f"there; it has assemblies for theta in (deg, {REACH_STEP_DEG:g} deg grid): "
-              f"{where}")  # fmt: skip
-    else:
-        n = sum(len(c.assemblies) for c in found)
-        print(f"  {plural(n, 'real assembly', 'real assemblies')} on "
-              f"{plural(len(rows), 'circuit')}"
-              + (f"; complex solutions of its groups: {counts}" if counts else ""))  # fmt: skip
-    for r in rows:
-        labels = ", ".join(f"{a['label']} (det {a['det']:+.3g})" for a in r["assemblies"])
+    def head(self, v: float) -> str:
+        return self.at(v)
+
+    def motion(self, r: dict) -> str:
+        """A circuit's motion and turning points."""
         lo, hi = r["input_range_deg"]
         kind = (
             "input turns fully"
@@ -188,93 +109,90 @@ def run(args: argparse.Namespace) -> int:
         if not r["full_turn"] and (hi > 180 or lo <= -180):
             kind += " (a continuous range through 180 deg)"
         tps = ", ".join(f"{v:.4f}" for v in r["turning_points_deg"]) or "none"
-        print(f"  circuit {r['circuit']}: {labels}; {kind}; turning points (deg): {tps}")
-    if found:
-        print("  " + "\n  ".join(textwrap.wrap(GLOSSARY, 88)))
-    print(f"  {1e3 * wall:.1f} ms; wrote {', '.join(str(out / f) for f in files)}")
-    return 0
+        return f"{kind}; turning points (deg): {tps}"
 
 
-def shown_range(c: Circuit, theta: float) -> tuple[float, float]:
-    """A circuit's input range (radians, continuous) in the turn that holds ``theta``."""
-    shift = math.tau * round((theta - math.radians(wrapped(theta))) / math.tau)
-    return c.range[0] - shift, c.range[1] - shift
+class _LinearWords(_AngleWords):
+    """How the table speaks of a linear input: a displacement from the drawn pose in the
+    scene's length unit."""
+
+    step = "value"
+    ends = ".6g"
+
+    def __init__(self, sc: Scene) -> None:
+        self.unit = sc.units or "length units"
+        self.reach_what = f"inputs in ({self.unit})"
+
+    def at(self, v: float) -> str:
+        return f"input = {v:.6g} {self.unit}"
+
+    def head(self, v: float) -> str:
+        return self.at(v) + " (a displacement from the drawn pose)"
+
+    def motion(self, r: dict) -> str:
+        lo, hi = r["input_range"]
+        tps = ", ".join(f"{v:.6g}" for v in r["turning_points"]) or "none"
+        return (f"input moves between {lo:.6g} and {hi:.6g} {self.unit}; "
+                f"turning points ({self.unit}): {tps}")  # fmt: skip
 
 
-def run_linear(sc: Scene, args: argparse.Namespace) -> int:
-    """``planarkin circuits`` for a scene driven by a slot or prismatic pair: the input is a
-    displacement from the drawn pose, in the scene's length unit (no wrapping)."""
-    unit = sc.units or "length units"
-    s = 0.0 if args.theta is None else float(args.theta)
-    if not math.isfinite(s):
+#: The table's words for each kind of input.
+_WORDS = {"angle": _AngleWords, "displacement": _LinearWords}
+
+
+def run(args: argparse.Namespace) -> int:
+    """``planarkin circuits SCENE``: every assembly at an input, grouped by circuit. The
+    input is an angle, or for a scene driven by a slot or prismatic pair a displacement
+    from the drawn pose in the scene's length unit (no wrapping)."""
+    sc = load_scene(args.scene)
+    axis, words = input_axis(sc.input_kind, sc.units), _WORDS[sc.input_kind](sc)
+    at = axis.drawn(sc) if args.theta is None else axis.from_user(args.theta)
+    if not math.isfinite(at):
         raise ValueError(f"--theta must be finite, got {args.theta}")
     finite("--dpi", args.dpi, positive=True)
     figure = not args.no_figures
     with bar(2 + figure, "circuits", quiet=args.quiet) as b:
         t0 = time.perf_counter()
-        found = sc.circuits(s)
+        found = sc.circuits(at)
         wall = time.perf_counter() - t0
         b.update()
-        counts = sc.assemblies(s).complex_counts
+        counts = sc.assemblies(at).complex_counts
         b.update()
-        reach = None if found else reachable_linear(sc, quiet=args.quiet)
-        rows: list[dict[str, Any]] = []
-        for k, c in enumerate(found):
-            rows.append({
-                "circuit": k + 1,
-                "assemblies": [{"label": a.label, "det": a.det} for a in c.assemblies],
-                "full_turn": c.full_turn,
-                "turning_points": [float(v) for v in c.turning_points],
-                # the traced range, its turning points (refined by bisection) included
-                "input_range": [
-                    float(min([c.range[0], *c.turning_points])),
-                    float(max([c.range[1], *c.turning_points])),
-                ],
-                "closed": c.trace.closed,
-                "trace_points": len(c.trace),
-            })  # fmt: skip
-        summary = {
-            "scene": sc.name,
-            "input_kind": "displacement",
-            "units": sc.units,
-            "theta": s,
-            "assemblies": sum(len(c.assemblies) for c in found),
-            "group_complex_solutions": counts,
-            "circuits": rows,
-            "reachable": None if reach is None else [list(r) for r in reach],
-            "glossary": GLOSSARY,
-            "wall_time_s": wall,
-        }
+        reach = None if found else _reachable(sc, axis, words.step, args.quiet)
+        summary = circuits_summary(sc, axis, at, found, counts, reach, GLOSSARY, wall)
         out: Path = args.out
         out.mkdir(parents=True, exist_ok=True)
         (out / CIRCUITS_JSON).write_text(json_text(summary) + "\n", encoding="utf-8")
         files = [CIRCUITS_JSON]
         if figure:
             name = figure_file(CIRCUITS_PNG, args.format)
-            circuits(sc, found, s, reachable=reach).savefig(out / name, dpi=args.dpi)
+            circuits(sc, found, at, reachable=reach).savefig(out / name, dpi=args.dpi)
             files.append(name)
             b.update()
     if args.json:
         print(json_text(summary))
         return 0
-    print(f"planarkin circuits: {sc.name or args.scene} at input = {s:.6g} {unit} "
-          "(a displacement from the drawn pose)")  # fmt: skip
+    shown = axis.value(at)
+    print(f"planarkin circuits: {sc.name or args.scene} at {words.head(shown)}")
     if not found:
-        where = "; ".join(f"{a:.6g} to {b:.6g}" for a, b in reach or []) or "none found"
-        print(f"  no assembly at input = {s:.6g} {unit}: the linkage cannot be put together "
-              f"there; it has assemblies for inputs in ({unit}): {where}")  # fmt: skip
+        f = words.ends
+        where = "; ".join(f"{a:{f}} to {b:{f}}" for a, b in reach or []) or "none found"
+        print(f"  no assembly at {words.at(shown)}: the linkage cannot be put together "
+              f"there; it has assemblies for {words.reach_what}: {where}")  # fmt: skip
     else:
-        n = sum(len(c.assemblies) for c in found)
+        n = summary["assemblies"]
         print(f"  {plural(n, 'real assembly', 'real assemblies')} on "
-              f"{plural(len(rows), 'circuit')}"
+              f"{plural(len(found), 'circuit')}"
               + (f"; complex solutions of its groups: {counts}" if counts else ""))  # fmt: skip
-    for r in rows:
+    for r in summary["circuits"]:
         labels = ", ".join(f"{a['label']} (det {a['det']:+.3g})" for a in r["assemblies"])
-        lo, hi = r["input_range"]
-        tps = ", ".join(f"{v:.6g}" for v in r["turning_points"]) or "none"
-        print(f"  circuit {r['circuit']}: {labels}; input moves between {lo:.6g} and "
-              f"{hi:.6g} {unit}; turning points ({unit}): {tps}")  # fmt: skip
+        print(f"  circuit {r['circuit']}: {labels}; {words.motion(r)}")
     if found:
         print("  " + "\n  ".join(textwrap.wrap(GLOSSARY, 88)))
     print(f"  {1e3 * wall:.1f} ms; wrote {', '.join(str(out / f) for f in files)}")
     return 0
+
+
+def _reachable(sc: Scene, axis: InputAxis, unit: str, quiet: bool) -> list[tuple[float, float]]:
+    with bar(len(axis.reach_grid(sc)), "circuits: reachable inputs", quiet=quiet, unit=unit) as b:
+        return reachable(sc, axis, b.update)

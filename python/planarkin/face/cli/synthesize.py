@@ -10,12 +10,11 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 import platform
 import shlex
 import sys
 import time
-from dataclasses import replace
+from dataclasses import fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -23,10 +22,9 @@ import numpy as np
 
 from ...scene import Scene
 from ...synthesis import ackermann as ak
+from ...synthesis import ackermann_report as rep
 from ...synthesis import driver
 from ...synthesis.problem import OBJECTIVES, FunctionTarget, Problem
-from ...synthesis.robust import linearized_tolerance, robust_start
-from ...synthesis.verify import tolerance_sensitivity, verify
 from ..figures import synthesis as synthesis_figures
 from ..progress import bar, shown
 from ._common import figure_file, format_argument, json_text, quiet_argument
@@ -34,23 +32,6 @@ from ._common import figure_file, format_argument, json_text, quiet_argument
 PROBLEMS = ("ackermann",)
 #: defaults of the full run (the shipped design in examples/ackermann/ is this run's)
 STARTS, SAMPLES, SEED = 12, 3000, 2
-#: nominal true max error (deg) a design may have and still be preferred for robustness
-BUDGET_DEG = 0.002
-#: joint noise (wheelbases) of the robustness measure: the linearised 95th percentile
-SIGMA = 1e-4
-#: the least relative drop of the p95 for which the polished robust design is kept
-ROBUST_GAIN = 0.01
-#: the noise levels reported for both shipped designs (wheelbases)
-SIGMAS = (1e-5, 1e-4)
-
-
-#: report.json's words for the optimizer's derivatives
-GRADIENT_WORDS = {
-    "exact": "exact: implicit differentiation of the whole linkage by the Rust solver (one "
-    "factorisation per angle for every coordinate; the conditioning along the exact tangent)",
-    "fd": "forward finite differences of the Rust scene sweeps (one per coordinate)",
-}
-
 DESIGN_JSON = "design.json"
 REPORT_JSON = "report.json"
 #: Figure file -> the function of ``figures.synthesis`` that draws it.
@@ -134,7 +115,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--budget",
         type=float,
-        default=BUDGET_DEG,
+        default=rep.BUDGET_DEG,
         metavar="DEG",
         help="nominal true max error allowed by --select robust (default: %(default)s)",
     )
@@ -349,55 +330,6 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _polish(
-    truth: Problem,
-    row: tuple[driver.StartResult, dict[str, Any], float],
-    budget: float,
-    grid: np.ndarray,
-) -> tuple[tuple[driver.StartResult, dict[str, Any], float], dict[str, Any]]:
-    """The least tolerance-sensitive design, polished by SLSQP on the linearised p95 at
-    SIGMA with its nominal error held within ``budget`` deg (robust_start); the polished
-    design is kept only where it verifies (one branch, every constraint, within the
-    budget on 1001 points) and its p95 is at least ROBUST_GAIN lower."""
-    r, v, s = row
-    deg = math.degrees(truth.target.scale)
-    try:
-        x, info = robust_start(truth, r.x, SIGMA, budget / deg)
-    except ValueError as e:
-        return row, {"kept": False, "message": str(e)}
-    info["p95_start"] *= math.degrees(1.0)
-    info["p95_end"] *= math.degrees(1.0)
-    v2 = verify(truth, x)
-    s2 = _p95(truth.scene(x), grid)
-    checks = {
-        "one_branch": bool(v2["sweep_converged"] and v2["det_sign_changes"] == 0),
-        "feasible": driver._feasible(truth, x),
-        "within_budget": bool(v2["true_max_error_deg_1001"] <= budget),
-        "p95_lower": bool(s2 < (1 - ROBUST_GAIN) * s),
-    }
-    ok = all(checks.values())
-    info.update(
-        kept=ok,
-        checks=checks,
-        true_max_error_deg_1001=v2["true_max_error_deg_1001"],
-        p95_deg_before=s,
-        p95_deg_after=s2,
-    )
-    if not ok:
-        return row, info
-    return (replace(r, x=x), v2, s2), info
-
-
-def _p95(sc: Scene, grid: np.ndarray) -> float:
-    """The linearised 95th percentile of the true max error (deg) at joint noise SIGMA."""
-    try:
-        return linearized_tolerance(sc, grid, ak.right_steer(grid), (SIGMA,))[0][
-            "p95_max_error_deg"
-        ]
-    except ValueError:
-        return math.inf
-
-
 def _finished(res: driver.SynthesisResult) -> str:
     """How far the search got, in words: "2 of 3 starts finished", "1 of 3 starts ran to
     its end, 1 stopped at the limit, 1 not run", "while screening (50 of 300 candidates)"."""
@@ -432,159 +364,30 @@ def _finish(
     t0: float,
 ) -> bool:
     """Verifies every finished run on the true linkage, chooses, and writes the design,
-    report and figures; False (nothing written) when no run is a feasible, verified
-    design."""
+    report and figures (:mod:`planarkin.synthesis.ackermann_report`); False (nothing
+    written) when no run is a feasible, verified design."""
     truth = replace(problem, objective="true")
     target = problem.target
     assert isinstance(target, FunctionTarget)
-    grid = np.linspace(target.dense_in[0], target.dense_in[-1], 1001)
-    rows: list[tuple[driver.StartResult, dict[str, Any], float]] = []
+    grid = rep.grid_1001(target)
     if not any(r.feasible for r in res.runs):
         return False
     with bar(len(res.runs), "synthesize: verify", quiet=args.quiet, unit="design") as b:
-        for r in res.runs:  # by start index
-            if r.feasible:
-                v = verify(truth, r.x)
-                s = _p95(truth.scene(r.x), grid)
-            else:
-                v, s = {}, math.nan
-            rows.append((r, v, s))
-            b.update()
-    good = [
-        row
-        for row in rows
-        if row[0].feasible and row[1]["sweep_converged"] and row[1]["det_sign_changes"] == 0
-    ]
-    if not good:
+        rows = rep.verify_runs(truth, res.runs, grid, b.update)
+    choice = rep.choose(truth, rows, args.budget, args.select, grid)
+    if choice is None:
         return False
-    key = "true_max_error_deg_1001"
-    within = [row for row in good if row[1][key] <= args.budget]
-    # ties go to the lower start index: the choice never depends on which worker finished
-    accurate = min(good, key=lambda row: (row[1][key], row[0].index))
-    robust = min(within, key=lambda row: (row[2], row[0].index)) if within else accurate
-    polish: dict[str, Any] | None = None
-    if within:
-        robust, polish = _polish(truth, robust, args.budget, grid)
-    if args.select == "robust" and within:
-        chosen = robust
-        why = (
-            f"the least tolerance-sensitive (linearised p95 at sigma {SIGMA:g}) of "
-            f"{len(within)} verified designs within {args.budget} deg"
-        )
-    else:
-        chosen = accurate
-        why = "the smallest true max error of the verified designs"
-    best, v, sens = chosen
-    sc = truth.scene(best.x)
-    d = sc.to_dict()
-    d["name"] = "Ackermann steering double butterfly"
-    d["description"] = (
-        f"{ak.space().template.description} Synthesized by planarkin synthesize ackermann "
-        f"(seed {args.seed}, {res.starts} starts, objective {args.objective}); lengths in "
-        "wheelbases, drawn straight ahead (both knuckles at 0 deg, axles collinear)."
-    )
-    d["units"] = "wheelbase"
+    best, v, _ = choice.chosen
+    d = rep.design_dict(truth, best.x, args.seed, res.starts, args.objective)
     sc = Scene.from_dict(d)
-    report: dict[str, Any] = {
-        "problem": "ackermann",
-        "command": command_line(args),
-        "stopped": stop or None,
-        "finished_starts": len(res.runs),
-        "track_over_wheelbase": ak.TRACK,
-        "inner_deg": ak.INNER_DEG,
-        "outer_deg": ak.OUTER_DEG,
-        # scipy said it converged AND the design was verified feasible (never one alone)
-        "converged": bool(best.converged and v["sweep_converged"]),
-        **v,
-        "box": ak.BOX,
-        "envelope": args.envelope,
-        "in_box": bool(v["max_abs_x"] <= ak.BOX + 1e-12 and v["max_abs_y"] <= ak.BOX + 1e-12),
-        "in_box_over_motion": bool(
-            # to the optimizer's feasibility tolerance (1e-6 of the box)
-            v["motion_max_abs_x"] <= ak.BOX + 1e-6 and v["motion_max_abs_y"] <= ak.BOX + 1e-6
-        ),
-        "p95_error_deg_at_sigma": {"sigma": SIGMA, "p95_max_error_deg": sens},
-        # the robust design polished on the tolerance-aware objective (kept only where it
-        # verified within the budget and lowered the p95)
-        "robust_polish": polish,
-        # the most accurate and the least tolerance-sensitive designs of the search (both
-        # written: design_accurate.json, design_robust.json), with their true error under
-        # joint noise by linearisation (2000 draws) and by sampling (200 re-swept linkages)
-        "designs": {
-            name: {
-                "start": row[0].index,
-                "file": f"design_{name}.json",
-                "true_max_error_deg_1001": row[1][key],
-                "min_abs_conditioning": row[1]["min_abs_conditioning"],
-                "motion_max_abs_x": row[1]["motion_max_abs_x"],
-                "motion_max_abs_y": row[1]["motion_max_abs_y"],
-                "linearized": linearized_tolerance(
-                    truth.scene(row[0].x), grid, ak.right_steer(grid), SIGMAS
-                ),
-                "sampled": tolerance_sensitivity(
-                    truth.scene(row[0].x), grid, ak.right_steer(grid), SIGMAS
-                )
-                if args.tolerance
-                else None,
-            }
-            for name, row in (("accurate", accurate), ("robust", robust))
-        },
-        "objective_optimized": args.objective,
-        "selection": f"{args.select}: {why}",
-        "optimizer": {
-            "method": "SLSQP (scipy), least squares then minimax polish",
-            "gradients": GRADIENT_WORDS[res.gradient],
-            "constraints": "branch (its lowest local minima on the 1001-angle grid), link "
-            "lengths, box as drawn (bounds)"
-            + (" and over the whole motion (each joint's extremes)" if args.envelope else "")
-            + "; every constraint verified on the whole grid",
-            "start": best.index,
-            "status": best.status,
-            "success": best.success,
-            "message": best.message,
-            "nit": best.nit,
-            "phases": best.phases,
-            "feasible": best.feasible,
-            "converged": best.converged,
-            "stopped": best.stopped or None,
-        },
-        "det_margin": args.det_margin,
-        "min_link": args.min_link,
-        "starts": res.starts,
-        "samples": res.sampled,
-        "screened": res.screened,
-        "maxiter": args.maxiter,
-        "seed": args.seed,
-        "time_limit_s": args.time_limit,
-        "options": _options(args),
-        "runs": [
-            {
-                "start": r.index,
-                # as the optimizer measured it: design points and its dense grid
-                "max_error_deg": r.max_error * math.degrees(problem.target.scale),
-                "true_max_error_deg_1001": rv.get(key),
-                "min_abs_conditioning": rv.get("min_abs_conditioning"),
-                "p95_error_deg_at_sigma": s if r.feasible else None,
-                "status": r.status,
-                "success": r.success,
-                "message": r.message,
-                "feasible": r.feasible,
-                "converged": r.converged,
-                "stopped": r.stopped or None,
-            }
-            for r, rv, s in rows
-        ],
-        "versions": versions(),
-        "optimize_wall_s": res.wall_s,
-        "cpu_count": os.cpu_count(),
-        "machine": platform.machine(),
-    }
-    if args.tolerance:
-        g1001 = np.linspace(target.dense_in[0], target.dense_in[-1], 1001)
-        report["tolerance_sensitivity"] = tolerance_sensitivity(sc, g1001, ak.right_steer(g1001))
+    settings = rep.Settings(**{f.name: getattr(args, f.name) for f in fields(rep.Settings)})
+    report = rep.report(
+        problem, res, rows, choice, sc, settings, command=command_line(args),
+        options=_options(args), versions=versions(), stop=stop,
+    )  # fmt: skip
     report["wall_s"] = time.perf_counter() - t0
     paths = write(args.out, truth, best.x, report, sc, figures=not args.no_figures, fmt=args.format)
-    for name, row in (("accurate", accurate), ("robust", robust)):
+    for name, row in (("accurate", choice.accurate), ("robust", choice.robust)):
         alt = dict(d)
         alt["description"] = f"{d['description']} The {name} design of the search."
         paths.append(
@@ -592,16 +395,17 @@ def _finish(
                 args.out / f"design_{name}.json"
             )
         )
+    key = rep.KEY
     if not args.no_figures:
         path = args.out / figure_file("tolerance.png", args.format)
         synthesis_figures.tolerance(
             [(r.index, rv[key], s) for r, rv, s in rows if rv and math.isfinite(s)],
-            {"accurate": accurate[0].index, "robust": robust[0].index},
-            SIGMA,
+            {"accurate": choice.accurate[0].index, "robust": choice.robust[0].index},
+            rep.SIGMA,
         ).savefig(path, dpi=120)
         paths.append(path)
     if args.json:
-        print(json_text(_plain(report)))
+        print(json_text(report))
     elif res.stopped != driver.INTERRUPTED:
         print(
             f"planarkin synthesize ackermann: true max error {v[key]:.3g} deg (1001 points), "
@@ -656,7 +460,7 @@ def write(
     out.mkdir(parents=True, exist_ok=True)
     paths = [scene.save(out / DESIGN_JSON)]
     p = out / REPORT_JSON
-    p.write_text(json_text(_plain(report)) + "\n", encoding="utf-8")
+    p.write_text(json_text(report) + "\n", encoding="utf-8")
     paths.append(p)
     if figures:
         for name, make in FIGURES.items():
@@ -664,14 +468,3 @@ def write(
             make(problem, x).savefig(path, dpi=120)
             paths.append(path)
     return paths
-
-
-def _plain(o: object) -> object:
-    # arrays as lists; json_text then writes NaN and infinities as null (strict JSON)
-    if isinstance(o, dict):
-        return {k: _plain(v) for k, v in o.items()}
-    if isinstance(o, (list, tuple)):
-        return [_plain(v) for v in o]
-    if isinstance(o, np.ndarray):
-        return o.tolist()
-    return o

@@ -10,6 +10,7 @@ import numpy as np
 from matplotlib import colormaps
 from matplotlib.figure import Figure
 
+from ..._angles import rpm
 from ...scene import Scene, SceneSweep
 from .. import draw
 from ..degrees import AXIS_TICKS, on_wrapped_axis, wrap_deg, wrapped
@@ -177,8 +178,3 @@ def tracers(scene: Scene, sweep: SceneSweep) -> Figure | None:
         if ax.get_legend_handles_labels()[0]:
             ax.legend(loc="best", fontsize="small")
     return fit_titles(fig)
-
-
-def rpm(omega: float) -> float:
-    """rad/s to rev/min."""
-    return omega * 60.0 / math.tau

@@ -1,0 +1,330 @@
+"""The reports of a scene as plain data: a sweep's summary and CSV columns (``planarkin
+analyze SCENE``), its circuits at one input (``planarkin circuits``). Angle and linear
+inputs go through one code path over an :class:`InputAxis`, which says how the input's
+values are shown (degrees wrapped to (-180, 180], or displacements as they are)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator, Sequence
+from typing import Any
+
+import numpy as np
+
+from .._angles import rpm, wrap_deg, wrapped
+from .._results import true_runs
+from .._status import Status
+from ._model import Scene
+from ._results import Circuit, SceneSweep
+
+__all__ = [
+    "REACH_STEP_DEG",
+    "InputAxis",
+    "circuits_summary",
+    "columns",
+    "input_axis",
+    "reachable",
+    "rows",
+    "summary",
+]
+
+#: Input angles tried for the reachable ranges of an angle input (5 deg apart).
+REACH_STEP_DEG = 5.0
+#: A linear input's reachable ranges: this many values over four drawing sizes each way.
+REACH_LINEAR = 801
+
+
+class InputAxis:
+    """An angle input: radians underneath, shown in degrees wrapped to (-180, 180]; the
+    base of :class:`LinearAxis`, whose methods say where a linear input differs."""
+
+    #: "angle" or "displacement" (``Scene.input_kind``, ``SceneSweep.input``)
+    kind = "angle"
+    #: the unit the values are shown in
+    unit = "deg"
+    #: the CSV column's symbol
+    symbol = "theta"
+    #: what the JSON keys of shown values end with
+    key = "_deg"
+    #: whether the input's values go round (a range can run through 180 deg)
+    wraps = True
+
+    @property
+    def column(self) -> str:
+        return f"{self.symbol} [{self.unit}]"
+
+    def shown(self, values: object) -> np.ndarray:
+        """The input's values as the reports show them."""
+        return wrap_deg(values)
+
+    def value(self, v: float) -> float:
+        """One input value as the reports show it."""
+        return float(self.shown(v))
+
+    def from_user(self, v: float) -> float:
+        """A value as a user gives it (degrees) to the input (radians)."""
+        return math.radians(v)
+
+    def drawn(self, scene: Scene) -> float:
+        """The input at the drawn pose."""
+        return scene.input_angle
+
+    def sweep(self, scene: Scene, n: int, step_deg: float) -> np.ndarray:
+        """``n`` inputs of a sweep: one turn from the drawn angle in ``step_deg`` steps."""
+        return scene.input_angle + np.arange(n) * math.radians(step_deg)
+
+    def rate(self, rpm: float) -> float:
+        """The input's rate (omega, rad/s) when it is driven at ``rpm``."""
+        return rpm * math.tau / 60
+
+    def head(self, scene: Scene, at: float) -> dict[str, Any]:
+        """The circuits report's entries naming the input ``at``."""
+        return {"theta_deg": self.value(at)}
+
+    def circuit(self, c: Circuit, at: float) -> dict[str, Any]:
+        """A circuit's motion: its net turn, turning points and input range, shown in the
+        turn that holds ``at``."""
+        shift = math.tau * round((at - math.radians(wrapped(at))) / math.tau)
+        return {
+            "net_turn_deg": math.degrees(c.net_turn),
+            "turning_points_deg": [wrapped(v) for v in c.turning_points],
+            "input_range_deg": [math.degrees(c.range[0] - shift), math.degrees(c.range[1] - shift)],
+        }
+
+    def reach_grid(self, scene: Scene) -> np.ndarray:
+        """The shown input values :func:`reachable` tries."""
+        return np.arange(-180.0 + REACH_STEP_DEG, 180.0 + 1e-9, REACH_STEP_DEG)
+
+    def summary(self, scene: Scene, sw: SceneSweep) -> dict[str, Any]:
+        """A sweep summary's entries on the input: the drawn angle, or the stroke."""
+        return {"drawn_input_deg": wrapped(scene.input_angle), "stroke": None}
+
+    def speed(self, omega: float, unit: str) -> dict[str, Any]:
+        """A sweep summary's input speed: omega and rpm, or a linear speed."""
+        return {"omega_rad_s": omega, "rpm": rpm(omega), "speed": None}
+
+
+class LinearAxis(InputAxis):
+    """A linear input (a slot or prismatic pair): displacements from the drawn pose in the
+    scene's length unit, shown as they are (no wrapping)."""
+
+    kind = "displacement"
+    symbol = "s"
+    key = ""
+    wraps = False
+
+    def __init__(self, units: str | None) -> None:
+        self.unit = units or "length"
+
+    def shown(self, values: object) -> np.ndarray:
+        return np.asarray(values, dtype=np.float64)
+
+    def from_user(self, v: float) -> float:
+        return float(v)
+
+    def drawn(self, scene: Scene) -> float:
+        return 0.0
+
+    def sweep(self, scene: Scene, n: int, step_deg: float) -> np.ndarray:
+        """``n`` displacements across the stroke, both dead points included."""
+        lo, hi = scene.stroke()
+        return np.linspace(lo, hi, n)
+
+    def rate(self, rpm: float) -> float:
+        # driven at 1 length unit per second (rpm is for cranks)
+        return 1.0
+
+    def head(self, scene: Scene, at: float) -> dict[str, Any]:
+        return {"input_kind": self.kind, "units": scene.units, "theta": at}
+
+    def circuit(self, c: Circuit, at: float) -> dict[str, Any]:
+        tps = [float(v) for v in c.turning_points]
+        # the traced range, its turning points (refined by bisection) included
+        return {
+            "turning_points": tps,
+            "input_range": [float(min([c.range[0], *tps])), float(max([c.range[1], *tps]))],
+        }
+
+    def reach_grid(self, scene: Scene) -> np.ndarray:
+        pts = np.array(list(scene.points.values()), dtype=float)
+        size = float(np.ptp(pts, axis=0).max())
+        return np.linspace(-4.0 * size, 4.0 * size, REACH_LINEAR)
+
+    def summary(self, scene: Scene, sw: SceneSweep) -> dict[str, Any]:
+        return {"drawn_input_deg": None, "stroke": [float(sw.theta[0]), float(sw.theta[-1])]}
+
+    def speed(self, omega: float, unit: str) -> dict[str, Any]:
+        return {"omega_rad_s": None, "rpm": None, "speed": f"{omega:g} {unit}/s"}
+
+
+def input_axis(kind: str, units: str | None = None) -> InputAxis:
+    """The axis of an input of ``kind`` ("angle" or "displacement", in ``units``)."""
+    return InputAxis() if kind == "angle" else LinearAxis(units)
+
+
+def _none(x: float) -> float | None:
+    return x if math.isfinite(x) else None
+
+
+def summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
+    """A sweep of ``scene`` as data: the scene, its plan, what converged, conditioning,
+    where the motion stops and the dead points met (input values as the axis shows them;
+    the keys keep "deg" for a linear input's displacements too)."""
+    plan, limit = sw.plan, sw.limit
+    assert plan is not None and limit is not None  # a kernel sweep has both
+    ok = sw.success
+    axis = input_axis(scene.input_kind, scene.units)
+    shown = axis.shown(sw.theta)
+    absdet = np.abs(sw.det[ok])
+    # where the motion stops: the edges of the solved spans (to the sweep's resolution)
+    edges = []
+    for a, b in true_runs(ok):
+        if a > 0:
+            edges.append({"deg": float(shown[a]), "det": float(sw.det[a]), "side": "start"})
+        if b < len(ok):
+            edges.append({"deg": float(shown[b - 1]), "det": float(sw.det[b - 1]), "side": "end"})
+    dead = sorted({round(axis.value(float(v)), 9) for v in limit if math.isfinite(v)})
+    omega = sw.omega
+    unit = scene.units or "length"
+    return {
+        "scene": scene.name,
+        "description": scene.description,
+        "units": scene.units,
+        "links": len(scene.links),
+        "joints": sum(len(v) - 1 for v in scene.joints.values()),
+        "points": len(scene.points),
+        "mobility": scene.mobility,
+        "input": scene.to_dict()["input"],
+        "input_kind": scene.input_kind,
+        **axis.summary(scene, sw),
+        "input_speed": None
+        if omega is None
+        else {
+            **axis.speed(omega, unit),
+            "constant": True,
+            "velocity_unit": f"{unit}/s",
+            "acceleration_unit": f"{unit}/s^2",
+        },
+        "outputs": list(plan.outputs) if plan.outputs is not None else "all",
+        "plan": [
+            {"kind": s.kind, "points": list(s.points), "unknowns": list(s.unknowns)} for s in plan
+        ],
+        "points_solved": list(sw.points),
+        "angles": len(sw),
+        "converged": int(ok.sum()),
+        "statuses": sw.statuses(),
+        "nit_total": int(sw.nit.sum()),
+        "nit_mean_converged": _none(float(sw.nit[ok].mean())) if ok.any() else None,
+        "conditioning_min": float(absdet.min()) if ok.any() else None,
+        "conditioning_max": float(absdet.max()) if ok.any() else None,
+        "motion_stops_deg": edges,
+        "dead_points_deg": dead,
+        "wall_time_s": wall,
+    }
+
+
+def columns(sw: SceneSweep, units: str | None) -> list[str]:
+    """The CSV header of a sweep, units in brackets: the input (an angle, or a linear
+    input's displacement), statuses, each point's position (and velocity, acceleration
+    when computed), each link's angle (and angular velocity, acceleration)."""
+    u = units or "length"
+    cols = [
+        input_axis(sw.input_kind, units).column,
+        "status [code]",
+        "status_name",
+        "nit [-]",
+        "det [-]",
+    ]
+    for n in sw.points:
+        cols += [f"{n}_x [{u}]", f"{n}_y [{u}]"]
+        if sw.velocities is not None:
+            cols += [f"{n}_vx [{u}/s]", f"{n}_vy [{u}/s]"]
+        if sw.accelerations is not None:
+            cols += [f"{n}_ax [{u}/s^2]", f"{n}_ay [{u}/s^2]"]
+    for n in sw.angles:
+        cols += [f"{n}_angle [deg]"]
+        if sw.angular_velocities is not None:
+            cols += [f"{n}_omega [rad/s]"]
+        if sw.angular_accelerations is not None:
+            cols += [f"{n}_alpha [rad/s^2]"]
+    return cols
+
+
+def rows(sw: SceneSweep) -> Iterator[list[object]]:
+    """The CSV rows of a sweep, one per input value, in :func:`columns` order."""
+    per_point = [a for a in (sw.coords, sw.velocity_array, sw.acceleration_array) if a is not None]
+    per_link = [
+        a for a in (sw.angular_velocity_array, sw.angular_acceleration_array) if a is not None
+    ]
+    theta = input_axis(sw.input_kind).shown(sw.theta)
+    link_deg = wrap_deg(sw.angle_array)
+    for i in range(len(sw)):
+        code = int(sw.status[i])
+        row: list[object] = [
+            float(theta[i]), code, Status(code).name, int(sw.nit[i]), float(sw.det[i]),
+        ]  # fmt: skip
+        for j in range(len(sw.point_names)):
+            for a in per_point:
+                row += [float(a[i, j, 0]), float(a[i, j, 1])]
+        for j in range(len(sw.link_names)):
+            row.append(float(link_deg[i, j]))
+            row += [float(a[i, j]) for a in per_link]
+        yield row
+
+
+def reachable(
+    scene: Scene, axis: InputAxis, progress: Callable[[], object] | None = None
+) -> list[tuple[float, float]]:
+    """The input ranges (shown values) where ``scene`` has some assembly, on the axis'
+    :meth:`~InputAxis.reach_grid` (each range from its first to its last grid value; an
+    angle's range through 180 deg is one range, its end past 180). ``progress()`` is
+    called after each grid value."""
+    grid = axis.reach_grid(scene)
+    has = np.zeros(len(grid), dtype=bool)
+    for i, v in enumerate(grid):
+        has[i] = len(scene.assemblies(axis.from_user(float(v)))) > 0
+        if progress is not None:
+            progress()
+    runs = true_runs(has)
+    if axis.wraps and len(runs) > 1 and runs[0][0] == 0 and runs[-1][1] == len(grid):
+        (a, b), *mid, (c, _) = runs
+        return [(float(grid[i]), float(grid[j - 1])) for i, j in mid] + [
+            (float(grid[c]), float(grid[b - 1]) + 360.0)
+        ]
+    return [(float(grid[i]), float(grid[j - 1])) for i, j in runs]
+
+
+def circuits_summary(
+    scene: Scene,
+    axis: InputAxis,
+    at: float,
+    found: Sequence[Circuit],
+    counts: object,
+    reach: list[tuple[float, float]] | None,
+    glossary: str,
+    wall: float,
+) -> dict[str, Any]:
+    """The circuits of ``scene`` at the input ``at`` as data: each circuit's assemblies
+    and motion, the complex solutions of its groups (``counts``), and where there is no
+    assembly, the ``reach``-able ranges."""
+    circuits = [
+        {
+            "circuit": k + 1,
+            "assemblies": [{"label": a.label, "det": a.det} for a in c.assemblies],
+            "full_turn": c.full_turn,
+            **axis.circuit(c, at),
+            "closed": c.trace.closed,
+            "trace_points": len(c.trace),
+        }
+        for k, c in enumerate(found)
+    ]
+    return {
+        "scene": scene.name,
+        **axis.head(scene, at),
+        "assemblies": sum(len(c.assemblies) for c in found),
+        "group_complex_solutions": counts,
+        "circuits": circuits,
+        f"reachable{axis.key}": None if reach is None else [list(r) for r in reach],
+        "glossary": glossary,
+        "wall_time_s": wall,
+    }
