@@ -14,6 +14,7 @@ mod assemble;
 mod columns;
 mod dyad;
 mod eval;
+pub mod format;
 mod gradient;
 mod group;
 mod options;
