@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import json
 import math
-from functools import partial
 from collections.abc import Iterable, Mapping
+from functools import partial
 from pathlib import Path
 from typing import Any, NamedTuple, NoReturn
 
@@ -108,7 +108,9 @@ class Scene:
         )
         pts = dict(points)
         self._core = core
-        self._moved = dict.fromkeys(pts, 0.0) if moved is None else dict(zip(pts, moved, strict=True))
+        self._moved = (
+            dict.fromkeys(pts, 0.0) if moved is None else dict(zip(pts, moved, strict=True))
+        )
         name, description, units = text
         self._data: dict[str, Any] = {
             "name": name,
@@ -345,6 +347,10 @@ class Scene:
             t.setflags(write=False)
             self._theta = t
         return self._theta
+
+    def _size(self) -> float:
+        """The drawing's extent (its bounding box's larger side), scene units (the core's)."""
+        return self._core.size
 
     def stroke(self) -> tuple[float, float]:
         """A linear input's reachable interval (lo <= 0 <= hi) from the drawn pose: its ends

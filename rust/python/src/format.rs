@@ -32,7 +32,10 @@ fn items<'py>(it: impl Iterator<Item = Bound<'py, PyAny>>, depth: usize) -> PyRe
     it.map(|x| value_of(&x, depth + 1)).collect()
 }
 
-fn entries<'py>(it: impl Iterator<Item = (Bound<'py, PyAny>, Bound<'py, PyAny>)>, depth: usize) -> PyResult<Vec<(Value, Value)>> {
+fn entries<'py>(
+    it: impl Iterator<Item = (Bound<'py, PyAny>, Bound<'py, PyAny>)>,
+    depth: usize,
+) -> PyResult<Vec<(Value, Value)>> {
     it.map(|(k, v)| Ok((value_of(&k, depth + 1)?, value_of(&v, depth + 1)?))).collect()
 }
 
@@ -93,7 +96,8 @@ pub(crate) fn value_of(v: &Bound<'_, PyAny>, depth: usize) -> PyResult<Value> {
         if a.ndim() == 0 {
             return Ok(foreign(v, real(v).map_or(Like::Nothing, Like::Real)));
         }
-        let list = if deep { Vec::new() } else { items(v.try_iter()?.collect::<PyResult<Vec<_>>>()?.into_iter(), depth)? };
+        let list =
+            if deep { Vec::new() } else { items(v.try_iter()?.collect::<PyResult<Vec<_>>>()?.into_iter(), depth)? };
         return Ok(foreign(v, Like::Array(list)));
     }
     if let Ok(m) = v.cast::<PyMapping>() {

@@ -4,8 +4,7 @@
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3};
 use planarkin_core::scene::format::{self, Drive, Parsed};
 use planarkin_core::scene::{
-    assemble_sketch, Assemblies, Plan, Scene, ScenePredictor, SceneSweepBuffers, SceneSweepOptions, Trace,
-    TraceOptions,
+    assemble_sketch, Assemblies, Plan, Scene, ScenePredictor, SceneSweepBuffers, SceneSweepOptions, Trace, TraceOptions,
 };
 use planarkin_core::solve::homotopy::HomotopyOptions;
 use planarkin_core::NewtonOptions;
@@ -73,7 +72,9 @@ fn load_scene(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<Loaded> {
     let points = spec.points.iter().map(|(n, [x, y])| (n.clone(), (*x, *y))).collect();
     let links = spec.links.clone();
     let ground = spec.ground.clone();
-    let joint = |(n, (a, g, l)): (&String, (&String, &String, &(String, String)))| (n.clone(), (a.clone(), g.clone(), l.clone()));
+    let joint = |(n, (a, g, l)): (&String, (&String, &String, &(String, String)))| {
+        (n.clone(), (a.clone(), g.clone(), l.clone()))
+    };
     let slots = spec.slots.iter().map(|(n, j)| joint((n, (&j.point, &j.guide, &j.line)))).collect();
     let prismatic = spec.prismatic.iter().map(|(n, j)| joint((n, (&j.link, &j.guide, &j.line)))).collect();
     let inner = Scene::new(spec).map_err(err)?;

@@ -19,6 +19,9 @@ impl Advise for NoAdvice {
     fn advise<T>(&self, _: &mut Vec<T>) {}
 }
 
+/// (N, P, 2) point rates and (N, L) link rates.
+pub type Rates = (Vec<f64>, Vec<f64>);
+
 /// A sweep's 11 outputs over N input values with P reported points, L reported link
 /// angles and S steps (row-major; see [`SceneSweepOut`] for what each holds).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -42,9 +45,9 @@ pub struct SceneSweepBuffers {
     /// (N, P) each reported point's status.
     pub point_status: Vec<i8>,
     /// (N, P, 2) velocities and (N, L) angular velocities, when asked for.
-    pub velocity: Option<(Vec<f64>, Vec<f64>)>,
+    pub velocity: Option<Rates>,
     /// (N, P, 2) accelerations and (N, L) angular accelerations, when asked for.
-    pub acceleration: Option<(Vec<f64>, Vec<f64>)>,
+    pub acceleration: Option<Rates>,
 }
 
 impl SceneSweepBuffers {
@@ -72,7 +75,7 @@ impl SceneSweepBuffers {
         fn zeros<T: Zeroed>(len: usize, what: &dyn Fn(usize) -> String, a: &impl Advise) -> Result<Vec<T>, Error> {
             try_zeros_advised(|| what(len), len, |v| a.advise(v))
         }
-        let rate = || -> Result<Option<(Vec<f64>, Vec<f64>)>, Error> {
+        let rate = || -> Result<Option<Rates>, Error> {
             Ok(if rates { Some((zeros(npn, what, advise)?, zeros(nln, what, advise)?)) } else { None })
         };
         Ok(Self {

@@ -31,7 +31,7 @@ mod vec2;
 use std::collections::HashMap;
 
 pub use assemble::{Assemblies, Assembly};
-pub use buffers::{Advise, NoAdvice, SceneSweepBuffers};
+pub use buffers::{Advise, NoAdvice, Rates, SceneSweepBuffers};
 pub use gradient::{Free, DET_STEP};
 pub use options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
 pub use plan::{Plan, StepInfo, StepKind};
