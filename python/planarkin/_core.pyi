@@ -9,8 +9,30 @@ __version__: str
 BUILD_PROFILE: str
 SINGULAR_THRESHOLD: float
 STATUSES: list[tuple[int, str, str]]
+SCENE_KEYS: list[str]
+SCENE_REQUIRED: list[str]
+SCENE_MAX_DEPTH: int
+TOL: float
+MAX_ITER: int
+MAX_STEP: float
+SEED: int
+RUNS: int
+TRACE_STEP: float
+TRACE_MAX_POINTS: int
+SWEEP_LEN: int
 __all__ = [
     "BUILD_PROFILE",
+    "MAX_ITER",
+    "MAX_STEP",
+    "RUNS",
+    "SCENE_KEYS",
+    "SCENE_MAX_DEPTH",
+    "SCENE_REQUIRED",
+    "SEED",
+    "SWEEP_LEN",
+    "TOL",
+    "TRACE_MAX_POINTS",
+    "TRACE_STEP",
     "FourBar",
     "Plan",
     "Scene",
@@ -18,10 +40,10 @@ __all__ = [
     "STATUSES",
     "__version__",
     "closed_form_batch",
+    "load_scene",
     "set_simd",
     "simd_available",
     "simd_enabled",
-    "sketch",
     "sweep_batch",
     "transmission",
 ]
@@ -116,23 +138,18 @@ _Trace: TypeAlias = tuple[_F64, _F64, _F64, list[float], bool]
 
 @final
 class Scene:
-    def __new__(
-        cls,
-        points: list[tuple[str, tuple[float, float]]],
-        links: list[tuple[str, list[str]]],
-        ground: str,
-        input: tuple[str, str],
-        output: tuple[str, str] | None = None,
-        slots: list[tuple[str, tuple[str, str, tuple[str, str]]]] = ...,
-        prismatic: list[tuple[str, tuple[str, str, tuple[str, str]]]] = ...,
-        linear_input: tuple[str, str] | None = None,
-    ) -> Scene: ...
     @property
     def input_angle(self) -> float: ...
     @property
     def gruebler(self) -> int: ...
     @property
     def joint_count(self) -> int: ...
+    @property
+    def size(self) -> float: ...
+    @property
+    def max_step(self) -> float: ...
+    def default_inputs(self, stroke: tuple[float, float] | None = None) -> _F64: ...
+    def linear_output(self, points: list[int], coords: _F64) -> _F64 | None: ...
     def assemblies(self, theta: float, seed: int, runs: int) -> _Assemblies: ...
     def trace(self, start: _F64 | None, step: float, max_points: int) -> _Trace: ...
     def pose_gradient(self, points: _F64, free: list[tuple[int, int]], relative: bool) -> _F64: ...
@@ -151,17 +168,24 @@ class Scene:
     ]: ...
     def plan(self, outputs: list[str] | None = None) -> Plan: ...
 
-def sketch(
-    points: list[tuple[str, tuple[float, float]]],
-    links: list[tuple[str, list[str]]],
-    ground: str,
-    input: tuple[str, str],
-    output: tuple[str, str] | None,
-    slots: list[tuple[str, tuple[str, str, tuple[str, str]]]],
-    prismatic: list[tuple[str, tuple[str, str, tuple[str, str]]]],
-    linear_input: tuple[str, str] | None,
-    lengths: list[tuple[str, str, float]],
-) -> tuple[list[tuple[float, float]], list[float]]: ...
+_Joint = tuple[str, str, tuple[str, str]]
+
+def load_scene(
+    data: object,
+) -> tuple[
+    Scene,
+    tuple[str | None, str | None, str | None],
+    list[tuple[str, tuple[float, float]]],
+    list[tuple[str, list[str]]],
+    str,
+    list[tuple[str, str]],
+    list[tuple[str, str]] | None,
+    list[str] | None,
+    list[tuple[str, _Joint]],
+    list[tuple[str, _Joint]],
+    list[tuple[str, str, float]] | None,
+    list[float] | None,
+]: ...
 
 @final
 class Plan:

@@ -6,17 +6,18 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Iterable, Mapping
+from functools import partial
 from pathlib import Path
 from typing import Any, NamedTuple, NoReturn
 
 import numpy as np
 
 from .. import _kernel
-from .._angles import TAU, wrap
+from .._angles import wrap
 from .._args import as_angles, as_float, as_i64, as_str, as_u64
 from .._svg import picture
 from ..fourbar import LINKS, POINTS, FourBar
-from ._parse import check_depth, parse
+from ._parse import parse
 from ._results import (
     Assemblies,
     Assembly,
@@ -29,115 +30,22 @@ from ._results import (
 )
 from ._toml import dumps as toml_dumps
 
-#: Keys a scene may have; the first five are required (``output`` is optional).
-KEYS = (
-    "name",
-    "description",
-    "units",
-    "points",
-    "links",
-    "ground",
-    "input",
-    "output",
-    "outputs",
-    "slots",
-    "prismatic",
-    "lengths",
-)
-REQUIRED = ("points", "links", "ground", "input")
-#: Default largest continuation step of a group (3 degrees).
-MAX_STEP = math.radians(3.0)
-#: Default seed of the homotopy's random gammas (results are reproducible).
-SEED = 0x5EED_2026
-#: Default largest arclength step of a trace (radians of rotation, all links together).
-TRACE_STEP = 0.05
+#: Defaults, written once in the core (``planarkin_core::scene::format``): the largest
+#: continuation step of a group (3 degrees), the homotopy's seed (results are reproducible)
+#: and runs, and a trace's largest arclength step (radians of rotation, all links together)
+#: and length.
+MAX_STEP = _kernel.MAX_STEP
+SEED = _kernel.SEED
+RUNS = _kernel.RUNS
+TRACE_STEP = _kernel.TRACE_STEP
+TRACE_MAX_POINTS = _kernel.TRACE_MAX_POINTS
+TOL = _kernel.TOL
+MAX_ITER = _kernel.MAX_ITER
 
 
 def _entry(cond: bool, entry: str, message: str) -> None:
     if not cond:
         raise ValueError(f"{entry}: {message}")
-
-
-def _pivoted(d: Mapping[str, Any], key: str) -> tuple[str, str]:
-    """An input or output: ("link", pivot) for an angle, ("slot" | "prismatic", name) for a
-    displacement along a slot or prismatic pair."""
-    v = d[key]
-    linear = isinstance(v, Mapping) and len(v) == 1 and next(iter(v)) in ("slot", "prismatic")
-    if linear:
-        ((kind, name),) = v.items()
-        _entry(isinstance(name, str), f"{key}.{kind}", f"must be a {kind} name, got {name!r}")
-        return kind, name
-    _entry(
-        isinstance(v, Mapping) and set(v) == {"link", "pivot"},
-        key,
-        "must be a table with keys 'link' and 'pivot' (an angle), or with one key 'slot' or "
-        f"'prismatic' (a displacement), got {v!r}",
-    )
-    _entry(isinstance(v["link"], str), f"{key}.link", f"must be a link name, got {v['link']!r}")
-    _entry(isinstance(v["pivot"], str), f"{key}.pivot", f"must be a point name, got {v['pivot']!r}")
-    return v["link"], v["pivot"]
-
-
-def _drive_dict(v: tuple[str, str], linear: bool) -> dict[str, str]:
-    return {v[0]: v[1]} if linear else {"link": v[0], "pivot": v[1]}
-
-
-#: A slot (point, guide, line) or a prismatic pair (link, guide, line).
-Joint = tuple[str, str, tuple[str, str]]
-
-
-def _joints(data: Mapping[str, Any], key: str, first: str) -> dict[str, Joint]:
-    """Slots (``first`` = "point") or prismatic pairs (``first`` = "link"): name -> (point
-    or link, guide, (line point, line point))."""
-    table = data.get(key)
-    if table is None:
-        return {}
-    _entry(isinstance(table, Mapping), key, f"must be a table name -> {{{first}, guide, line}}")
-    out = {}
-    for n, v in table.items():
-        entry = f"{key}.{n}"
-        _entry(
-            isinstance(v, Mapping) and set(v) == {first, "guide", "line"},
-            entry,
-            f"must be a table with keys '{first}', 'guide' and 'line', got {v!r}",
-        )
-        for k in (first, "guide"):
-            _entry(isinstance(v[k], str), f"{entry}.{k}", f"must be a name, got {v[k]!r}")
-        line = v["line"]
-        ok = isinstance(line, (list, tuple)) and len(line) == 2
-        ok = ok and all(isinstance(q, str) for q in line)
-        _entry(ok, f"{entry}.line", f"must be a pair of point names, got {line!r}")
-        out[str(n)] = (v[first], v["guide"], (line[0], line[1]))
-    return out
-
-
-#: A sketch's length: two names (points of one link, or a point and a slot or prismatic
-#: pair) and a distance.
-Length = tuple[str, str, float]
-
-
-def _lengths(data: Mapping[str, Any]) -> tuple[Length, ...] | None:
-    """The ``lengths`` entries as (name, name, distance), or None when absent; their
-    meaning (names, signs, agreement) is the core's to check."""
-    v = data.get("lengths")
-    if v is None:
-        return None
-    _entry(
-        isinstance(v, (list, tuple)),
-        "lengths",
-        f"must be a list of [name, name, length], got {v!r}",
-    )
-    out = []
-    for k, e in enumerate(v):
-        ok = isinstance(e, (list, tuple)) and len(e) == 3
-        ok = ok and isinstance(e[0], str) and isinstance(e[1], str)
-        _entry(ok, f"lengths[{k}]", f"must be [name, name, length], got {e!r}")
-        try:
-            d = as_float("length", e[2])
-        except ValueError as err:
-            raise ValueError(f"lengths[{k}]: the {err}") from None
-        out.append((e[0], e[1], d))
-    return tuple(out)
 
 
 def _xy(name: str, v: object) -> tuple[float, float]:
@@ -194,69 +102,29 @@ class Scene:
     __slots__ = ("_core", "_data", "_moved", "_plans", "_theta")
 
     def __init__(self, data: Mapping[str, Any]) -> None:
-        _entry(isinstance(data, Mapping), "scene", f"must be a mapping, got {type(data).__name__}")
-        check_depth(data)
-        unknown = [k for k in data if k not in KEYS]
-        _entry(not unknown, "scene", f"unknown keys {unknown}; known keys: {', '.join(KEYS)}")
-        for k in REQUIRED:
-            _entry(k in data, k, "is required")
-        pts, links = data["points"], data["links"]
-        _entry(isinstance(pts, Mapping), "points", "must be a table name -> [x, y]")
-        _entry(isinstance(links, Mapping), "links", "must be a table name -> [point names]")
-        points = {str(n): _xy(n, v) for n, v in pts.items()}
-        lk: dict[str, tuple[str, ...]] = {}
-        for n, v in links.items():
-            ok = isinstance(v, (list, tuple)) and all(isinstance(p, str) for p in v)
-            _entry(ok, f"links.{n}", f"must be a list of point names, got {v!r}")
-            lk[str(n)] = tuple(v)
-        _entry(isinstance(data["ground"], str), "ground", "must be a link name")
-        inp = _pivoted(data, "input")
-        out = _pivoted(data, "output") if data.get("output") is not None else None
-        slots, prism = _joints(data, "slots", "point"), _joints(data, "prismatic", "link")
-        linear_in = "link" not in data["input"]
-        linear_out = out is not None and "link" not in data["output"]
-        if out is not None and linear_out:
-            table = slots if out[0] == "slot" else prism
-            _entry(out[1] in table, f"output.{out[0]}", f"{out[1]!r} is not a {out[0]}")
-        outputs = data.get("outputs")
-        if outputs is not None:
-            ok = isinstance(outputs, (list, tuple)) and all(isinstance(o, str) for o in outputs)
-            _entry(ok, "outputs", f"must be a list of point or link names, got {outputs!r}")
-        for k in ("name", "description", "units"):
-            v = data.get(k)
-            _entry(v is None or isinstance(v, str), k, f"must be a string, got {v!r}")
-        lengths = _lengths(data)
-        args = (
-            list(points.items()),
-            [(n, list(v)) for n, v in lk.items()],
-            data["ground"],
-            ("", "") if linear_in else inp,
-            None if linear_out else out,
-            list(slots.items()),
-            list(prism.items()),
-            inp if linear_in else None,
+        # the core reads the data (every check and message is the file format's, there)
+        core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, moved = (
+            _kernel.load_scene(data)
         )
-        moved = dict.fromkeys(points, 0.0)
-        if lengths is not None:
-            exact, dist = _kernel.sketch(*args, list(lengths))
-            points = {n: (x, y) for n, (x, y) in zip(points, exact, strict=True)}
-            moved = dict(zip(points, dist, strict=True))
-            args = (list(points.items()), *args[1:])
-        self._core = _kernel.Scene(*args)
-        self._moved = moved
+        pts = dict(points)
+        self._core = core
+        self._moved = (
+            dict.fromkeys(pts, 0.0) if moved is None else dict(zip(pts, moved, strict=True))
+        )
+        name, description, units = text
         self._data: dict[str, Any] = {
-            "name": data.get("name"),
-            "description": data.get("description"),
-            "units": data.get("units"),
-            "points": points,
-            "links": lk,
-            "ground": data["ground"],
-            "input": _drive_dict(inp, linear_in),
-            "output": None if out is None else _drive_dict(out, linear_out),
+            "name": name,
+            "description": description,
+            "units": units,
+            "points": pts,
+            "links": {n: tuple(v) for n, v in links},
+            "ground": ground,
+            "input": dict(inp),
+            "output": None if out is None else dict(out),
             "outputs": None if outputs is None else tuple(outputs),
-            "slots": slots,
-            "prismatic": prism,
-            "lengths": lengths,
+            "slots": dict(slots),
+            "prismatic": dict(prism),
+            "lengths": None if lengths is None else tuple(lengths),
         }
         self._plans: dict[tuple[str, ...] | None, tuple[Plan, Any]] = {}
         self._theta: np.ndarray | None = None
@@ -474,19 +342,15 @@ class Scene:
         361 displacements across the stroke reachable from the drawn pose (read-only,
         cached)."""
         if self._theta is None:
-            if self.input_kind == "angle":
-                t = self.input_angle + np.arange(361) * (TAU / 360)
-            else:
-                lo, hi = self.stroke()
-                t = np.linspace(lo, hi, 361)
+            stroke = None if self.input_kind == "angle" else self.stroke()
+            t = self._core.default_inputs(stroke)
             t.setflags(write=False)
             self._theta = t
         return self._theta
 
     def _size(self) -> float:
-        """The drawing's extent (its bounding box's larger side), scene units."""
-        xy = np.array(list(self._data["points"].values()))
-        return float(np.ptp(xy, axis=0).max())
+        """The drawing's extent (its bounding box's larger side), scene units (the core's)."""
+        return self._core.size
 
     def stroke(self) -> tuple[float, float]:
         """A linear input's reachable interval (lo <= 0 <= hi) from the drawn pose: its ends
@@ -495,8 +359,7 @@ class Scene:
         each end)."""
         _entry(self.input_kind == "displacement", "input", "stroke() is for a linear input")
         _, core = self._compiled(None)
-        size = self._size()
-        return core.stroke(size, 1e-9, 100, MAX_STEP * size)
+        return core.stroke(self._core.size, TOL, MAX_ITER, self._core.max_step)
 
     def plan(self, outputs: Iterable[str] | str | None = None) -> Plan:
         """The steps that solve ``outputs`` (point or link names; None: the scene's
@@ -509,8 +372,8 @@ class Scene:
         theta: object = None,
         *,
         outputs: Iterable[str] | str | None = None,
-        tol: float = 1e-9,
-        max_iter: int = 100,
+        tol: float = TOL,
+        max_iter: int = MAX_ITER,
         rate: float | None = None,
         max_step: float | None = None,
         predictor: str = "continuation",
@@ -552,7 +415,7 @@ class Scene:
         plan, core = self._compiled(outputs)
         kind = self.input_kind
         if max_step is None:
-            max_step = MAX_STEP if kind == "angle" else MAX_STEP * self._size()
+            max_step = self._core.max_step
         if theta is None:
             t = self._default_theta()
         else:
@@ -575,38 +438,29 @@ class Scene:
         )
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
         # the output coordinate is computed when it is first read
-        output = None if self._data["output"] is None else self._output_of
+        output = None if self._data["output"] is None else partial(self._output_of, core.points)
         return SceneSweep.build(
             plan, t, pts, ang, status, nit, det, limit, sst, sdet, pst, vel, acc,
             w, kind, output, self._data["units"],
         )  # fmt: skip
 
-    def _output_of(self, names: tuple[str, ...], coords: np.ndarray) -> np.ndarray | None:
-        """The output coordinate along a sweep, from its reported points (None: no output, or
-        its points are not among those reported)."""
+    def _output_of(
+        self, indices: list[int], names: tuple[str, ...], coords: np.ndarray
+    ) -> np.ndarray | None:
+        """The output coordinate along a sweep, from its reported points (their scene
+        ``indices`` and ``names``); None: no output, or its points are not among those
+        reported. A displacement is the core's (as the web page's)."""
         o = self.output
         if o is None:
             return None
-        d = self._data
-        pts = {n: coords[:, j] for j, n in enumerate(names)}
-        if "link" in d["output"]:
-            link, pivot = o
-            tip = next(q for q in d["links"][link] if q != pivot)
-            if pivot not in pts or tip not in pts:
-                return None
-            v = pts[tip] - pts[pivot]
-            return np.arctan2(v[:, 1], v[:, 0])
-        kind, name = o
-        moving, _, (a, b) = (d["slots"] if kind == "slot" else d["prismatic"])[name]
-        q = moving if kind == "slot" else d["links"][moving][0]
-        if not {q, a, b} <= set(pts):
+        if "link" not in self._data["output"]:
+            return self._core.linear_output(indices, np.ascontiguousarray(coords))
+        link, pivot = o
+        tip = next(q for q in self._data["links"][link] if q != pivot)
+        if pivot not in names or tip not in names:
             return None
-        drawn = {n: np.asarray(d["points"][n]) for n in (q, a, b)}
-        u0 = drawn[b] - drawn[a]
-        s0 = float(np.dot(drawn[q] - drawn[a], u0 / math.hypot(*u0)))
-        u = pts[b] - pts[a]
-        u = u / np.hypot(u[:, 0], u[:, 1])[:, None]  # unit first: no square overflows
-        return np.einsum("ij,ij->i", pts[q] - pts[a], u) - s0
+        v = coords[:, names.index(tip)] - coords[:, names.index(pivot)]
+        return np.arctan2(v[:, 1], v[:, 0])
 
     # --- every assembly, circuits, tracing ------------------------------------------------
 
@@ -625,7 +479,7 @@ class Scene:
         return Assemblies(found, theta, counts, failed, continua, paths=paths)
 
     def assemblies(
-        self, theta: float | None = None, *, seed: int = SEED, runs: int = 2
+        self, theta: float | None = None, *, seed: int = SEED, runs: int = RUNS
     ) -> Assemblies:
         """Every real assembly at input angle ``theta`` (radians; default the drawn angle).
 
@@ -706,7 +560,7 @@ class Scene:
         start: Mapping[str, Any] | None = None,
         *,
         step: float = TRACE_STEP,
-        max_points: int = 50_000,
+        max_points: int = TRACE_MAX_POINTS,
     ) -> Trace:
         """Traces the circuit through ``start`` (an assembly: dict point -> (x, y); default
         the drawn pose) by pseudo-arclength continuation, through dead points, until it
@@ -721,9 +575,9 @@ class Scene:
         theta: float | None = None,
         *,
         seed: int = SEED,
-        runs: int = 2,
+        runs: int = RUNS,
         step: float = TRACE_STEP,
-        max_points: int = 50_000,
+        max_points: int = TRACE_MAX_POINTS,
     ) -> list[Circuit]:
         """The assemblies at ``theta`` (default the drawn angle) grouped by circuit: each
         unassigned assembly is traced once round its circuit; the assemblies the trace

@@ -10,11 +10,13 @@ import tomllib
 from collections.abc import Iterator, Mapping
 from typing import Any
 
+from .._kernel import SCENE_MAX_DEPTH
+
 __all__ = ["MAX_DEPTH", "check_depth", "parse"]
 
-#: Deepest nesting a scene may have. A scene's own is 4 (the scene, "slots", one slot,
-#: its "line"); the bound keeps every later walk of the data (validation, repr) shallow.
-MAX_DEPTH = 16
+#: Deepest nesting a scene may have (the core's, where the data's own check is made); a
+#: file is refused by it here, naming the file, before its keys are read.
+MAX_DEPTH = SCENE_MAX_DEPTH
 #: Longest integer literal read as an integer: a longer one is beyond every double
 #: (10^309 > DBL_MAX), so it is read as infinity and refused, by name, as non-finite.
 _MAX_DIGITS = 309

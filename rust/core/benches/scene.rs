@@ -8,7 +8,7 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use planarkin_core::scene::{Plan, Scene, SceneSpec, SceneSweepOptions, SceneSweepOut, SlotSpec};
+use planarkin_core::scene::{Plan, Scene, SceneSpec, SceneSweepBuffers, SceneSweepOptions, SlotSpec};
 use planarkin_core::{Never, NewtonOptions};
 
 const N: usize = 361;
@@ -38,42 +38,15 @@ fn slider_crank() -> Scene {
 }
 
 /// Output buffers of one sweep, allocated once outside the timed loop.
-struct Bufs {
-    f: Vec<Vec<f64>>,
-    i: Vec<Vec<i8>>,
-    nit: Vec<u32>,
-}
+struct Bufs(SceneSweepBuffers);
 
 impl Bufs {
     fn new(plan: &Plan, n: usize, kin: bool) -> Self {
-        let (np, nl, ns) = (plan.points().len(), plan.links().len(), plan.steps().len());
-        let k = usize::from(kin);
-        let f = [2 * n * np, n * nl, n, n, n * ns, 2 * n * np * k, n * nl * k, 2 * n * np * k, n * nl * k];
-        Bufs {
-            f: f.iter().map(|&m| vec![0.0; m]).collect(),
-            i: vec![vec![0; n], vec![0; n * ns], vec![0; n * np]],
-            nit: vec![0; n],
-        }
+        Bufs(SceneSweepBuffers::new(plan, n, kin).expect("the buffers fit"))
     }
 
     fn run(&mut self, plan: &Plan, theta: &[f64], opts: &SceneSweepOptions) {
-        let [pts, ang, det, lim, sdet, v, w, a, al] = &mut self.f[..] else { unreachable!() };
-        let [st, sst, pst] = &mut self.i[..] else { unreachable!() };
-        let kin = !v.is_empty();
-        let out = SceneSweepOut {
-            points: pts,
-            angles: ang,
-            status: st,
-            nit: &mut self.nit,
-            det,
-            limit: lim,
-            step_status: sst,
-            step_det: sdet,
-            point_status: pst,
-            velocity: kin.then_some((&mut v[..], &mut w[..])),
-            acceleration: kin.then_some((&mut a[..], &mut al[..])),
-        };
-        plan.sweep(black_box(theta), opts, out, &Never).expect("the sweep runs");
+        plan.sweep(black_box(theta), opts, self.0.out(), &Never).expect("the sweep runs");
     }
 }
 

@@ -26,6 +26,15 @@ pub(crate) fn zeros_named<T: planarkin_core::error::Zeroed>(what: &str, len: usi
     planarkin_core::error::try_zeros_advised(|| what.to_string(), len, huge_pages).map_err(err)
 }
 
+/// The core's buffers advised as [`zeros`] advises its own (huge pages where large).
+pub(crate) struct HugePages;
+
+impl planarkin_core::scene::Advise for HugePages {
+    fn advise<T>(&self, v: &mut Vec<T>) {
+        huge_pages(v);
+    }
+}
+
 /// Buffers at least this large are backed by transparent huge pages where the system
 /// allows it (NumPy asks the same for its arrays of 4 MiB and more).
 const HUGE_PAGE_MIN: usize = 4 << 20;

@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 
 mod buffers;
 mod errors;
+mod format;
 mod fourbar;
 mod scene;
 mod simd;
@@ -22,6 +23,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // Python code, and a Ctrl-C pending at that moment would turn into a panic.
     PyArray1::<f64>::zeros(m.py(), 0, false);
     fourbar::register(m)?;
+    format::register(m)?;
     scene::register(m)?;
     simd::register(m)?;
     // (code, name, message): planarkin.Status is checked against this table

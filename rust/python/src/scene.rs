@@ -1,47 +1,89 @@
 //! Bindings of the scene solver: `Scene` (validation, assemblies, trace, circuits) and
 //! its compiled `Plan` (sweeps). Convert, release the GIL, map errors; nothing numeric.
 
-use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3};
+use planarkin_core::scene::format::{self, Drive, Parsed};
 use planarkin_core::scene::{
-    assemble_sketch, Assemblies, LinearKind, Plan, Scene, ScenePredictor, SceneSpec, SceneSweepOptions, SceneSweepOut,
-    Trace, TraceOptions,
+    assemble_sketch, Assemblies, Plan, Scene, ScenePredictor, SceneSweepBuffers, SceneSweepOptions, Trace, TraceOptions,
 };
 use planarkin_core::solve::homotopy::HomotopyOptions;
-use planarkin_core::{Error, NewtonOptions};
+use planarkin_core::NewtonOptions;
 use pyo3::prelude::*;
 
-use crate::buffers::{cube, grid, grid_len, slice, zeros, Arr1, Arr2, Arr3};
+use crate::buffers::{cube, grid, grid_len, slice, zeros, Arr1, Arr2, Arr3, HugePages};
 use crate::errors::{array, err, Signals};
+use crate::format::value_of;
 
-/// A validated scene (see `planarkin.Scene`, which wraps it).
+/// A validated scene (see `planarkin.Scene`, which wraps it); made by `load_scene`.
 #[pyclass(frozen, module = "planarkin._core", name = "Scene")]
 pub(crate) struct PyScene {
     inner: Scene,
+    /// The output as the file declares it (a linear one is not in the core's scene).
+    output: Option<Drive>,
 }
 
-type Named = (String, String);
 /// A slot (point, guide, line) or a prismatic pair (link, guide, line).
 type Joint = (String, String, (String, String));
+/// An input or output as the entries of its table, in order.
+type DriveOut = Vec<(String, String)>;
+/// What `load_scene` reads besides the scene: (name, description, units), the points
+/// (exact for a sketch), links, ground, input, output, outputs, slots, prismatic pairs,
+/// lengths and how far a sketch's points moved.
+type Loaded = (
+    PyScene,
+    (Option<String>, Option<String>, Option<String>),
+    Vec<(String, (f64, f64))>,
+    Vec<(String, Vec<String>)>,
+    String,
+    DriveOut,
+    Option<DriveOut>,
+    Option<Vec<String>>,
+    Vec<(String, Joint)>,
+    Vec<(String, Joint)>,
+    Option<Vec<(String, String, f64)>>,
+    Option<Vec<f64>>,
+);
+
+fn drive_out(d: &Drive) -> DriveOut {
+    match d {
+        Drive::Angle { link, pivot } => vec![("link".into(), link.clone()), ("pivot".into(), pivot.clone())],
+        Drive::Linear { kind, name } => vec![(format::kind_name(*kind).into(), name.clone())],
+    }
+}
+
+/// A scene from the file format's data (any mapping; the core checks every entry, in
+/// Python's words), a sketch's `lengths` assembled into the exact pose.
+#[pyfunction]
+fn load_scene(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<Loaded> {
+    let Parsed { mut spec, name, description, units, input, output, outputs, lengths } =
+        format::parse(&value_of(data, 1)?).map_err(err)?;
+    let moved = match &lengths {
+        None => None,
+        Some(l) => {
+            let rough = spec.clone();
+            let s = Signals::detach(py, |signals| assemble_sketch(rough, l, signals))?;
+            for (p, xy) in spec.points.iter_mut().zip(s.points) {
+                p.1 = xy;
+            }
+            Some(s.moved)
+        }
+    };
+    let points = spec.points.iter().map(|(n, [x, y])| (n.clone(), (*x, *y))).collect();
+    let links = spec.links.clone();
+    let ground = spec.ground.clone();
+    let joint = |(n, (a, g, l)): (&String, (&String, &String, &(String, String)))| {
+        (n.clone(), (a.clone(), g.clone(), l.clone()))
+    };
+    let slots = spec.slots.iter().map(|(n, j)| joint((n, (&j.point, &j.guide, &j.line)))).collect();
+    let prismatic = spec.prismatic.iter().map(|(n, j)| joint((n, (&j.link, &j.guide, &j.line)))).collect();
+    let inner = Scene::new(spec).map_err(err)?;
+    let (inp, out) = (drive_out(&input), output.as_ref().map(drive_out));
+    let scene = PyScene { inner, output };
+    Ok((scene, (name, description, units), points, links, ground, inp, out, outputs, slots, prismatic, lengths, moved))
+}
 
 #[pymethods]
 impl PyScene {
-    #[new]
-    #[pyo3(signature = (points, links, ground, input, output=None, slots=Vec::new(), prismatic=Vec::new(), linear_input=None))]
-    #[allow(clippy::too_many_arguments)]
-    fn new(
-        points: Vec<(String, (f64, f64))>,
-        links: Vec<(String, Vec<String>)>,
-        ground: String,
-        input: Named,
-        output: Option<Named>,
-        slots: Vec<(String, Joint)>,
-        prismatic: Vec<(String, Joint)>,
-        linear_input: Option<Named>,
-    ) -> PyResult<Self> {
-        let spec = spec_of(points, links, ground, input, output, slots, prismatic, linear_input)?;
-        Ok(Self { inner: Scene::new(spec).map_err(err)? })
-    }
-
     /// The drawn input angle (radians).
     #[getter]
     fn input_angle(&self) -> f64 {
@@ -58,6 +100,39 @@ impl PyScene {
     #[getter]
     fn joint_count(&self) -> usize {
         self.inner.joint_count()
+    }
+
+    /// The drawing's extent: its bounding box's larger side (scene units).
+    #[getter]
+    fn size(&self) -> f64 {
+        format::size(self.inner.drawn())
+    }
+
+    /// The default largest continuation step (3 degrees, or 3 degrees x size for a
+    /// linear input).
+    #[getter]
+    fn max_step(&self) -> f64 {
+        format::max_step(self.inner.linear_input().is_some(), format::size(self.inner.drawn()))
+    }
+
+    /// The default sweep's inputs: 361 angles from the drawn one through a full turn, or
+    /// 361 displacements across a linear input's `stroke` (lo, hi).
+    #[pyo3(signature = (stroke=None))]
+    fn default_inputs<'py>(&self, py: Python<'py>, stroke: Option<(f64, f64)>) -> Arr1<'py, f64> {
+        format::default_inputs(self.inner.input_angle(), stroke).into_pyarray(py)
+    }
+
+    /// A declared linear output's coordinate along a sweep whose `coords` (N, P, 2) hold
+    /// the scene points `points`; None for an angle output, none, or points not reported.
+    fn linear_output<'py>(
+        &self,
+        py: Python<'py>,
+        points: Vec<usize>,
+        coords: PyReadonlyArray3<'py, f64>,
+    ) -> PyResult<Option<Arr1<'py, f64>>> {
+        let Some(o) = &self.output else { return Ok(None) };
+        let c = coords.as_slice().map_err(|_| array("coords", "must be a C-contiguous float64 array"))?;
+        Ok(format::linear_output(&self.inner, o, &points, c).map(|v| v.into_pyarray(py)))
     }
 
     /// Every real assembly at `theta`: ([(points (P,2), label, det, step_det)],
@@ -170,71 +245,6 @@ impl PyScene {
     }
 }
 
-/// The scene as the core takes it (a linear input's kind by name).
-#[allow(clippy::too_many_arguments)]
-fn spec_of(
-    points: Vec<(String, (f64, f64))>,
-    links: Vec<(String, Vec<String>)>,
-    ground: String,
-    input: Named,
-    output: Option<Named>,
-    slots: Vec<(String, Joint)>,
-    prismatic: Vec<(String, Joint)>,
-    linear_input: Option<Named>,
-) -> PyResult<SceneSpec> {
-    let linear_input = match linear_input {
-        None => None,
-        Some((kind, name)) => Some((
-            match kind.as_str() {
-                "slot" => LinearKind::Slot,
-                "prismatic" => LinearKind::Prismatic,
-                other => {
-                    return Err(err(Error::Scene {
-                        entry: "input".into(),
-                        message: format!("unknown linear input kind {other:?}"),
-                    }))
-                }
-            },
-            name,
-        )),
-    };
-    Ok(SceneSpec {
-        points: points.into_iter().map(|(n, (x, y))| (n, [x, y])).collect(),
-        links,
-        ground,
-        input,
-        output,
-        slots: slots.into_iter().map(|(n, j)| (n, j.into())).collect(),
-        prismatic: prismatic.into_iter().map(|(n, j)| (n, j.into())).collect(),
-        linear_input,
-    })
-}
-
-/// The exact points, in the order given, and how far each moved.
-type SketchOut = (Vec<(f64, f64)>, Vec<f64>);
-
-/// A sketch (the scene's arguments, its points roughly drawn) and its `lengths` ->
-/// (exact points in the given order, how far each moved).
-#[pyfunction]
-#[pyo3(signature = (points, links, ground, input, output, slots, prismatic, linear_input, lengths))]
-#[allow(clippy::too_many_arguments)]
-fn sketch(
-    py: Python<'_>,
-    points: Vec<(String, (f64, f64))>,
-    links: Vec<(String, Vec<String>)>,
-    ground: String,
-    input: Named,
-    output: Option<Named>,
-    slots: Vec<(String, Joint)>,
-    prismatic: Vec<(String, Joint)>,
-    linear_input: Option<Named>,
-    lengths: Vec<(String, String, f64)>,
-) -> PyResult<SketchOut> {
-    let spec = spec_of(points, links, ground, input, output, slots, prismatic, linear_input)?;
-    let s = Signals::detach(py, |signals| assemble_sketch(spec, &lengths, signals))?;
-    Ok((s.points.into_iter().map(|[x, y]| (x, y)).collect(), s.moved))
-}
-
 /// A compiled plan.
 #[pyclass(frozen, module = "planarkin._core", name = "Plan")]
 pub(crate) struct PyPlan {
@@ -305,31 +315,26 @@ impl PyPlan {
         let plan = &self.inner;
         let (n, np, nl, ns) = (t.len(), plan.points().len(), plan.links().len(), plan.steps().len());
         let what = "scene sweep outputs";
-        let (npn, nln, nsn) = (grid_len(what, n, 2 * np)?, grid_len(what, n, nl)?, grid_len(what, n, ns)?);
-        let mut points = zeros(what, npn)?;
-        let mut angles = zeros(what, nln)?;
-        let (mut status, mut nit, mut det, mut limit) =
-            (zeros(what, n)?, zeros(what, n)?, zeros(what, n)?, zeros(what, n)?);
-        let (mut step_status, mut step_det, mut point_status) =
-            (zeros(what, nsn)?, zeros(what, nsn)?, zeros(what, npn / 2)?);
-        let mut vel = omega.map(|_| Ok::<_, PyErr>((zeros(what, npn)?, zeros(what, nln)?))).transpose()?;
-        let mut acc = omega.map(|_| Ok::<_, PyErr>((zeros(what, npn)?, zeros(what, nln)?))).transpose()?;
-        Signals::detach(py, |signals| {
-            let out = SceneSweepOut {
-                points: &mut points,
-                angles: &mut angles,
-                status: &mut status,
-                nit: &mut nit,
-                det: &mut det,
-                limit: &mut limit,
-                step_status: &mut step_status,
-                step_det: &mut step_det,
-                point_status: &mut point_status,
-                velocity: vel.as_mut().map(|(v, w)| (v.as_mut_slice(), w.as_mut_slice())),
-                acceleration: acc.as_mut().map(|(v, w)| (v.as_mut_slice(), w.as_mut_slice())),
-            };
-            plan.sweep(t, &opts, out, signals)
-        })?;
+        // sizes that do not fit the address space are named here, as for every output
+        for (m, k) in [(n, 2 * np), (n, nl), (n, ns)] {
+            grid_len(what, m, k)?;
+        }
+        let named = |len: usize| format!("{what} of {len} values");
+        let mut b = SceneSweepBuffers::advised(plan, n, omega.is_some(), &named, &HugePages).map_err(err)?;
+        Signals::detach(py, |signals| plan.sweep(t, &opts, b.out(), signals))?;
+        let SceneSweepBuffers {
+            points,
+            angles,
+            status,
+            nit,
+            det,
+            limit,
+            step_status,
+            step_det,
+            point_status,
+            velocity: vel,
+            acceleration: acc,
+        } = b;
         Ok((
             cube(py, (n, np, 2), points),
             grid(py, n, nl, angles),
@@ -388,6 +393,6 @@ fn points_of(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<[f64; 2]
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_class::<PyPlan>()?;
-    m.add_function(wrap_pyfunction!(sketch, m)?)?;
+    m.add_function(wrap_pyfunction!(load_scene, m)?)?;
     Ok(())
 }

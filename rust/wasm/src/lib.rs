@@ -235,6 +235,23 @@ mod tests {
     }
 
     #[test]
+    fn a_linear_output_is_read_from_the_core() {
+        let mut s = State::default();
+        let scene = TRAMMEL.replace(r#""outputs": ["P"],"#, r#""output": {"slot": "b"},"#);
+        let info = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {scene}}}"#));
+        assert_eq!(info["linear_output"], json!({"kind": "slot", "name": "b"}));
+        let pose = ask(&mut s, r#"{"op": "pose", "theta": -30}"#);
+        // B along O -> Y from its drawn 80: A at x = 30 puts it at y = sqrt(100^2 - 30^2)
+        let b = (100f64.powi(2) - 900.0).sqrt() - 80.0;
+        assert!((pose["output"].as_f64().unwrap() - b).abs() < 1e-12, "{}", pose["output"]);
+        let path = ask(&mut s, r#"{"op": "path"}"#);
+        assert_eq!(path["output"].as_array().map(Vec::len), Some(361));
+        let angle = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {FOURBAR}}}"#));
+        assert_eq!(angle["linear_output"], Value::Null);
+        assert_eq!(ask(&mut s, r#"{"op": "path"}"#)["output"], Value::Null);
+    }
+
+    #[test]
     fn bad_slots_name_the_entry_as_python_does() {
         let mut s = State::default();
         let cases = [

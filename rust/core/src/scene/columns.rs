@@ -613,7 +613,7 @@ mod tests {
     //! copied from `python/planarkin/scene/builtin`): the same statuses, and positions,
     //! angles, conditioning, velocities and accelerations to 1e-12 of the drawing's size.
 
-    use super::super::{LinearKind, PrismaticSpec, Scene, SceneSpec, SlotSpec};
+    use super::super::{LinearKind, PrismaticSpec, Scene, SceneSpec, SceneSweepBuffers, SlotSpec};
     use super::*;
     use crate::interrupt::{Never, Poll};
     use crate::solve::newton::NewtonOptions;
@@ -754,42 +754,6 @@ mod tests {
         ]
     }
 
-    struct Bufs {
-        f: Vec<Vec<f64>>,
-        i: Vec<Vec<i8>>,
-        nit: Vec<u32>,
-    }
-
-    impl Bufs {
-        /// With `rates`, velocities and accelerations too.
-        fn new(plan: &Plan, n: usize, rates: bool) -> Self {
-            let (np, nl, ns) = (plan.points.len(), plan.links.len(), plan.steps.len());
-            let k = usize::from(rates);
-            let f = [2 * n * np, n * nl, n, n, n * ns, 2 * n * np * k, n * nl * k, 2 * n * np * k, n * nl * k];
-            let i = vec![vec![0; n], vec![0; n * ns], vec![0; n * np]];
-            Bufs { f: f.iter().map(|&m| vec![0.0; m]).collect(), i, nit: vec![0; n] }
-        }
-
-        fn out(&mut self) -> SceneSweepOut<'_> {
-            let [pts, ang, det, lim, sdet, v, w, a, al] = &mut self.f[..] else { unreachable!() };
-            let [st, sst, pst] = &mut self.i[..] else { unreachable!() };
-            let rates = !v.is_empty();
-            SceneSweepOut {
-                points: pts,
-                angles: ang,
-                status: st,
-                nit: &mut self.nit,
-                det,
-                limit: lim,
-                step_status: sst,
-                step_det: sdet,
-                point_status: pst,
-                velocity: rates.then_some((&mut v[..], &mut w[..])),
-                acceleration: rates.then_some((&mut a[..], &mut al[..])),
-            }
-        }
-    }
-
     #[test]
     fn sliders_on_columns_match_the_continuation() {
         for ((name, sc), omega) in builtins().into_iter().flat_map(|b| [(b.clone(), None), (b, Some(2.5))]) {
@@ -805,21 +769,25 @@ mod tests {
             let h = (theta[1] - theta[0]).abs();
             let n = theta.len();
             let opts = |max_step: f64| SceneSweepOptions::new(NewtonOptions::default(), max_step, omega).unwrap();
-            let mut cols = Bufs::new(&plan, n, omega.is_some());
+            let mut cols = SceneSweepBuffers::new(&plan, n, omega.is_some()).unwrap();
             sweep(&plan, &theta, &opts(2.0 * h), &mut cols.out(), &Poll::new(&Never)).unwrap();
             // the certificate holds here: the plain sweep takes the columns as they are
-            assert!(cols.i[0].iter().all(|&s| s == OK), "{name}: {:?}", cols.i[0]);
-            assert!(cols.f[4].iter().all(|d| d.abs() >= 0.05), "{name}");
-            let mut plain = Bufs::new(&plan, n, omega.is_some());
+            assert!(cols.status.iter().all(|&s| s == OK), "{name}: {:?}", cols.status);
+            assert!(cols.step_det.iter().all(|d| d.abs() >= 0.05), "{name}");
+            let mut plain = SceneSweepBuffers::new(&plan, n, omega.is_some()).unwrap();
             plan.sweep(&theta, &opts(2.0 * h), plain.out(), &Never).unwrap();
-            let bits =
-                |b: &Bufs| b.f.iter().map(|v| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>()).collect::<Vec<_>>();
+            let bits = |b: &SceneSweepBuffers| {
+                b.reals().iter().map(|v| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>()).collect::<Vec<_>>()
+            };
             assert!(bits(&plain) == bits(&cols), "{name}: the plain sweep is not the column one");
             // steps longer than max_step: the continuation
-            let mut cont = Bufs::new(&plan, n, omega.is_some());
+            let mut cont = SceneSweepBuffers::new(&plan, n, omega.is_some()).unwrap();
             plan.sweep(&theta, &opts(0.5 * h), cont.out(), &Never).unwrap();
-            assert!(cont.i == cols.i && cont.nit == cols.nit, "{name}: statuses differ");
-            for (k, (a, b)) in cols.f.iter().zip(&cont.f).enumerate() {
+            let ints = |b: &SceneSweepBuffers| {
+                (b.status.clone(), b.step_status.clone(), b.point_status.clone(), b.nit.clone())
+            };
+            assert!(ints(&cont) == ints(&cols), "{name}: statuses differ");
+            for (k, (a, b)) in cols.reals().into_iter().zip(cont.reals()).enumerate() {
                 // positions, angles, dets and rates: 1e-12 of their largest size
                 let big = a.iter().map(|x| x.abs()).filter(|x| x.is_finite()).fold(1.0, f64::max);
                 for (x, y) in a.iter().zip(b) {

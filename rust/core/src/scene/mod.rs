@@ -11,9 +11,11 @@
 //! and follow; `options` and `vec2` are the leaves they share.
 
 mod assemble;
+mod buffers;
 mod columns;
 mod dyad;
 mod eval;
+pub mod format;
 mod gradient;
 mod group;
 mod options;
@@ -29,6 +31,7 @@ mod vec2;
 use std::collections::HashMap;
 
 pub use assemble::{Assemblies, Assembly};
+pub use buffers::{Advise, NoAdvice, Rates, SceneSweepBuffers};
 pub use gradient::{Free, DET_STEP};
 pub use options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
 pub use plan::{Plan, StepInfo, StepKind};

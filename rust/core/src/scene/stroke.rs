@@ -5,9 +5,10 @@
 //! bracket is narrowed by sweeps of [`REFINE`] values inside it until it is a few
 //! rounding errors wide: the end is the last value reached.
 
-use super::options::{SceneSweepOptions, SceneSweepOut};
+use super::buffers::{NoAdvice, SceneSweepBuffers};
+use super::options::SceneSweepOptions;
 use super::plan::Plan;
-use crate::error::{try_zeros, Error};
+use crate::error::Error;
 use crate::interrupt::Interrupt;
 
 /// How far the probe looks each way, in sizes of the drawing.
@@ -26,29 +27,10 @@ struct Probe {
 
 impl Plan {
     fn probe(&self, s: &[f64], opts: &SceneSweepOptions, interrupt: &dyn Interrupt) -> Result<Probe, Error> {
-        let m = s.len();
-        let (np, nl, ns) = (self.points.len(), self.links.len(), self.steps.len());
-        let what = || "stroke probe".to_string();
-        let (mut points, mut angles) = (try_zeros(what, m * np * 2)?, try_zeros(what, m * nl)?);
-        let (mut det, mut limit) = (try_zeros(what, m)?, try_zeros(what, m)?);
-        let (mut step_det, mut nit) = (try_zeros(what, m * ns)?, try_zeros(what, m)?);
-        let (mut status, mut step_status) = (try_zeros(what, m)?, try_zeros(what, m * ns)?);
-        let mut point_status = try_zeros(what, m * np)?;
-        let out = SceneSweepOut {
-            points: &mut points,
-            angles: &mut angles,
-            status: &mut status,
-            nit: &mut nit,
-            det: &mut det,
-            limit: &mut limit,
-            step_status: &mut step_status,
-            step_det: &mut step_det,
-            point_status: &mut point_status,
-            velocity: None,
-            acceleration: None,
-        };
-        self.sweep(s, opts, out, interrupt)?;
-        Ok(Probe { status })
+        let what = |_: usize| "stroke probe".to_string();
+        let mut b = SceneSweepBuffers::advised(self, s.len(), false, &what, &NoAdvice)?;
+        self.sweep(s, opts, b.out(), interrupt)?;
+        Ok(Probe { status: b.status })
     }
 
     /// The stroke `(lo, hi)` (lo <= 0 <= hi) of a plan with a linear input, for a drawing of

@@ -29,41 +29,13 @@ pub(crate) fn fourbar(mode: f64) -> SceneSpec {
     )
 }
 
-struct Run {
-    points: Vec<f64>,
-    angles: Vec<f64>,
-    status: Vec<i8>,
-    nit: Vec<u32>,
-    det: Vec<f64>,
-}
+/// A sweep's outputs.
+type Run = SceneSweepBuffers;
 
 fn run(plan: &Plan, theta: &[f64]) -> Run {
-    let n = theta.len();
-    let (np, nl, ns) = (plan.points().len(), plan.links().len(), plan.steps().len());
-    let mut r = Run {
-        points: vec![0.0; n * np * 2],
-        angles: vec![0.0; n * nl],
-        status: vec![0; n],
-        nit: vec![0; n],
-        det: vec![0.0; n],
-    };
-    let mut limit = vec![0.0; n];
-    let (mut ss, mut sd, mut ps) = (vec![0; n * ns], vec![0.0; n * ns], vec![0; n * np]);
+    let mut r = SceneSweepBuffers::new(plan, theta.len(), false).unwrap();
     let opts = SceneSweepOptions::new(NewtonOptions::default(), 0.05, None).unwrap();
-    let out = SceneSweepOut {
-        points: &mut r.points,
-        angles: &mut r.angles,
-        status: &mut r.status,
-        nit: &mut r.nit,
-        det: &mut r.det,
-        limit: &mut limit,
-        step_status: &mut ss,
-        step_det: &mut sd,
-        point_status: &mut ps,
-        velocity: None,
-        acceleration: None,
-    };
-    plan.sweep(theta, &opts, out, &crate::interrupt::Never).unwrap();
+    plan.sweep(theta, &opts, r.out(), &crate::interrupt::Never).unwrap();
     r
 }
 
@@ -256,24 +228,8 @@ fn long_calls_stop_when_interrupted() {
     let plan = sc.plan(None).unwrap();
     let opts = SceneSweepOptions::new(NewtonOptions::default(), 1e-9, None).unwrap();
     let theta = [sc.input_angle() + 0.5];
-    let (np, nl, ns) = (plan.points().len(), plan.links().len(), plan.steps().len());
-    let (mut pts, mut ang, mut st, mut nit) = (vec![0.0; 2 * np], vec![0.0; nl], vec![0i8; 1], vec![0u32; 1]);
-    let (mut det, mut lim, mut sst, mut sdet, mut pst) =
-        (vec![0.0; 1], vec![0.0; 1], vec![0i8; ns], vec![0.0; ns], vec![0i8; np]);
-    let out = SceneSweepOut {
-        points: &mut pts,
-        angles: &mut ang,
-        status: &mut st,
-        nit: &mut nit,
-        det: &mut det,
-        limit: &mut lim,
-        step_status: &mut sst,
-        step_det: &mut sdet,
-        point_status: &mut pst,
-        velocity: None,
-        acceleration: None,
-    };
-    assert_eq!(plan.sweep(&theta, &opts, out, &yes), Err(Error::Interrupted));
+    let mut out = SceneSweepBuffers::new(&plan, theta.len(), false).unwrap();
+    assert_eq!(plan.sweep(&theta, &opts, out.out(), &yes), Err(Error::Interrupted));
     // a trace with a tiny step, and the circuits that trace
     let tiny = TraceOptions::new(1e-7, 1_000_000_000).unwrap();
     assert_eq!(sc.trace(None, &tiny, &yes), Err(Error::Interrupted));

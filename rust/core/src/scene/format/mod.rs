@@ -1,0 +1,88 @@
+//! The scene file format, once for every binding: its keys, the data's checks and their
+//! messages (Python's words, quoting Python's `repr` of what was given), and the defaults
+//! a scene is solved with. Bindings convert their data to a [`Value`] and call [`parse`].
+//!
+//! Inside: `value` (the data and its `repr`) is the leaf; `parse` reads it into a
+//! [`SceneSpec`](crate::scene::SceneSpec); `defaults` and `output` serve what a binding
+//! computes with a scene once it is built.
+
+mod defaults;
+mod output;
+mod parse;
+mod value;
+
+#[cfg(test)]
+mod tests;
+
+pub use defaults::{
+    default_inputs, homotopy_options, linspace, max_step, size, sweep_options, trace_options, MAX_ITER, MAX_STEP, RUNS,
+    SEED, SWEEP_LEN, TOL, TRACE_MAX_POINTS, TRACE_STEP,
+};
+pub use output::linear_output;
+pub use parse::{kind_name, parse};
+pub use value::{float_repr, str_repr, Describe, Described, Foreign, Like, Value};
+
+use crate::scene::{LengthSpec, LinearKind, SceneSpec};
+
+/// The keys a scene may have, in the order messages list them.
+pub const KEYS: [&str; 12] = [
+    "name",
+    "description",
+    "units",
+    "points",
+    "links",
+    "ground",
+    "input",
+    "output",
+    "outputs",
+    "slots",
+    "prismatic",
+    "lengths",
+];
+/// The keys a scene must have.
+pub const REQUIRED: [&str; 4] = ["points", "links", "ground", "input"];
+/// Deepest nesting of lists and mappings a scene's data may have. A scene's own is 4 (the
+/// scene, "slots", one slot, its "line"); the bound keeps every walk of the data shallow,
+/// and a binding need convert no deeper than one level past it.
+pub const MAX_DEPTH: usize = 16;
+
+/// An input or output as the file gives it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Drive {
+    /// A link's angle about its ground pivot.
+    Angle {
+        /// The link.
+        link: String,
+        /// Its ground pivot.
+        pivot: String,
+    },
+    /// The displacement along a slot or prismatic pair.
+    Linear {
+        /// Slot or prismatic pair.
+        kind: LinearKind,
+        /// Its name.
+        name: String,
+    },
+}
+
+/// A scene's data read: the core's spec and what the spec does not hold.
+#[derive(Clone, Debug)]
+pub struct Parsed {
+    /// What [`Scene::new`](crate::scene::Scene::new) (or a sketch's assembly) takes; an
+    /// output along a slot or prismatic pair is not in it.
+    pub spec: SceneSpec,
+    /// `name`, if given.
+    pub name: Option<String>,
+    /// `description`, if given.
+    pub description: Option<String>,
+    /// `units`, if given.
+    pub units: Option<String>,
+    /// The input as the file gives it.
+    pub input: Drive,
+    /// The output as the file gives it, if any.
+    pub output: Option<Drive>,
+    /// The names requested by default (`outputs`), unchecked (a plan checks them).
+    pub outputs: Option<Vec<String>>,
+    /// A sketch's lengths (name, name, distance), unchecked (the sketch checks them).
+    pub lengths: Option<Vec<LengthSpec>>,
+}
