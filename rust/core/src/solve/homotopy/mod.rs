@@ -37,7 +37,7 @@ use nalgebra::{Complex, DMatrix, DVector};
 
 use crate::error::Real;
 use crate::interrupt::{Never, Poll};
-use crate::{wrap_angle, Error};
+use crate::Error;
 
 mod eval;
 mod lu;
@@ -46,7 +46,6 @@ mod rng;
 mod track;
 
 use reduction::Reduced;
-pub(crate) use rng::SplitMix64;
 use track::angles_close;
 
 type C = Complex<f64>;

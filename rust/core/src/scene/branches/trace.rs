@@ -12,12 +12,13 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::group::Group;
-use super::plan::Plan;
-use super::vec2::Xy;
-use super::Scene;
+use super::assemble::Assemblies;
 use crate::error::{positive_finite, try_grow, Error};
 use crate::interrupt::{Interrupt, Poll};
+use crate::scene::build::Plan;
+use crate::scene::model::Scene;
+use crate::scene::ops::Group;
+use crate::scene::vec2::Xy;
 use crate::solve::homotopy::HomotopyOptions;
 use crate::wrap_angle;
 
@@ -490,4 +491,33 @@ fn max_gap(a: &[Xy], b: &[Xy]) -> f64 {
         .filter(|(p, q)| p[0].is_finite() && q[0].is_finite())
         .map(|(p, q)| (p[0] - q[0]).abs().max((p[1] - q[1]).abs()))
         .fold(0.0, f64::max)
+}
+
+impl Scene {
+    /// Traces the circuit through `start` (every point, scene coordinates; default the
+    /// drawn pose) through its dead points until it closes or `opts.max_points` is reached.
+    /// `interrupt` is asked every few thousand steps.
+    pub fn trace(&self, start: Option<&[Xy]>, opts: &TraceOptions, interrupt: &dyn Interrupt) -> Result<Trace, Error> {
+        let pos = match start {
+            None => self.xy.clone(),
+            Some(p) => {
+                if p.len() != self.names.len() {
+                    return Err(Error::Shape { name: "start".into(), got: p.len(), expected: self.names.len() });
+                }
+                p.iter().map(|&q| self.to_frame(q)).collect()
+            }
+        };
+        Tracer::new(self)?.trace_from(&pos, opts, interrupt)
+    }
+
+    /// The assemblies at `theta` grouped by circuit.
+    pub fn circuits(
+        &self,
+        theta: f64,
+        hopts: &HomotopyOptions,
+        topts: &TraceOptions,
+        interrupt: &dyn Interrupt,
+    ) -> Result<(Assemblies, Vec<Circuit>), Error> {
+        Tracer::new(self)?.circuits(theta, hopts, topts, interrupt)
+    }
 }

@@ -6,10 +6,11 @@ use std::collections::HashMap;
 
 use nalgebra::DMatrix;
 
-use super::plan;
-use super::vec2::{cross, dot, perp, sub, Xy};
-use super::{Linear, LinearKind, Link, Pivoted, Prismatic, Scene, SceneSpec, Slot};
+use super::compile::compile;
 use crate::error::Error;
+use crate::scene::input::{Linear, LinearKind, Pivoted};
+use crate::scene::model::{Link, Prismatic, Scene, SceneSpec, Slot};
+use crate::scene::vec2::{cross, dot, perp, sub, Xy};
 
 /// Two points of one link closer than this, relative to the scene's size, coincide.
 const COINCIDENT: f64 = 1e-12;
@@ -23,7 +24,7 @@ const DENSE_COLUMNS: usize = 600;
 /// so this bounds a file's memory and time (a million points load in seconds).
 const MAX_ENTRIES: usize = 1_000_000;
 
-pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
+pub(crate) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
     let sc = structure(spec)?;
     rank_check(&sc)?;
     Ok(sc)
@@ -32,7 +33,7 @@ pub(super) fn scene(spec: SceneSpec) -> Result<Scene, Error> {
 /// Everything [`scene`] checks but the rank at the drawn pose: names, coordinates, links,
 /// joints, inputs and the Gruebler count. A sketch (whose pose is not yet an assembly) is
 /// checked by this before it is assembled.
-pub(super) fn structure(spec: SceneSpec) -> Result<Scene, Error> {
+pub(crate) fn structure(spec: SceneSpec) -> Result<Scene, Error> {
     let SceneSpec { points, links, ground, input, output, slots, prismatic, linear_input } = spec;
     if points.is_empty() {
         return Err(Error::scene("points", "the scene has no points"));
@@ -341,7 +342,7 @@ fn coincident(points: &[usize], drawn: &[Xy], pre: f64, tol: f64) -> Option<(usi
 }
 
 /// M = 3 (links - 1) - 2 joints.
-pub(super) fn gruebler(links: usize, point_links: &[Vec<usize>]) -> i64 {
+pub(crate) fn gruebler(links: usize, point_links: &[Vec<usize>]) -> i64 {
     let joints: usize = point_links.iter().map(|l| l.len().saturating_sub(1)).sum();
     3 * (links as i64 - 1) - 2 * joints as i64
 }
@@ -357,7 +358,7 @@ pub(super) fn gruebler(links: usize, point_links: &[Vec<usize>]) -> i64 {
 fn rank_check(sc: &Scene) -> Result<(), Error> {
     let points: Vec<usize> = (0..sc.names.len()).collect();
     let links: Vec<usize> = (0..sc.links.len()).collect();
-    let planned = plan::compile(sc, &points, &links);
+    let planned = compile(sc, &points, &links);
     if let Ok(p) = &planned {
         let (_, dets) = p.dets_at(&sc.xy);
         match dets.iter().position(|d| !(d.abs() > RANK_TOL)) {
@@ -508,4 +509,13 @@ fn dense_rank_check(sc: &Scene) -> Result<(), Error> {
         ));
     }
     Ok(())
+}
+
+impl Scene {
+    /// Validates a scene: every name, coordinate and link, the ground, input and output
+    /// links, and mobility (Gruebler count and a rank check at the drawn pose). The error
+    /// names the entry and says why.
+    pub fn new(spec: SceneSpec) -> Result<Scene, Error> {
+        scene(spec)
+    }
 }

@@ -9,14 +9,16 @@
 // the column loops index several arrays (and an offset into each) by the same angle
 #![allow(clippy::needless_range_loop)]
 
-use super::dyad::{closed_form, Dyad, APART, COINCIDE, SOLVED};
-use super::eval::Known;
 use super::options::{SceneSweepOptions, SceneSweepOut};
-use super::plan::{Op, Plan};
-use super::slide::{unit, Rrp};
-use super::vec2::{angular_acceleration, Xy};
 use crate::error::Error;
 use crate::interrupt::Poll;
+use crate::scene::build::Plan;
+use crate::scene::ops::Known;
+use crate::scene::ops::Op;
+use crate::scene::ops::Rrp;
+use crate::scene::ops::{closed_form, Dyad, APART, COINCIDE, SOLVED};
+use crate::scene::vec2::unit;
+use crate::scene::vec2::{angular_acceleration, Xy};
 use crate::Status;
 
 /// Angles per block: the columns of a block stay in cache.
@@ -47,7 +49,7 @@ struct Scratch {
 /// The column sweep of `plan` over `theta` into `out`, compiled for AVX2 where the SIMD
 /// kernels are on (the same operations on 4 lanes, without fused multiply-adds: the same
 /// numbers as the baseline build).
-pub(super) fn sweep(
+pub(crate) fn sweep(
     plan: &Plan,
     theta: &[f64],
     opts: &SceneSweepOptions,
@@ -613,9 +615,9 @@ mod tests {
     //! copied from `python/planarkin/scene/builtin`): the same statuses, and positions,
     //! angles, conditioning, velocities and accelerations to 1e-12 of the drawing's size.
 
-    use super::super::{LinearKind, PrismaticSpec, Scene, SceneSpec, SlotSpec};
     use super::*;
     use crate::interrupt::{Never, Poll};
+    use crate::scene::{LinearKind, PrismaticSpec, Scene, SceneSpec, SlotSpec};
     use crate::solve::newton::NewtonOptions;
 
     type Joint<'a> = (&'a str, &'a str, &'a str, (&'a str, &'a str));
@@ -877,14 +879,14 @@ mod tests {
                 let bad = [c.st[o1 + j], c.st[o2 + j]].into_iter().find(|&s| s != OK);
                 let (st, dt, p) = match (bad, d.solve(a, b)) {
                     (Some(s), _) => (s, f64::NAN, None),
-                    (None, super::super::dyad::DyadOut::Solved(p, dt)) if dt.abs() >= 1e-6 => (OK, dt, Some(p)),
-                    (None, super::super::dyad::DyadOut::Solved(_, dt)) => {
+                    (None, crate::scene::ops::DyadOut::Solved(p, dt)) if dt.abs() >= 1e-6 => (OK, dt, Some(p)),
+                    (None, crate::scene::ops::DyadOut::Solved(_, dt)) => {
                         (if dt.is_nan() { Status::NonFinite.code() } else { Status::Singular.code() }, dt, None)
                     }
-                    (None, super::super::dyad::DyadOut::NotAssemblable) => {
+                    (None, crate::scene::ops::DyadOut::NotAssemblable) => {
                         (Status::NotAssemblable.code(), f64::NAN, None)
                     }
-                    (None, super::super::dyad::DyadOut::Indeterminate) => (Status::Singular.code(), 0.0, None),
+                    (None, crate::scene::ops::DyadOut::Indeterminate) => (Status::Singular.code(), 0.0, None),
                 };
                 seen.insert(st);
                 assert_eq!((sst[j], c.st[d.p * B + j]), (st, st), "value {j}");

@@ -16,11 +16,12 @@ use std::collections::HashMap;
 
 use nalgebra::{DMatrix, DVector};
 
-use super::validate;
-use super::vec2::{cross, dot, perp, sub, Xy};
-use super::{LinearKind, Scene, SceneSpec};
+use super::validate::structure;
 use crate::error::Error;
 use crate::interrupt::Interrupt;
+use crate::scene::input::LinearKind;
+use crate::scene::model::{Scene, SceneSpec};
+use crate::scene::vec2::{cross, dot, perp, sub, Xy};
 
 /// A length as given: two names and a distance in the scene's unit. The names are two
 /// points of one link (a distance > 0), or a point and a slot or prismatic pair (the
@@ -76,7 +77,7 @@ const DEAD: f64 = 1e-10;
 /// [`Scene::new`] checks it, except the rank at the (sketched) pose. `interrupt` is asked
 /// once per continuation step (Ctrl-C from Python).
 pub fn assemble_sketch(spec: SceneSpec, lengths: &[LengthSpec], interrupt: &dyn Interrupt) -> Result<Sketched, Error> {
-    let sc = validate::structure(spec)?;
+    let sc = structure(spec)?;
     let fixed: Vec<bool> = sc.point_links.iter().map(|l| l.contains(&sc.ground)).collect();
     let moving = fixed.iter().filter(|f| !**f).count();
     if moving > MAX_SKETCH_POINTS {
@@ -487,7 +488,12 @@ fn unit(v: Xy) -> Xy {
 /// apart such pair), on the side it is sketched on. The error is the message.
 type Shape = (usize, usize, f64, Vec<(usize, f64, f64)>);
 
-fn shape(sc: &Scene, link: &super::Link, adj: &[(usize, usize, f64)], local: &[usize]) -> Result<Shape, String> {
+fn shape(
+    sc: &Scene,
+    link: &crate::scene::model::Link,
+    adj: &[(usize, usize, f64)],
+    local: &[usize],
+) -> Result<Shape, String> {
     let pts = &link.points;
     let k = pts.len();
     let name = |p: usize| sc.names[p].as_str();

@@ -6,9 +6,9 @@
 //! rounding errors wide: the end is the last value reached.
 
 use super::options::{SceneSweepOptions, SceneSweepOut};
-use super::plan::Plan;
 use crate::error::{try_zeros, Error};
 use crate::interrupt::Interrupt;
+use crate::scene::build::Plan;
 
 /// How far the probe looks each way, in sizes of the drawing.
 const REACH: f64 = 4.0;

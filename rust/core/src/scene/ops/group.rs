@@ -23,9 +23,10 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::slide::{cdiv, cmul};
-use super::vec2::{dot, perp, sub, Xy};
-use super::{LinearKind, Scene};
+use crate::scene::input::LinearKind;
+use crate::scene::model::Scene;
+use crate::scene::vec2::{cdiv, cmul};
+use crate::scene::vec2::{dot, perp, sub, Xy};
 use crate::solve::homotopy::Quadric;
 use crate::solve::newton::{self, hadamard_ratio, NewtonOptions, System};
 use crate::{wrap_angle, Status};
@@ -50,7 +51,7 @@ pub(crate) const MAX: usize = 12;
 
 /// How an edge turns with the linkage.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum Turn {
+pub(crate) enum Turn {
     /// With the unknown rotation in this column: M = (cos x_c, sin x_c).
     Col(usize),
     /// With a link whose rotation is known: M = anchor[b] - anchor[a] (group-anchor
@@ -61,7 +62,7 @@ pub(super) enum Turn {
 /// An edge between two points of the group: `M (v + s d)`, s the displacement in column
 /// `slide.0` (a sliding edge) or none.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Term {
+pub(crate) struct Term {
     pub turn: Turn,
     pub v: Xy,
     pub slide: Option<(usize, Xy)>,
@@ -94,7 +95,7 @@ impl Term {
 
 /// A point the group solves: group point `base` (anchors first, then nodes) plus `term`.
 #[derive(Clone, Debug, PartialEq)]
-pub(super) struct Node {
+pub(crate) struct Node {
     pub point: usize,
     pub base: usize,
     pub term: Term,
@@ -102,7 +103,7 @@ pub(super) struct Node {
 
 /// One loop-closure pair of equations: F = a[plus] - a[minus] + sum of `terms`.
 #[derive(Clone, Debug, PartialEq)]
-pub(super) struct Closure {
+pub(crate) struct Closure {
     pub plus: usize,
     pub minus: usize,
     pub terms: Vec<Term>,
@@ -111,14 +112,14 @@ pub(super) struct Closure {
 /// How a column is read off positions: a rotation from two points of a link (their drawn
 /// difference `drawn`), a displacement from the two ends of one of its sliding edges.
 #[derive(Clone, Debug, PartialEq)]
-pub(super) enum Reader {
+pub(crate) enum Reader {
     Rotation { a: usize, b: usize, drawn: Xy },
     Slide { from: usize, to: usize, term: Term },
 }
 
 /// A compiled group.
 #[derive(Clone, Debug, PartialEq)]
-pub(super) struct Group {
+pub(crate) struct Group {
     /// Scene indices of its links (for the plan's steps).
     pub links: Vec<usize>,
     /// Rotation columns come first: columns `0..nrot` are angles, the rest displacements.
@@ -144,7 +145,7 @@ pub(super) struct Group {
 
 /// What one Newton solve of a group gives.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct GroupSolve {
+pub(crate) struct GroupSolve {
     /// The unknowns: rotations (radians, wrapped) then displacements (solving frame).
     pub phi: [f64; MAX],
     /// d phi / d theta (NaN unless converged and anchor velocities were given).
@@ -172,7 +173,7 @@ impl Group {
     /// slots and prismatic pairs; `None` when they are not one connected rigid group over
     /// the known points, when it has more than [`MAX`] unknowns, or when it is singular as
     /// drawn. A linear input's joint is not part of it (its displacement is the input).
-    pub(super) fn build(sc: &Scene, links: &[usize], known: &[bool]) -> Option<Group> {
+    pub(crate) fn build(sc: &Scene, links: &[usize], known: &[bool]) -> Option<Group> {
         let mut g = Self::tree(sc, links, known, false)?;
         let n = g.n();
         if n == 0 || n > MAX || n % 2 == 1 {
@@ -215,7 +216,7 @@ impl Group {
 
     /// Constraints minus freedoms of a set of links over the known points (Gruebler's count
     /// with its slots and prismatic pairs): 0 for a rigid group.
-    pub(super) fn freedom(sc: &Scene, links: &[usize], known: &[bool]) -> i64 {
+    pub(crate) fn freedom(sc: &Scene, links: &[usize], known: &[bool]) -> i64 {
         let mut inset = vec![false; sc.links.len()];
         for &l in links {
             inset[l] = true;
@@ -236,7 +237,7 @@ impl Group {
     /// tracing uses it) leaves one unknown free, the input (its link's rotation, or the
     /// linear input's displacement); otherwise the group must be rigid. Any size: the caller
     /// checks what it needs.
-    pub(super) fn tree(sc: &Scene, links: &[usize], known: &[bool], chain: bool) -> Option<Group> {
+    pub(crate) fn tree(sc: &Scene, links: &[usize], known: &[bool], chain: bool) -> Option<Group> {
         let xy = &sc.xy;
         let nl = sc.links.len();
         let mut inset = vec![false; nl];
@@ -468,13 +469,13 @@ impl Group {
 
     /// Whether column `k` is an angle (else a displacement).
     #[inline]
-    pub(super) fn is_angle(&self, k: usize) -> bool {
+    pub(crate) fn is_angle(&self, k: usize) -> bool {
         k < self.nrot
     }
 
     /// `a - b` for column `k`: wrapped to (-pi, pi] for an angle.
     #[inline]
-    pub(super) fn gap(&self, k: usize, a: f64, b: f64) -> f64 {
+    pub(crate) fn gap(&self, k: usize, a: f64, b: f64) -> f64 {
         if self.is_angle(k) {
             wrap_angle(a - b)
         } else {
@@ -483,7 +484,7 @@ impl Group {
     }
 
     /// Whether the group has sliders or known turns (then it has no homotopy form).
-    pub(super) fn has_slides(&self) -> bool {
+    pub(crate) fn has_slides(&self) -> bool {
         self.n() > self.nrot || self.closures.iter().any(|c| c.terms.iter().any(|t| matches!(t.turn, Turn::Known(..))))
     }
 
@@ -502,7 +503,7 @@ impl Group {
 
     /// Residuals and Jacobian of the closures at unknowns `x` with the anchors at
     /// `anchors`: `f(row, value)` sets a residual, `j(row, column, value)` adds to an entry.
-    pub(super) fn closure_terms(
+    pub(crate) fn closure_terms(
         &self,
         x: &[f64],
         anchors: &[Xy],
@@ -573,7 +574,7 @@ impl Group {
     /// The closures as `A z = b`, z = (cos phi_1..cos phi_N, sin phi_1..sin phi_N):
     /// M v = (c v_x - s v_y, s v_x + c v_y), b = -(a_plus - a_minus); `None` for a group
     /// with slides or known turns (no such form).
-    pub(super) fn linear_form(&self, anchors: &[Xy]) -> Option<(nalgebra::DMatrix<f64>, nalgebra::DVector<f64>)> {
+    pub(crate) fn linear_form(&self, anchors: &[Xy]) -> Option<(nalgebra::DMatrix<f64>, nalgebra::DVector<f64>)> {
         if self.has_slides() {
             return None;
         }
@@ -601,7 +602,7 @@ impl Group {
     /// [`Group::linear_form`]), then per displacement column either (s cos, s sin) of its
     /// guide's unknown rotation, parallel to that (cos, sin) (a bilinear quadric), or s
     /// itself where its guide's rotation is known.
-    pub(super) fn homotopy_form(
+    pub(crate) fn homotopy_form(
         &self,
         anchors: &[Xy],
     ) -> (nalgebra::DMatrix<f64>, nalgebra::DVector<f64>, Vec<Quadric>) {
@@ -663,7 +664,7 @@ impl Group {
     }
 
     /// The unknowns (real parts) from a root `z` of [`Group::homotopy_form`].
-    pub(super) fn unknowns_of_root(&self, z: &[nalgebra::Complex<f64>]) -> Vec<f64> {
+    pub(crate) fn unknowns_of_root(&self, z: &[nalgebra::Complex<f64>]) -> Vec<f64> {
         let nr = self.nrot;
         let mut x: Vec<f64> = (0..nr).map(|r| z[nr + r].re.atan2(z[r].re)).collect();
         let mut next = 2 * nr;
@@ -686,7 +687,7 @@ impl Group {
     }
 
     /// The elbow signs of the group's joints at positions `pos`: "+" / "-" per joint.
-    pub(super) fn elbow_label(&self, pos: impl Fn(usize) -> Xy) -> String {
+    pub(crate) fn elbow_label(&self, pos: impl Fn(usize) -> Xy) -> String {
         self.elbows
             .iter()
             .map(|&(p, a, b)| {
@@ -702,7 +703,7 @@ impl Group {
 
     /// The unknowns read off positions: rotations from their drawn pose, then
     /// displacements.
-    pub(super) fn unknowns_from(&self, pos: impl Fn(usize) -> Xy) -> Vec<f64> {
+    pub(crate) fn unknowns_from(&self, pos: impl Fn(usize) -> Xy) -> Vec<f64> {
         let anchors: Vec<Xy> = self.anchors.iter().map(|&p| pos(p)).collect();
         let mut x = vec![0.0; self.n()];
         for (k, r) in self.readers.iter().enumerate() {
@@ -723,13 +724,13 @@ impl Group {
     }
 
     /// Signed Hadamard ratio of the group's Jacobian at unknowns `x`.
-    pub(super) fn conditioning_with(&self, x: &[f64], anchors: &[Xy]) -> f64 {
+    pub(crate) fn conditioning_with(&self, x: &[f64], anchors: &[Xy]) -> f64 {
         dispatch!(self.n(), cond_n, self, anchors, x)
     }
 
     /// Number of unknowns.
     #[inline]
-    pub(super) fn n(&self) -> usize {
+    pub(crate) fn n(&self) -> usize {
         self.readers.len()
     }
 
@@ -737,7 +738,7 @@ impl Group {
     /// anchors' velocities `anchor_vel` when given. `stall`: give up where Newton's residual
     /// stalls ([`newton::solve_or_stall`]), as near a dead point, where a step past it has
     /// no root.
-    pub(super) fn solve(
+    pub(crate) fn solve(
         &self,
         anchors: &[Xy],
         anchor_vel: Option<&[Xy]>,
@@ -757,7 +758,7 @@ impl Group {
     }
 
     /// Positions of the nodes from the anchors' positions and the unknowns.
-    pub(super) fn place(&self, x: &[f64], anchors: &[Xy], mut put: impl FnMut(usize, Xy)) {
+    pub(crate) fn place(&self, x: &[f64], anchors: &[Xy], mut put: impl FnMut(usize, Xy)) {
         let mut pos: Vec<Xy> = anchors.to_vec();
         self.each_node(x, anchors, |_, nd, m, arm| {
             let r = cmul(m, arm);
@@ -772,7 +773,7 @@ impl Group {
     /// and accelerations: differentiating each closure twice,
     /// J x'' = -(a_plus'' - a_minus'') - sum over terms of the rest of (M (v + s d))''.
     /// `None` where J is singular.
-    pub(super) fn second(&self, x: &[f64], dx: &[f64], k: [&[Xy]; 3]) -> Option<[f64; MAX]> {
+    pub(crate) fn second(&self, x: &[f64], dx: &[f64], k: [&[Xy]; 3]) -> Option<[f64; MAX]> {
         dispatch!(self.n(), second_n, self, x, dx, k)
     }
 
@@ -816,7 +817,7 @@ impl Group {
     /// input rate, from the anchors' velocities and the unknowns' rates `dx`) of the nodes
     /// in one pass, from the rotations' (cos, sin) `cs` (those of [`GroupSolve::cs`]), with
     /// no allocation for a group of up to 32 points (a sweep's every solved angle).
-    pub(super) fn place_moving(
+    pub(crate) fn place_moving(
         &self,
         x: &[f64],
         dx: &[f64],
@@ -850,7 +851,7 @@ impl Group {
 
     /// Accelerations of the nodes (per unit input rate squared), from the anchors'
     /// positions, velocities and accelerations `k` and the unknowns' first and second rates.
-    pub(super) fn place_acceleration(
+    pub(crate) fn place_acceleration(
         &self,
         x: &[f64],
         dx: &[f64],

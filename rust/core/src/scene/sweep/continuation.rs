@@ -17,14 +17,15 @@
 //! same.
 
 use super::columns;
-use super::dyad::{Dyad, DyadOut};
-use super::eval::Known;
-use super::group::{Group, GroupSolve, MAX};
 use super::options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
-use super::plan::{Op, Plan};
-use super::vec2::{angular_acceleration, cross, dot, perp, sub, Xy};
 use crate::error::{quoted, try_zeros, Error};
 use crate::interrupt::{Interrupt, Poll};
+use crate::scene::build::Plan;
+use crate::scene::ops::Known;
+use crate::scene::ops::Op;
+use crate::scene::ops::{Dyad, DyadOut};
+use crate::scene::ops::{Group, GroupSolve, MAX};
+use crate::scene::vec2::{angular_acceleration, cross, dot, perp, sub, Xy};
 use crate::solve::homotopy::HomotopyOptions;
 use crate::solve::newton::NewtonOptions;
 use crate::{wrap_angle, Status};

@@ -1,0 +1,10 @@
+//! Sweeping a plan over input values: the entry ([`Plan::sweep`](crate::scene::Plan::sweep)),
+//! the continuation solver with its predictors and step control, the column path for
+//! closed-form plans (`columns`), a linear input's stroke, and the options and output.
+
+mod columns;
+mod continuation;
+mod options;
+mod stroke;
+
+pub use options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
