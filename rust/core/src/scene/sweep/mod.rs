@@ -4,7 +4,11 @@
 
 mod columns;
 mod continuation;
+mod entry;
 mod options;
+mod predict;
+mod step;
 mod stroke;
+mod write;
 
 pub use options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
