@@ -317,14 +317,13 @@ impl Edges {
     }
 }
 
+/// A spanning tree's nodes, its closures, and each point's group index.
+type Spanning = (Vec<Node>, Vec<Closure>, std::collections::HashMap<usize, usize>);
+
 /// Breadth-first from the anchors: the nodes reached (each from its base by one term),
 /// a closure per edge that meets a point reached already, and each point's group index;
 /// `None` when some edge is not connected to the known points.
-#[allow(clippy::type_complexity)]
-fn spanning(
-    anchors: &[usize],
-    edges: &[(usize, usize, Term)],
-) -> Option<(Vec<Node>, Vec<Closure>, std::collections::HashMap<usize, usize>)> {
+fn spanning(anchors: &[usize], edges: &[(usize, usize, Term)]) -> Option<Spanning> {
     // breadth-first from the anchors; paths hold the terms from a point's anchor
     let na = anchors.len();
     let mut gp = std::collections::HashMap::<usize, usize>::new();
