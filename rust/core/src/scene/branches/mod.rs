@@ -2,7 +2,9 @@
 //! through their dead points (`trace`), and the assemblies grouped by circuit.
 
 mod assemble;
+mod circuits;
 mod trace;
 
 pub use assemble::{Assemblies, Assembly};
-pub use trace::{Circuit, Trace, TraceOptions, Tracer};
+pub use circuits::Circuit;
+pub use trace::{Trace, TraceOptions, Tracer};

@@ -43,7 +43,7 @@ pub const MAX_SKETCH_POINTS: usize = 500;
 /// name the entry: `lengths[k]` for an entry that is malformed or contradicts another,
 /// `links.X` for a link whose lengths leave it non-rigid or cannot close, `slots.X` or
 /// `prismatic.X` for a joint the lengths do not place; the spec itself is checked as
-/// [`Scene::new`] checks it, except the rank at the (sketched) pose. `interrupt` is asked
+/// [`Scene::new`](crate::scene::Scene::new) checks it, except the rank at the (sketched) pose. `interrupt` is asked
 /// once per continuation step (Ctrl-C from Python).
 pub fn assemble_sketch(spec: SceneSpec, lengths: &[LengthSpec], interrupt: &dyn Interrupt) -> Result<Sketched, Error> {
     let sc = structure(spec)?;
