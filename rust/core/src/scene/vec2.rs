@@ -64,3 +64,15 @@ pub(crate) fn solve2(e1: Xy, e2: Xy, c1: f64, c2: f64) -> Option<Xy> {
     }
     Some([(c1 * e2[1] - c2 * e1[1]) / det, (e1[0] * c2 - e2[0] * c1) / det])
 }
+
+/// a + b
+#[inline]
+pub(crate) fn add(a: Xy, b: Xy) -> Xy {
+    [a[0] + b[0], a[1] + b[1]]
+}
+
+/// a scaled by k.
+#[inline]
+pub(crate) fn scale(a: Xy, k: f64) -> Xy {
+    [a[0] * k, a[1] * k]
+}

@@ -15,8 +15,7 @@ use crate::scene::ops::Dyad;
 use crate::scene::ops::Op;
 use crate::scene::ops::{Group, MAX};
 use crate::scene::ops::{Line, LineLine, Rpr, Rrp};
-use crate::scene::vec2::{cdiv, cmul};
-use crate::scene::vec2::{cross, dot, sub, Xy};
+use crate::scene::vec2::{cdiv, cmul, cross, dot, sub, unit, Xy};
 
 impl Scene {
     /// Compiles the steps that solve `outputs` (point or link names; `None`: every point
@@ -163,13 +162,6 @@ fn rotation_carrier(sc: &Scene, known: &[bool], link: usize) -> Option<(usize, u
     })
 }
 
-/// A unit vector along b - a (solving frame).
-fn unit(xy: &[Xy], a: usize, b: usize) -> Xy {
-    let d = sub(xy[b], xy[a]);
-    let n = dot(d, d).sqrt();
-    [d[0] / n, d[1] / n]
-}
-
 /// The known lines an unknown point `p` must stay on, with the link giving each: its slots
 /// on known guides, the paths of a prismatic link over a known guide, and the lines a
 /// known slot point draws on a guide whose rotation is known.
@@ -189,7 +181,7 @@ fn lines_of(sc: &Scene, fused: Option<&Fused>, known: &[bool], p: usize) -> Vec<
         // the slot point is known and p is on a guide whose rotation is known
         if sl.point != p && known[sl.point] && sc.links[sl.guide].points.contains(&p) {
             if let Some((ha, hb)) = rotation_carrier(sc, known, sl.guide) {
-                let d0 = unit(xy, a, b);
+                let d0 = unit(sub(xy[b], xy[a]));
                 let shift = sub(xy[p], xy[a]);
                 let off = [shift[0] + sl.offset * d0[1], shift[1] - sl.offset * d0[0]];
                 let h = sub(xy[hb], xy[ha]);
@@ -250,7 +242,7 @@ fn find_slider(sc: &Scene, fused: Option<&Fused>, known: &[bool]) -> Option<Op> 
             continue;
         }
         let Some(&t) = pts.iter().find(|&&q| !known[q]) else { continue };
-        let d = unit(xy, sl.line.0, sl.line.1);
+        let d = unit(sub(xy[sl.line.1], xy[sl.line.0]));
         let side = if dot(d, sub(xy[sl.point], xy[k])) < 0.0 { -1.0 } else { 1.0 };
         let on = *sc.point_links[sl.point].first().expect("a slot point is on a moving link");
         return Some(Op::Rpr(Rpr {

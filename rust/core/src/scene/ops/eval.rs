@@ -6,21 +6,10 @@
 use super::dyad::{Dyad, DyadOut};
 use super::slide::{LineLine, Solved};
 use super::Op;
-use crate::scene::vec2::{cdiv, cmul, solve2};
-use crate::scene::vec2::{cross, dot, sub, Xy};
+use crate::scene::vec2::{add, cdiv, cmul, cross, dot, scale, solve2, sub, Xy};
 
 /// Positions, first and second derivatives by the input, indexed by point.
 pub(crate) type Known<'a> = [&'a [Xy]; 3];
-
-#[inline]
-pub(crate) fn add(a: Xy, b: Xy) -> Xy {
-    [a[0] + b[0], a[1] + b[1]]
-}
-
-#[inline]
-pub(crate) fn scale(a: Xy, k: f64) -> Xy {
-    [a[0] * k, a[1] * k]
-}
 
 impl Op {
     /// True for the operations with two solutions (a side to choose and carry).

@@ -23,7 +23,7 @@ use crate::scene::ops::Known;
 use crate::scene::ops::Op;
 use crate::scene::ops::{Dyad, DyadOut};
 use crate::scene::ops::{GroupSolve, MAX};
-use crate::scene::vec2::{cross, perp, sub, Xy};
+use crate::scene::vec2::{cmul, cross, perp, sub, Xy};
 use crate::solve::newton::NewtonOptions;
 use crate::Status;
 
@@ -176,16 +176,16 @@ impl<'p> Solver<'p> {
                 Op::Carry { q, a, b, m } => {
                     let st = bad(&self.pst, &[*a, *b]).unwrap_or(Status::Converged);
                     let (pa, pb) = (self.pos[*a], self.pos[*b]);
-                    let r = rot_m(*m, sub(pb, pa));
+                    let r = cmul(*m, sub(pb, pa));
                     self.pos[*q] = [pa[0] + r[0], pa[1] + r[1]];
                     if self.need_vel {
                         let (va, vb) = (self.vel[*a], self.vel[*b]);
-                        let rv = rot_m(*m, sub(vb, va));
+                        let rv = cmul(*m, sub(vb, va));
                         self.vel[*q] = [va[0] + rv[0], va[1] + rv[1]];
                     }
                     if self.need_acc {
                         let (wa, wb) = (self.acc[*a], self.acc[*b]);
-                        let rw = rot_m(*m, sub(wb, wa));
+                        let rw = cmul(*m, sub(wb, wa));
                         self.acc[*q] = [wa[0] + rw[0], wa[1] + rw[1]];
                     }
                     self.pst[*q] = st;
@@ -425,10 +425,4 @@ impl<'p> Solver<'p> {
         st.limit = None;
         (Status::Converged, out.det)
     }
-}
-
-/// q - a = m (b - a) in complex arithmetic.
-#[inline]
-fn rot_m(m: Xy, d: Xy) -> Xy {
-    [m[0] * d[0] - m[1] * d[1], m[1] * d[0] + m[0] * d[1]]
 }

@@ -4,7 +4,7 @@
 use super::{Closure, Group, Node, Reader, Term, Turn, MAX};
 use crate::scene::input::LinearKind;
 use crate::scene::model::Scene;
-use crate::scene::vec2::{cdiv, cmul, dot, sub, Xy};
+use crate::scene::vec2::{self, cdiv, cmul, dot, sub, Xy};
 use crate::solve::newton;
 
 /// Union-find root.
@@ -262,7 +262,7 @@ impl Edges {
             let s = &sc.slots[i];
             let (a, b) = s.line;
             let (turn, unit) = cls.turn_of(xy, s.guide, anchors);
-            let d = unit_dir(xy, a, b);
+            let d = vec2::unit(sub(xy[b], xy[a]));
             let k = nrot + slide_cols.len();
             slide_cols.push(k);
             let term = Term { turn, v: cmul(unit, sub(xy[s.point], xy[a])), slide: Some((k, cmul(unit, d))) };
@@ -279,7 +279,7 @@ impl Edges {
             let pr = &sc.prismatic[i];
             let (a, b) = pr.line;
             let (turn, unit) = cls.turn_of(xy, pr.guide, anchors);
-            let d = unit_dir(xy, a, b);
+            let d = vec2::unit(sub(xy[b], xy[a]));
             let c = centres[pr.link];
             let k = nrot + slide_cols.len();
             slide_cols.push(k);
@@ -397,13 +397,6 @@ fn anchor_index(anchors: &mut Vec<usize>, p: usize) -> usize {
             anchors.len() - 1
         }
     }
-}
-
-/// The unit vector along b - a (solving frame).
-fn unit_dir(xy: &[Xy], a: usize, b: usize) -> Xy {
-    let d = sub(xy[b], xy[a]);
-    let n = dot(d, d).sqrt();
-    [d[0] / n, d[1] / n]
 }
 
 /// Terms turning with one rotation column and not sliding are summed into one (the loop
