@@ -1,16 +1,12 @@
-//! Any one-degree-of-freedom planar linkage of revolute joints, described as data: named
-//! points drawn in one assembled pose and links as the lists of points they carry.
-//! [`Scene::new`] validates it (names, geometry, mobility); [`Scene::plan`] compiles the
-//! steps that the requested outputs need (dyads, rigid carries, Newton groups);
-//! [`Plan::sweep`] solves them over input angles, [`Plan::assemblies`] finds every
-//! assembly at one angle, and [`Tracer`] follows circuits through their dead points.
-//! [`assemble_sketch`] turns `lengths` and a rough drawing into the exact pose.
-//!
-//! Inside, by layer: `sweep` (continuation, columns, stroke), `branches` (assemblies,
-//! trace, circuits) and `gradient` are the entries; they call `build` (validation, plan,
-//! sketch), which calls `ops` (one operation kind per file); `model` (the scene as data),
-//! `input` (the input's kind) and `vec2` are the leaves they all share.
+//! Any one-degree-of-freedom planar linkage described as data: [`Scene`] validates it,
+//! [`Plan`] is what its outputs need, [`Plan::sweep`] solves it over the input, and
+//! [`Plan::assemblies`], [`Tracer`] and [`assemble_sketch`] find its branches and poses.
 
+// Layers, each calling only those below it: the entries `sweep` (continuation, columns,
+// stroke; it asks `branches` for the assemblies where it stops), `branches` (assemblies,
+// trace, circuits) and `gradient`; then `build` (validation, plan, sketch); then `ops`
+// (one operation kind per file); the leaves `model` (the scene as data), `input` (the
+// input's kind) and `vec2`.
 mod branches;
 mod build;
 mod gradient;

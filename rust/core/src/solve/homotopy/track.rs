@@ -1,6 +1,33 @@
 //! Path tracking: every run's paths from the start system to the target (RK4 predictor,
 //! Newton corrector, adaptive step on a moving projective patch), their classification
 //! and the merging of roots over runs.
+//!
+//! Method. The linear part is eliminated first: rows of `[A | b]` are scaled to unit
+//! max-norm, an SVD checks that `A` (N x 2N) has full row rank and gives the
+//! minimum-norm solution `z0` and an orthonormal basis `K` (2N x N) of its null space, so
+//! `z = z0 + K t`. What is left is N quadrics in N unknowns,
+//! `q_j(t) = c_j(t)^2 + s_j(t)^2 - 1`. They are solved by a total-degree homotopy
+//! `H(t, tau) = (1 - tau) gamma G(t) + tau F(t)`, `G_j = t_j^2 - 1` (2^N start points
+//! `t_j = +-1`), `gamma` a random unit complex number (the "gamma trick": no path meets a
+//! singularity for tau < 1, with probability one). Each path is tracked in projective
+//! coordinates `X = (x0, x)`, `t = x / x0`, on a moving orthogonal patch
+//! (`conj(X_k) . X = 1`, renormalised after every accepted step), so paths whose `t`
+//! diverges stay bounded and head for `x0 = 0`: once `|x0| < 1e-6 |X|` (or if they stop
+//! or end with `|x0| < 1e-4 |X|` and no finite root) they are classified *infinite*, not
+//! failed. Predictor: classical RK4 on the Davidenko equation `H_X dX/dtau = -H_tau`;
+//! corrector: at most three Newton steps that must contract; adaptive step (halved on
+//! rejection, doubled after three acceptances), bounded by `max_steps` per path and a
+//! minimum step, so nothing hangs. Every endpoint that reached tau = 1 (or stopped within
+//! 1e-6 of it, as paths to a singular root do) is finished by Newton on the affine target
+//! `F(t)` and kept only if Newton converges near it with a small residual (a finite,
+//! verified root). Roots are
+//! deduplicated; two paths of one run ending on the same root (path jumping: the roots
+//! are simple for generic geometry) are both tracked again with steps eight times
+//! smaller; the whole tracking runs `runs` times (default 2) with independent
+//! `gamma`s and the root sets are merged, so a root lost by one run to a path failure or
+//! path jumping is still found if the other run finds it. Real assemblies: roots whose
+//! imaginary parts are below a scale-aware tolerance, polished by real Newton in the
+//! angles on `A z(phi) = b` (the circles then hold exactly) to about 1e-15 rad.
 
 use super::eval::Work;
 use super::lu::lu_solve;

@@ -1,17 +1,9 @@
-//! Scenes from a sketch: `lengths` and roughly drawn points become the exact assembly
-//! nearest the sketch. [`assemble_sketch`] builds each moving link's shape from its listed
-//! distances (sides as sketched), places slots and prismatic pairs by their listed
-//! distances from their lines, holds ground and the sketched input, and follows the sketch,
-//! an exact assembly of its own lengths, while those lengths move to the given ones (Newton
-//! on the moving points' coordinates). Passing a dead point on the way would change the
-//! assembly mode, so it is refused instead, naming the link that cannot close.
-//!
-//! The rule for sliders, which distances alone cannot say: a slot's pin lies on its line
-//! unless `lengths` gives its distance from it (`[pin, slot, e]`, on the side it is
-//! sketched); a prismatic pair holds two points of its sliding link at given distances from
-//! its guide's line (`[point, pair, d]`, exactly two such entries), or, with none given,
-//! the sliding link's first two listed points on the line (a rod in its barrel).
+//! Scenes from a sketch: [`assemble_sketch`] turns `lengths` and roughly drawn points into
+//! the exact assembly nearest the sketch, refusing to pass a dead point on the way.
 
+// Inside: this file is the entry; `given` parses the lengths, `rows` makes the conditions
+// (each moving link's shape; the rule for sliders is there), `system` follows the sketch
+// to the given lengths by Newton continuation.
 mod given;
 mod rows;
 mod system;
@@ -39,7 +31,18 @@ pub struct Sketched {
 /// about a tenth of a second per factorisation at this size).
 pub const MAX_SKETCH_POINTS: usize = 500;
 
-/// Assembles the sketch `spec` with `lengths` (see the module docs for the rule). Errors
+/// Assembles the sketch `spec` with `lengths`: each moving link's shape from its listed
+/// distances (sides as sketched), slots and prismatic pairs placed by their listed
+/// distances from their lines, ground and the sketched input held, and the sketch (an exact
+/// assembly of its own lengths) followed while those lengths move to the given ones.
+///
+/// The rule for sliders, which distances alone cannot say: a slot's pin lies on its line
+/// unless `lengths` gives its distance from it (`[pin, slot, e]`, on the side it is
+/// sketched); a prismatic pair holds two points of its sliding link at given distances from
+/// its guide's line (`[point, pair, d]`, exactly two such entries), or, with none given,
+/// the sliding link's first two listed points on the line (a rod in its barrel).
+///
+/// Errors
 /// name the entry: `lengths[k]` for an entry that is malformed or contradicts another,
 /// `links.X` for a link whose lengths leave it non-rigid or cannot close, `slots.X` or
 /// `prismatic.X` for a joint the lengths do not place; the spec itself is checked as

@@ -1,5 +1,6 @@
 //! The conditions a sketch must meet: each moving link's shape from its lengths (sides
-//! as sketched), slots and prismatic pairs by their distances from their lines.
+//! as sketched), slots and prismatic pairs by their distances from their lines. The rule
+//! for sliders is [`assemble_sketch`](super::assemble_sketch)'s.
 
 use super::given::{dist, Given, Owner, SAME};
 use crate::error::Error;

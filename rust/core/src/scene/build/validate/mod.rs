@@ -1,10 +1,9 @@
 //! Scene validation: names, coordinates, links, ground/input/output, and mobility (the
 //! Gruebler count, then the rank of the constraint Jacobian at the drawn pose, so that a
 //! special geometry that moves although the count says it cannot is reported).
-//!
-//! Inside: this file is the entry; `entries` (the entries by name), `geometry` (size,
-//! coincidence, the solving frame) and `mobility` (count and rank) are its kernels.
 
+// Inside: this file is the entry; `entries` (the entries by name), `geometry` (size,
+// coincidence, the solving frame) and `mobility` (count and rank) are its kernels.
 mod entries;
 mod geometry;
 mod mobility;

@@ -1,5 +1,24 @@
 //! A group's loop-closure equations: residuals and Jacobian at given unknowns, their
 //! rate by the input, second derivatives, and the generic Newton system over them.
+//!
+//! Unknowns (columns) are the rotations of the group's links from their drawn pose (links
+//! joined by a prismatic pair turn together: one rotation) and the displacements of its
+//! slots and prismatic pairs from the drawn pose. Joints are reached from the known points
+//! (anchors) through a spanning tree; each edge outside the tree closes a loop. An edge
+//! from point x to point y is a [`Term`], `y - x = M (v + s d)`: M the rotation of the link
+//! (or, for a link whose rotation is known, the complex ratio of two known points' current
+//! difference to their drawn one), v the drawn vector, and for a sliding edge s its
+//! displacement along the unit direction d. So every loop-closure equation has the form
+//!
+//! ```text
+//! F_c = (a_plus - a_minus) + sum_terms M_t (v_t + s_t d_t) = 0,
+//! ```
+//!
+//! linear in each link's (cos phi, sin phi) and in the displacements; without sliders it is
+//! linear in (cos phi_j, sin phi_j), and the same coefficients feed the all-solutions
+//! homotopy. dF/dphi_r = perp(M (v + s d)) for the terms turning with r, dF/ds = M d, and
+//! at fixed unknowns dF/dtheta comes from the anchors' velocities (and those of the known
+//! points a known rotation is read from).
 
 use nalgebra::{SMatrix, SVector};
 
