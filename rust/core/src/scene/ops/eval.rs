@@ -4,8 +4,8 @@
 //! (continuation) and the assemblies (every side) both call it, so they agree bit for bit.
 
 use super::dyad::{Dyad, DyadOut};
+use super::op::Op;
 use super::slide::{LineLine, Solved};
-use super::Op;
 use crate::scene::vec2::{add, cdiv, cmul, cross, dot, scale, solve2, sub, Xy};
 
 /// Positions, first and second derivatives by the input, indexed by point.
