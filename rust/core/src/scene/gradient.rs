@@ -13,9 +13,9 @@
 
 use nalgebra::DMatrix;
 
-use super::vec2::{perp, sub, Xy};
-use super::Scene;
 use crate::error::Error;
+use crate::scene::model::Scene;
+use crate::scene::vec2::{perp, sub, Xy};
 
 /// Step of [`Scene::dets_gradient`]'s central difference, in solving-frame units (the
 /// drawing's size is about 1 there).

@@ -3,6 +3,7 @@
 
 use super::vec2::{cross, sub};
 use super::*;
+use crate::error::Error;
 use crate::interrupt::Never;
 use crate::solve::homotopy::HomotopyOptions;
 use crate::solve::newton::NewtonOptions;

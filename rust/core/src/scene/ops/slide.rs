@@ -14,54 +14,11 @@
 //! carries `a` and `b`. Every solve here also gives first and second derivatives by the
 //! input, from those of the known points.
 
-use super::vec2::{cross, dot, perp, sub, Xy};
-
-/// A pin in a slot: `point` stays on the line through `line`'s two points (points of link
-/// `guide`) at its drawn perpendicular `offset` (solving-frame units).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Slot {
-    /// Its name in the scene.
-    pub name: String,
-    /// The point kept on the line.
-    pub point: usize,
-    /// The link carrying the line.
-    pub guide: usize,
-    /// Two points of the guide fixing the line; its direction is line.0 -> line.1.
-    pub line: (usize, usize),
-    /// cross(unit direction, point - line.0) as drawn (solving frame).
-    pub offset: f64,
-}
-
-/// A prismatic pair: `link` translates along `line` (two points of `guide`) and keeps its
-/// drawn rotation relative to the guide.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Prismatic {
-    /// Its name in the scene.
-    pub name: String,
-    /// The translating link.
-    pub link: usize,
-    /// The link it slides in.
-    pub guide: usize,
-    /// Two points of the guide fixing the direction of travel (line.0 -> line.1).
-    pub line: (usize, usize),
-}
-
-/// Complex product: `m` applied to `v` (scale and turn).
-#[inline]
-pub(super) fn cmul(m: Xy, v: Xy) -> Xy {
-    [m[0] * v[0] - m[1] * v[1], m[1] * v[0] + m[0] * v[1]]
-}
-
-/// Complex quotient a / b.
-#[inline]
-pub(super) fn cdiv(a: Xy, b: Xy) -> Xy {
-    let n = dot(b, b);
-    [(a[0] * b[0] + a[1] * b[1]) / n, (a[1] * b[0] - a[0] * b[1]) / n]
-}
+use crate::scene::vec2::{cdiv, cmul, cross, dot, perp, solve2, sub, unit, Xy};
 
 /// A line fixed by known points: through `base + m_off (b - a)`, along `m_dir (b - a)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Line {
+pub(crate) struct Line {
     pub base: usize,
     pub a: usize,
     pub b: usize,
@@ -71,20 +28,20 @@ pub(super) struct Line {
 
 /// A line's point and direction with their first and second derivatives.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct LineAt {
+pub(crate) struct LineAt {
     pub p: [Xy; 3],
     pub d: [Xy; 3],
 }
 
 impl Line {
     /// The points it reads.
-    pub(super) fn inputs(&self) -> [usize; 3] {
+    pub(crate) fn inputs(&self) -> [usize; 3] {
         [self.base, self.a, self.b]
     }
 
     /// Its point and (unit-length as drawn) direction from the known points' positions,
     /// velocities and accelerations (`k[0]`, `k[1]`, `k[2]`, indexed by point).
-    pub(super) fn at(&self, k: [&[Xy]; 3]) -> LineAt {
+    pub(crate) fn at(&self, k: [&[Xy]; 3]) -> LineAt {
         let mut p = [[0.0; 2]; 3];
         let mut d = [[0.0; 2]; 3];
         for o in 0..3 {
@@ -96,28 +53,11 @@ impl Line {
     /// Its point and direction from the positions of `base`, `a` and `b` (linear in them:
     /// the same map gives their derivatives from the points' derivatives).
     #[inline]
-    pub(super) fn place(&self, base: Xy, a: Xy, b: Xy) -> (Xy, Xy) {
+    pub(crate) fn place(&self, base: Xy, a: Xy, b: Xy) -> (Xy, Xy) {
         let ab = sub(b, a);
         let off = cmul(self.m_off, ab);
         ([base[0] + off[0], base[1] + off[1]], cmul(self.m_dir, ab))
     }
-}
-
-/// `d` divided by its length.
-#[inline]
-pub(super) fn unit(d: Xy) -> Xy {
-    let n = dot(d, d).sqrt();
-    [d[0] / n, d[1] / n]
-}
-
-/// x with e1 . x = c1 and e2 . x = c2; `None` when e1 and e2 are parallel.
-#[inline]
-pub(super) fn solve2(e1: Xy, e2: Xy, c1: f64, c2: f64) -> Option<Xy> {
-    let det = cross(e1, e2);
-    if det == 0.0 {
-        return None;
-    }
-    Some([(c1 * e2[1] - c2 * e1[1]) / det, (e1[0] * c2 - e2[0] * c1) / det])
 }
 
 /// The derivatives' equations of "x on line l": perp(d) . x' = cross(d, p') - cross(d', x - p)
@@ -133,7 +73,7 @@ fn on_line_rates(l: &LineAt, x: Xy, v: Xy) -> (Xy, f64, f64) {
 /// A point solved with its first and second derivatives by the input, and the step's
 /// signed conditioning.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Solved {
+pub(crate) struct Solved {
     pub x: [Xy; 3],
     pub det: f64,
 }
@@ -141,7 +81,7 @@ pub(super) struct Solved {
 /// Circle-line: point `p` at distance `r` from known point `k` (through link `link`) and on
 /// `line`, on `side` (+1: ahead of the foot of k along the line's direction).
 #[derive(Clone, Debug, PartialEq)]
-pub(super) struct Rrp {
+pub(crate) struct Rrp {
     pub p: usize,
     pub k: usize,
     pub r: f64,
@@ -154,7 +94,7 @@ pub(super) struct Rrp {
 impl Rrp {
     /// The two intersections' one on `side`, or `None` where the circle misses the line
     /// (beyond rounding).
-    pub(super) fn solve(&self, k: [Xy; 3], l: &LineAt, side: f64, rates: bool) -> Option<Solved> {
+    pub(crate) fn solve(&self, k: [Xy; 3], l: &LineAt, side: f64, rates: bool) -> Option<Solved> {
         let (x, det) = self.place(k[0], l.p[0], l.d[0], side)?;
         let mut out = Solved { x: [x, [f64::NAN; 2], [f64::NAN; 2]], det };
         if rates {
@@ -175,13 +115,13 @@ impl Rrp {
     /// The position alone (no rates) and its conditioning, from known point `k` and the
     /// line through `p` along `d`: what [`Rrp::solve`] places, bit for bit.
     #[inline]
-    pub(super) fn place(&self, k: Xy, p: Xy, d: Xy, side: f64) -> Option<(Xy, f64)> {
+    pub(crate) fn place(&self, k: Xy, p: Xy, d: Xy, side: f64) -> Option<(Xy, f64)> {
         self.place_along(k, p, unit(d), side)
     }
 
     /// [`Rrp::place`] with the line's unit direction `u` ([`unit`] of its direction) given.
     #[inline]
-    pub(super) fn place_along(&self, k: Xy, p: Xy, u: Xy, side: f64) -> Option<(Xy, f64)> {
+    pub(crate) fn place_along(&self, k: Xy, p: Xy, u: Xy, side: f64) -> Option<(Xy, f64)> {
         let (x, det, meets) = self.place_branch_free(k, p, u, side);
         meets.then_some((x, det))
     }
@@ -190,7 +130,7 @@ impl Rrp {
     /// the position and conditioning, and whether the circle meets the line (where it
     /// does not, the foot of k on the line and 0).
     #[inline(always)]
-    pub(super) fn place_branch_free(&self, k: Xy, p: Xy, u: Xy, side: f64) -> (Xy, f64, bool) {
+    pub(crate) fn place_branch_free(&self, k: Xy, p: Xy, u: Xy, side: f64) -> (Xy, f64, bool) {
         let w = sub(k, p);
         let along = dot(w, u);
         let foot = [p[0] + along * u[0], p[1] + along * u[1]];
@@ -203,7 +143,7 @@ impl Rrp {
     }
 
     /// Signed conditioning at positions: the cosine between the line and k -> p.
-    pub(super) fn det_at(&self, p: Xy, k: Xy, l: &LineAt) -> f64 {
+    pub(crate) fn det_at(&self, p: Xy, k: Xy, l: &LineAt) -> f64 {
         let n = dot(l.d[0], l.d[0]).sqrt();
         dot(sub(p, k), l.d[0]) / (n * self.r)
     }
@@ -211,14 +151,14 @@ impl Rrp {
 
 /// Line-line: point `p` on two known lines.
 #[derive(Clone, Debug, PartialEq)]
-pub(super) struct LineLine {
+pub(crate) struct LineLine {
     pub p: usize,
     pub lines: [Line; 2],
     pub links: [usize; 2],
 }
 
 impl LineLine {
-    pub(super) fn solve(&self, l1: &LineAt, l2: &LineAt, rates: bool) -> Solved {
+    pub(crate) fn solve(&self, l1: &LineAt, l2: &LineAt, rates: bool) -> Solved {
         let (x, det) = Self::place(l1.p[0], l1.d[0], l2.p[0], l2.d[0]);
         let mut out = Solved { x: [x, [f64::NAN; 2], [f64::NAN; 2]], det };
         if rates {
@@ -237,7 +177,7 @@ impl LineLine {
     /// The intersection of the line through `p1` along `d1` with the one through `p2`
     /// along `d2`, and the sine between them: what [`LineLine::solve`] places.
     #[inline]
-    pub(super) fn place(p1: Xy, d1: Xy, p2: Xy, d2: Xy) -> (Xy, f64) {
+    pub(crate) fn place(p1: Xy, d1: Xy, p2: Xy, d2: Xy) -> (Xy, f64) {
         let (n1, n2) = (dot(d1, d1).sqrt(), dot(d2, d2).sqrt());
         let det = cross(d1, d2) / (n1 * n2);
         // p = p1 + t d1 with cross(d2, p - p2) = 0
@@ -249,7 +189,7 @@ impl LineLine {
 /// The guide's turn behind an [`Rpr`] position: its line's direction `u`, the signed
 /// distance `along` it from k to q, and the arm k -> t.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct RprTurn {
+pub(crate) struct RprTurn {
     pub u: Xy,
     pub along: f64,
     pub arm: Xy,
@@ -259,7 +199,7 @@ pub(super) struct RprTurn {
 /// `d`, both as drawn) passes through known point `q` at the drawn `offset`. Solves the
 /// guide's rotation and places its point `t`, on `side` (+1: q ahead of k along the line).
 #[derive(Clone, Debug, PartialEq)]
-pub(super) struct Rpr {
+pub(crate) struct Rpr {
     pub t: usize,
     pub k: usize,
     pub q: usize,
@@ -280,7 +220,7 @@ impl Rpr {
         self.offset + cross(self.d, sub(self.l0, self.k0))
     }
 
-    pub(super) fn solve(&self, k: [Xy; 3], q: [Xy; 3], side: f64, rates: bool) -> Option<Solved> {
+    pub(crate) fn solve(&self, k: [Xy; 3], q: [Xy; 3], side: f64, rates: bool) -> Option<Solved> {
         let c = self.c();
         let (x, det, RprTurn { u, along, arm }) = self.place(k[0], q[0], side)?;
         let mut out = Solved { x: [x, [f64::NAN; 2], [f64::NAN; 2]], det };
@@ -299,7 +239,7 @@ impl Rpr {
     /// The position of `t` alone (no rates) and its conditioning, from the known points
     /// `k` and `q`, with the guide's turn that the rates need: what [`Rpr::solve`] places.
     #[inline]
-    pub(super) fn place(&self, k: Xy, q: Xy, side: f64) -> Option<(Xy, f64, RprTurn)> {
+    pub(crate) fn place(&self, k: Xy, q: Xy, side: f64) -> Option<(Xy, f64, RprTurn)> {
         let w = sub(q, k);
         let rw = dot(w, w).sqrt();
         let c = self.c();
@@ -317,7 +257,7 @@ impl Rpr {
     }
 
     /// Signed conditioning at positions (guide placed so that t is at `t`).
-    pub(super) fn det_at(&self, t: Xy, k: Xy, q: Xy) -> f64 {
+    pub(crate) fn det_at(&self, t: Xy, k: Xy, q: Xy) -> f64 {
         // the guide's rotation from t, then the cosine between its line and k -> q
         let rot = cdiv(sub(t, k), sub(self.t0, self.k0));
         let n = dot(rot, rot).sqrt();

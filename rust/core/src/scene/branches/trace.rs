@@ -1,6 +1,5 @@
 //! Tracing a circuit through its dead points: pseudo-arclength continuation in
-//! (configuration, input angle) space, and circuits as the classes of assemblies that
-//! tracing connects.
+//! (configuration, input angle) space.
 //!
 //! The whole linkage is one [`Group`] over the ground points with the input link among its
 //! links: n rotations (the input's is theta - theta0), n - 1 loop-closure equations F = 0.
@@ -12,13 +11,12 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::group::Group;
-use super::plan::Plan;
-use super::vec2::Xy;
-use super::Scene;
 use crate::error::{positive_finite, try_grow, Error};
 use crate::interrupt::{Interrupt, Poll};
-use crate::solve::homotopy::HomotopyOptions;
+use crate::scene::build::Plan;
+use crate::scene::model::Scene;
+use crate::scene::ops::Group;
+use crate::scene::vec2::Xy;
 use crate::wrap_angle;
 
 /// Tracing options.
@@ -63,28 +61,12 @@ pub struct Trace {
     pub closed: bool,
 }
 
-/// One circuit at an input angle.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Circuit {
-    /// Indices into the assemblies at that angle, in the order the trace meets them.
-    pub assemblies: Vec<usize>,
-    /// Turning points, wrapped to (-pi, pi], in path order.
-    pub turning_points: Vec<f64>,
-    /// Net change of the input angle once round the circuit (a multiple of 2 pi when
-    /// closed: nonzero means the input turns fully round on it).
-    pub net_turn: f64,
-    /// Smallest and largest input angle on the path (continuous).
-    pub range: (f64, f64),
-    /// The path.
-    pub trace: Trace,
-}
-
 /// The whole linkage as one curve.
 pub struct Tracer<'s> {
     chain: Group,
     /// Unknown index of the input link.
     input: usize,
-    plan: Plan,
+    pub(super) plan: Plan,
     scene: &'s Scene,
 }
 
@@ -242,7 +224,7 @@ impl<'s> Tracer<'s> {
 
     /// [`Tracer::trace_from`], also returning the poses (solving frame) where the path
     /// crosses the input angle `watch` (modulo 2 pi), the start excluded.
-    fn trace_watching(
+    pub(super) fn trace_watching(
         &self,
         pos: &[Xy],
         opts: &TraceOptions,
@@ -331,7 +313,7 @@ impl<'s> Tracer<'s> {
 
     /// Appends one path point, growing the trace fallibly (a long trace is the user's to
     /// ask for: `max_points`).
-    fn record_pose(&self, out: &mut Trace, pos: &[Xy], theta: f64, det: f64) -> Result<(), Error> {
+    pub(super) fn record_pose(&self, out: &mut Trace, pos: &[Xy], theta: f64, det: f64) -> Result<(), Error> {
         let plan = &self.plan;
         let (m, np) = (out.theta.len() + 1, pos.len());
         let what = || format!("trace: {m} points of {np} scene points each");
@@ -406,88 +388,22 @@ impl<'s> Tracer<'s> {
     fn unwrap_like(&self, a: &DVector<f64>, b: &DVector<f64>) -> DVector<f64> {
         DVector::from_iterator(a.len(), (0..a.len()).map(|k| b[k] + self.chain.gap(k, a[k], b[k])))
     }
-
-    /// Circuits through the assemblies at `theta`: each traced once; the assemblies a
-    /// trace meets at `theta` (modulo 2 pi) belong to its circuit.
-    pub fn circuits(
-        &self,
-        theta: f64,
-        hopts: &HomotopyOptions,
-        opts: &TraceOptions,
-        interrupt: &dyn Interrupt,
-    ) -> Result<(super::Assemblies, Vec<Circuit>), Error> {
-        let mut found = self.plan.assemblies(theta, hopts, interrupt)?;
-        let poll = Poll::new(interrupt);
-        let plan = &self.plan;
-        let to_frame = |p: &Xy| [(p[0] - plan.origin[0]) / plan.scale, (p[1] - plan.origin[1]) / plan.scale];
-        let mut frames: Vec<Vec<Xy>> = found.list.iter().map(|a| a.points.iter().map(to_frame).collect()).collect();
-        let mut owner: Vec<Option<usize>> = vec![None; frames.len()];
-        let mut circuits = Vec::new();
-        let mut k = 0;
-        while k < frames.len() {
-            if owner[k].is_some() {
-                k += 1;
-                continue;
-            }
-            let id = circuits.len();
-            let (tr, crossings) = match self.trace_watching(&frames[k], opts, Some(theta), &poll) {
-                Ok(r) => r,
-                Err(e @ (Error::Interrupted | Error::Allocation { .. })) => return Err(e),
-                Err(_) => {
-                    // a singular assembly Newton cannot start from: a circuit of its own
-                    let mut tr = Trace::default();
-                    self.record_pose(&mut tr, &frames[k], theta, plan.dets_at(&frames[k]).0)?;
-                    (tr, Vec::new())
-                }
-            };
-            owner[k] = Some(id);
-            let mut members = vec![k];
-            for pos in crossings {
-                let j = match frames.iter().position(|f| max_gap(f, &pos) < 1e-7) {
-                    Some(j) => j,
-                    None => {
-                        // met by tracing but missed by the homotopy: keep it, marked
-                        let (det, step_det) = plan.dets_at(&pos);
-                        let points = pos
-                            .iter()
-                            .map(|p| [p[0] * plan.scale + plan.origin[0], p[1] * plan.scale + plan.origin[1]])
-                            .collect();
-                        found.list.push(super::Assembly { points, step_det, det, label: "traced".into() });
-                        frames.push(pos);
-                        owner.push(None);
-                        frames.len() - 1
-                    }
-                };
-                if owner[j].is_none() {
-                    owner[j] = Some(id);
-                    members.push(j);
-                }
-            }
-            let lo = tr.theta.iter().copied().fold(f64::INFINITY, f64::min);
-            let hi = tr.theta.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            let net = if tr.closed { tr.theta[tr.theta.len() - 1] - tr.theta[0] } else { f64::NAN };
-            circuits.push(Circuit {
-                assemblies: members,
-                turning_points: tr
-                    .turning_points
-                    .iter()
-                    .map(|&a| if self.plan.linear { a } else { wrap_angle(a) })
-                    .collect(),
-                net_turn: net,
-                range: (lo, hi),
-                trace: tr,
-            });
-            k += 1;
-        }
-        Ok((found, circuits))
-    }
 }
 
-/// Largest distance between corresponding points (NaN-free points only).
-fn max_gap(a: &[Xy], b: &[Xy]) -> f64 {
-    a.iter()
-        .zip(b)
-        .filter(|(p, q)| p[0].is_finite() && q[0].is_finite())
-        .map(|(p, q)| (p[0] - q[0]).abs().max((p[1] - q[1]).abs()))
-        .fold(0.0, f64::max)
+impl Scene {
+    /// Traces the circuit through `start` (every point, scene coordinates; default the
+    /// drawn pose) through its dead points until it closes or `opts.max_points` is reached.
+    /// `interrupt` is asked every few thousand steps.
+    pub fn trace(&self, start: Option<&[Xy]>, opts: &TraceOptions, interrupt: &dyn Interrupt) -> Result<Trace, Error> {
+        let pos = match start {
+            None => self.xy.clone(),
+            Some(p) => {
+                if p.len() != self.names.len() {
+                    return Err(Error::Shape { name: "start".into(), got: p.len(), expected: self.names.len() });
+                }
+                p.iter().map(|&q| self.to_frame(q)).collect()
+            }
+        };
+        Tracer::new(self)?.trace_from(&pos, opts, interrupt)
+    }
 }

@@ -1,7 +1,7 @@
 //! The RRR dyad: a point reached by two links from two known points, in closed form
 //! (circle intersection), on the side of the line K1 -> K2 it was drawn on.
 
-use super::vec2::{cross, dot, perp, sub, Xy};
+use crate::scene::vec2::{cross, dot, perp, sub, Xy};
 
 /// Known points closer than this fraction of r1 + r2 coincide.
 const COINCIDENT: f64 = 1e-12;
@@ -9,11 +9,11 @@ const COINCIDENT: f64 = 1e-12;
 const ROUNDING: f64 = 4.0 * f64::EPSILON;
 
 /// What [`closed_form`] found, as a number (a block's cases are then a plain array).
-pub(super) const SOLVED: f64 = 0.0;
+pub(crate) const SOLVED: f64 = 0.0;
 /// The known points coincide (to rounding).
-pub(super) const COINCIDE: f64 = 1.0;
+pub(crate) const COINCIDE: f64 = 1.0;
 /// |r1 - r2| <= |k1 k2| <= r1 + r2 fails.
-pub(super) const APART: f64 = 2.0;
+pub(crate) const APART: f64 = 2.0;
 
 /// The circle intersection, with no branch: the point on `side` at `r1` from `a` and `r2`
 /// from `b`, its signed conditioning, and the case ([`SOLVED`], [`COINCIDE`], [`APART`]).
@@ -24,7 +24,7 @@ pub(super) const APART: f64 = 2.0;
 /// the point means something only where the case is `SOLVED`. [`Dyad::solve`] and the
 /// column sweep's block of 128 values (where, with no branch, it vectorizes) both run it.
 #[inline(always)]
-pub(super) fn closed_form(a: Xy, b: Xy, side: f64, r1: f64, r2: f64) -> (Xy, f64, f64) {
+pub(crate) fn closed_form(a: Xy, b: Xy, side: f64, r1: f64, r2: f64) -> (Xy, f64, f64) {
     let u = sub(b, a);
     let d2 = dot(u, u);
     let d = d2.sqrt();
@@ -70,7 +70,7 @@ pub(super) fn closed_form(a: Xy, b: Xy, side: f64, r1: f64, r2: f64) -> (Xy, f64
 /// Point `p` at distance `r1` from known point `k1` and `r2` from `k2`, on side `side`
 /// (+1: left of k1 -> k2) — the side of the drawn pose.
 #[derive(Clone, Debug, PartialEq)]
-pub(super) struct Dyad {
+pub(crate) struct Dyad {
     pub p: usize,
     pub k1: usize,
     pub k2: usize,
@@ -83,7 +83,7 @@ pub(super) struct Dyad {
 
 /// What the closed form finds.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum DyadOut {
+pub(crate) enum DyadOut {
     /// The point and the signed sine of the triangle's angle at it: its sign is the side,
     /// its size the distance from a dead point (the two links in line).
     Solved(Xy, f64),
@@ -96,20 +96,20 @@ pub(super) enum DyadOut {
 impl Dyad {
     /// The dyad's point on its drawn side ([`closed_form`], its case as [`DyadOut`]).
     #[inline]
-    pub(super) fn solve(&self, a: Xy, b: Xy) -> DyadOut {
+    pub(crate) fn solve(&self, a: Xy, b: Xy) -> DyadOut {
         self.solve_side(a, b, self.side)
     }
 
     /// [`Dyad::solve`] on a given side (+1 / -1) instead of the drawn one.
     #[inline]
-    pub(super) fn solve_side(&self, a: Xy, b: Xy, side: f64) -> DyadOut {
+    pub(crate) fn solve_side(&self, a: Xy, b: Xy, side: f64) -> DyadOut {
         self.solve_radii(a, b, side, self.r1, self.r2)
     }
 
     /// [`Dyad::solve_side`] with the arms' lengths given (they change with a linear input
     /// on a fused guide).
     #[inline]
-    pub(super) fn solve_radii(&self, a: Xy, b: Xy, side: f64, r1: f64, r2: f64) -> DyadOut {
+    pub(crate) fn solve_radii(&self, a: Xy, b: Xy, side: f64, r1: f64, r2: f64) -> DyadOut {
         let (p, det, case) = closed_form(a, b, side, r1, r2);
         if case == SOLVED {
             DyadOut::Solved(p, det)
@@ -122,14 +122,14 @@ impl Dyad {
 
     /// Signed sine of the angle at `p` of the triangle k1-p-k2, from positions.
     #[inline]
-    pub(super) fn det_at(&self, p: Xy, a: Xy, b: Xy) -> f64 {
+    pub(crate) fn det_at(&self, p: Xy, a: Xy, b: Xy) -> f64 {
         cross(sub(a, p), sub(b, p)) / (self.r1 * self.r2)
     }
 
     /// Velocity of the solved point from the known points' velocities: the two link
     /// lengths stay fixed, (p - k_i) . (v - v_i) = 0. `None` at a dead point.
     #[inline]
-    pub(super) fn velocity(p: Xy, a: Xy, b: Xy, va: Xy, vb: Xy) -> Option<Xy> {
+    pub(crate) fn velocity(p: Xy, a: Xy, b: Xy, va: Xy, vb: Xy) -> Option<Xy> {
         let (e1, e2) = (sub(p, a), sub(p, b));
         solve2(e1, e2, dot(e1, va), dot(e2, vb))
     }
@@ -138,7 +138,7 @@ impl Dyad {
     /// and accelerations: (p - k_i) . (w - w_i) + |v - v_i|^2 = 0. `None` at a dead point.
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn acceleration(p: Xy, a: Xy, b: Xy, v: Xy, va: Xy, vb: Xy, wa: Xy, wb: Xy) -> Option<Xy> {
+    pub(crate) fn acceleration(p: Xy, a: Xy, b: Xy, v: Xy, va: Xy, vb: Xy, wa: Xy, wb: Xy) -> Option<Xy> {
         let (e1, e2) = (sub(p, a), sub(p, b));
         let (d1, d2) = (sub(v, va), sub(v, vb));
         solve2(e1, e2, dot(e1, wa) - dot(d1, d1), dot(e2, wb) - dot(d2, d2))

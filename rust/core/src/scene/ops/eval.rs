@@ -4,31 +4,21 @@
 //! (continuation) and the assemblies (every side) both call it, so they agree bit for bit.
 
 use super::dyad::{Dyad, DyadOut};
-use super::plan::Op;
-use super::slide::{cdiv, cmul, solve2, LineLine, Solved};
-use super::vec2::{cross, dot, sub, Xy};
+use super::op::Op;
+use super::slide::{LineLine, Solved};
+use crate::scene::vec2::{add, cdiv, cmul, cross, dot, scale, solve2, sub, Xy};
 
 /// Positions, first and second derivatives by the input, indexed by point.
-pub(super) type Known<'a> = [&'a [Xy]; 3];
-
-#[inline]
-pub(super) fn add(a: Xy, b: Xy) -> Xy {
-    [a[0] + b[0], a[1] + b[1]]
-}
-
-#[inline]
-pub(super) fn scale(a: Xy, k: f64) -> Xy {
-    [a[0] * k, a[1] * k]
-}
+pub(crate) type Known<'a> = [&'a [Xy]; 3];
 
 impl Op {
     /// True for the operations with two solutions (a side to choose and carry).
-    pub(super) fn sided(&self) -> bool {
+    pub(crate) fn sided(&self) -> bool {
         matches!(self, Op::Dyad(_) | Op::StrokeDyad(..) | Op::Rrp(_) | Op::Rpr(_))
     }
 
     /// The drawn side of a sided operation.
-    pub(super) fn drawn_side(&self) -> f64 {
+    pub(crate) fn drawn_side(&self) -> f64 {
         match self {
             Op::Dyad(d) | Op::StrokeDyad(d, _) => d.side,
             Op::Rrp(r) => r.side,
@@ -40,7 +30,7 @@ impl Op {
     /// Solves a slider or stroke operation at input `s` on `side` from the known points
     /// `k` (derivatives too when `rates`). `None` where it cannot close (a dead point passed,
     /// or no assembly). Panics on the other operations (their callers solve them inline).
-    pub(super) fn solve_slider(&self, s: f64, k: Known<'_>, side: f64, rates: bool) -> Option<Solved> {
+    pub(crate) fn solve_slider(&self, s: f64, k: Known<'_>, side: f64, rates: bool) -> Option<Solved> {
         match self {
             Op::StrokeCarry { a, b, num, den, .. } => {
                 let d = add(den[0], scale(den[1], s));
@@ -79,7 +69,7 @@ impl Op {
     /// `at(point)`: what [`Op::solve_slider`] places, bit for bit. `None` where it cannot
     /// close. Panics on the other operations.
     #[inline(always)]
-    pub(super) fn place_slider(&self, s: f64, at: impl Fn(usize) -> Xy, side: f64) -> Option<(Xy, f64)> {
+    pub(crate) fn place_slider(&self, s: f64, at: impl Fn(usize) -> Xy, side: f64) -> Option<(Xy, f64)> {
         match self {
             Op::StrokeCarry { a, b, num, den, .. } => {
                 let ka = at(*a);
@@ -110,7 +100,7 @@ impl Op {
     }
 
     /// Signed conditioning of a slider step at positions `pos`.
-    pub(super) fn slider_det_at(&self, s: f64, pos: &[Xy]) -> f64 {
+    pub(crate) fn slider_det_at(&self, s: f64, pos: &[Xy]) -> f64 {
         let zero = vec![[0.0; 2]; pos.len()];
         let k: Known<'_> = [pos, &zero, &zero];
         match self {
@@ -132,13 +122,13 @@ impl Op {
 
 /// A fused guide's shape ratio m(s) = (num0 + s num1) / (den0 + s den1) (complex).
 #[inline]
-pub(super) fn stroke_ratio(num: &[Xy; 2], den: &[Xy; 2], s: f64) -> Xy {
+pub(crate) fn stroke_ratio(num: &[Xy; 2], den: &[Xy; 2], s: f64) -> Xy {
     cdiv(add(num[0], scale(num[1], s)), add(den[0], scale(den[1], s)))
 }
 
 /// An arm's length |e0 + s e1| and its first and second derivatives by s.
 #[inline]
-pub(super) fn radius(arm: &[Xy; 2], s: f64) -> (f64, f64, f64) {
+pub(crate) fn radius(arm: &[Xy; 2], s: f64) -> (f64, f64, f64) {
     let e = add(arm[0], scale(arm[1], s));
     let r = dot(e, e).sqrt();
     let r1 = dot(arm[1], e) / r;

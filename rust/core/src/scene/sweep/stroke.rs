@@ -7,9 +7,9 @@
 
 use super::buffers::{NoAdvice, SceneSweepBuffers};
 use super::options::SceneSweepOptions;
-use super::plan::Plan;
 use crate::error::Error;
 use crate::interrupt::Interrupt;
+use crate::scene::build::Plan;
 
 /// How far the probe looks each way, in sizes of the drawing.
 const REACH: f64 = 4.0;

@@ -2,8 +2,8 @@
 //! values (fallibly), lent to [`Plan::sweep`] as a [`SceneSweepOut`], then handed on.
 
 use super::options::SceneSweepOut;
-use super::plan::Plan;
 use crate::error::{try_zeros_advised, Error, Zeroed};
+use crate::scene::build::Plan;
 
 /// What a caller may ask of a buffer before anything writes to it (the Python bindings ask
 /// for huge pages); [`NoAdvice`] asks nothing.

@@ -1,206 +1,53 @@
-//! The plan: the steps that solve what was asked for, compiled once per scene and set of
+//! Compiling the plan: the steps that solve what was asked for, compiled once per scene and set of
 //! requested outputs. From ground and the input link it peels RRR dyads (closed form) and
 //! rigid bodies (a link with two known points is known); where no dyad remains it finds
 //! the smallest group of links that is rigid over the known points and solves it by
 //! Newton. Then it keeps only the operations the requested points and link angles need:
 //! this is where "model only what a scene requires" lives.
 
-use super::dyad::Dyad;
-use super::group::{Group, MAX};
-use super::slide::{cdiv, cmul, Line, LineLine, Rpr, Rrp};
-use super::vec2::{cross, dot, sub, Xy};
-use super::{LinearKind, Scene};
+use super::plan::{Plan, StepInfo, StepKind};
+use std::collections::HashMap;
+
 use crate::error::Error;
+use crate::scene::input::LinearKind;
+use crate::scene::model::Scene;
+use crate::scene::ops::Dyad;
+use crate::scene::ops::Op;
+use crate::scene::ops::{Group, MAX};
+use crate::scene::ops::{Line, LineLine, Rpr, Rrp};
+use crate::scene::vec2::{cdiv, cmul, cross, dot, sub, unit, Xy};
 
-/// Kind of a plan step.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StepKind {
-    /// A point reached by two links from two known points (circle intersection).
-    Dyad,
-    /// A point reached by a link from a known point and kept on a known line
-    /// (circle-line: a slider's block, a prismatic pair's point).
-    Rrp,
-    /// A guide turning about a known point whose line passes through a known point.
-    Rpr,
-    /// A point on two known lines.
-    Pp,
-    /// Links solved together by Newton-Raphson (no dyad reaches them).
-    Group,
-}
-
-impl StepKind {
-    /// "dyad", "rrp", "rpr", "pp" or "group".
-    pub fn name(self) -> &'static str {
-        match self {
-            StepKind::Dyad => "dyad",
-            StepKind::Rrp => "rrp",
-            StepKind::Rpr => "rpr",
-            StepKind::Pp => "pp",
-            StepKind::Group => "group",
-        }
-    }
-}
-
-/// One step as shown to a user.
-#[derive(Clone, Debug, PartialEq)]
-pub struct StepInfo {
-    /// Dyad or group.
-    pub kind: StepKind,
-    /// Points it solves (scene indices), the primary ones first, then those carried by
-    /// the links it makes known.
-    pub points: Vec<usize>,
-    /// Links whose angles are its unknowns (a dyad's two links; a group's links).
-    pub unknowns: Vec<usize>,
-}
-
-/// One operation of the compiled plan.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) enum Op {
-    /// A point of the input link: pivot + lam u + mu perp(u), u = (cos theta, sin theta).
-    Input {
-        q: usize,
-        lam: f64,
-        mu: f64,
-    },
-    Dyad(Dyad),
-    /// q = a + m (b - a), m the complex ratio (q - a) / (b - a) as drawn: a rigid link
-    /// with two known points carries its others.
-    Carry {
-        q: usize,
-        a: usize,
-        b: usize,
-        m: Xy,
-    },
-    Group(Box<Group>),
-    /// q = a + m(s) (b - a) on a linear input's guide fused with what slides in it, m(s) =
-    /// (num0 + s num1) / (den0 + s den1) (complex): the body shape changes with the input s.
-    StrokeCarry {
-        q: usize,
-        a: usize,
-        b: usize,
-        num: [Xy; 2],
-        den: [Xy; 2],
-    },
-    /// An RRR dyad on the fused guide: arm i has length |arm_i.0 + s arm_i.1|.
-    StrokeDyad(Dyad, [[Xy; 2]; 2]),
-    Rrp(Rrp),
-    Pp(LineLine),
-    Rpr(Rpr),
-    /// q = base + m (b - a): a link whose rotation is known (that of the link carrying a
-    /// and b, its prismatic partner) and one of whose points is known.
-    Offset {
-        q: usize,
-        base: usize,
-        a: usize,
-        b: usize,
-        m: Xy,
-    },
-}
-
-impl Op {
-    pub(super) fn inputs(&self) -> Vec<usize> {
-        match self {
-            Op::Input { .. } => Vec::new(),
-            Op::Dyad(d) => vec![d.k1, d.k2],
-            Op::Carry { a, b, .. } | Op::StrokeCarry { a, b, .. } => vec![*a, *b],
-            Op::Group(g) => g.anchors.clone(),
-            Op::StrokeDyad(d, _) => vec![d.k1, d.k2],
-            Op::Rrp(r) => [vec![r.k], r.line.inputs().to_vec()].concat(),
-            Op::Pp(l) => [l.lines[0].inputs(), l.lines[1].inputs()].concat(),
-            Op::Rpr(r) => vec![r.k, r.q],
-            Op::Offset { base, a, b, .. } => vec![*base, *a, *b],
-        }
+impl Scene {
+    /// Compiles the steps that solve `outputs` (point or link names; `None`: every point
+    /// and link). Errors name an unknown output.
+    pub fn plan(&self, outputs: Option<&[String]>) -> Result<Plan, Error> {
+        let (points, links) = match outputs {
+            None => ((0..self.names.len()).collect(), (0..self.links.len()).collect()),
+            Some(names) => self.resolve(names)?,
+        };
+        compile(self, &points, &links)
     }
 
-    pub(super) fn outputs(&self) -> Vec<usize> {
-        match self {
-            Op::Input { q, .. } | Op::Carry { q, .. } | Op::StrokeCarry { q, .. } | Op::Offset { q, .. } => vec![*q],
-            Op::Dyad(d) | Op::StrokeDyad(d, _) => vec![d.p],
-            Op::Rrp(r) => vec![r.p],
-            Op::Pp(l) => vec![l.p],
-            Op::Rpr(r) => vec![r.t],
-            Op::Group(g) => g.nodes.iter().map(|n| n.point).collect(),
-        }
-    }
-}
-
-/// A compiled plan: self-contained (it copies what it needs from the scene).
-#[derive(Clone, Debug)]
-pub struct Plan {
-    pub(super) ops: Vec<Op>,
-    pub(super) steps: Vec<StepInfo>,
-    /// The op that opens each step (its dyad or group).
-    pub(super) step_op: Vec<usize>,
-    /// Points reported, scene order.
-    pub(super) points: Vec<usize>,
-    /// Links whose angles are reported, and their angle points.
-    pub(super) links: Vec<usize>,
-    pub(super) link_points: Vec<(usize, usize)>,
-    /// Ground points, solving frame.
-    pub(super) fixed: Vec<(usize, Xy)>,
-    pub(super) npoints: usize,
-    pub(super) pivot: Xy,
-    pub(super) theta0: f64,
-    pub(super) scale: f64,
-    pub(super) origin: Xy,
-    /// The input is a displacement (no turn repeats it: never wrapped).
-    pub(super) linear: bool,
-}
-
-impl Plan {
-    /// The steps, in solving order.
-    pub fn steps(&self) -> &[StepInfo] {
-        &self.steps
-    }
-
-    /// Scene indices of the points a sweep reports (every point the plan reads or solves).
-    pub fn points(&self) -> &[usize] {
-        &self.points
-    }
-
-    /// Scene indices of the links whose angles a sweep reports.
-    pub fn links(&self) -> &[usize] {
-        &self.links
-    }
-
-    /// The drawn input angle the sweep starts from.
-    pub fn input_angle(&self) -> f64 {
-        self.theta0
-    }
-
-    /// The signed conditioning of the whole solve and of each step at a pose given by the
-    /// positions of every point (solving frame; a linear input at its drawn value).
-    pub(super) fn dets_at(&self, pos: &[Xy]) -> (f64, Vec<f64>) {
-        let dets: Vec<f64> = self
-            .step_op
-            .iter()
-            .map(|&i| match &self.ops[i] {
-                Op::Dyad(d) => d.det_at(pos[d.p], pos[d.k1], pos[d.k2]),
-                Op::Group(g) => {
-                    let x = g.unknowns_from(|p| pos[p]);
-                    let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
-                    g.conditioning_with(&x, &anchors)
+    fn resolve(&self, names: &[String]) -> Result<(Vec<usize>, Vec<usize>), Error> {
+        let pts: HashMap<&str, usize> = self.names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+        let lks: HashMap<&str, usize> = self.links.iter().enumerate().map(|(i, l)| (l.name.as_str(), i)).collect();
+        let (mut points, mut links) = (Vec::new(), Vec::new());
+        for (k, name) in names.iter().enumerate() {
+            match (pts.get(name.as_str()), lks.get(name.as_str())) {
+                (Some(_), Some(_)) => {
+                    return Err(Error::scene(
+                        format!("outputs[{k}]"),
+                        format!("{name:?} names both a point and a link; rename one"),
+                    ))
                 }
-                op => op.slider_det_at(0.0, pos),
-            })
-            .collect();
-        (dets.iter().product(), dets)
-    }
-
-    /// True when some step is a group (solved by Newton with continuation).
-    pub fn has_group(&self) -> bool {
-        self.ops.iter().any(|o| matches!(o, Op::Group(_)))
-    }
-
-    /// True when every operation runs on the column path: closed forms (RRR dyads and the
-    /// sliders' circle-line, line-line and guide-through-a-point, a linear input's fused
-    /// guide), carries and the input; no group.
-    pub(super) fn columns_ok(&self) -> bool {
-        self.ops.iter().all(|o| match o {
-            Op::Input { .. } | Op::Dyad(_) | Op::Carry { .. } | Op::Offset { .. } => true,
-            Op::StrokeCarry { .. } | Op::StrokeDyad(..) | Op::Rrp(_) | Op::Pp(_) | Op::Rpr(_) => true,
-            Op::Group(_) => false,
-        })
+                (Some(&p), None) => points.push(p),
+                (None, Some(&l)) => links.push(l),
+                (None, None) => {
+                    return Err(Error::scene(format!("outputs[{k}]"), format!("{name:?} is not a point or link")))
+                }
+            }
+        }
+        Ok((points, links))
     }
 }
 
@@ -243,7 +90,7 @@ impl Fused {
     }
 }
 
-pub(super) fn compile(sc: &Scene, want_points: &[usize], want_links: &[usize]) -> Result<Plan, Error> {
+pub(crate) fn compile(sc: &Scene, want_points: &[usize], want_links: &[usize]) -> Result<Plan, Error> {
     let np = sc.names.len();
     let xy = &sc.xy;
     let mut known = vec![false; np];
@@ -315,13 +162,6 @@ fn rotation_carrier(sc: &Scene, known: &[bool], link: usize) -> Option<(usize, u
     })
 }
 
-/// A unit vector along b - a (solving frame).
-fn unit(xy: &[Xy], a: usize, b: usize) -> Xy {
-    let d = sub(xy[b], xy[a]);
-    let n = dot(d, d).sqrt();
-    [d[0] / n, d[1] / n]
-}
-
 /// The known lines an unknown point `p` must stay on, with the link giving each: its slots
 /// on known guides, the paths of a prismatic link over a known guide, and the lines a
 /// known slot point draws on a guide whose rotation is known.
@@ -341,7 +181,7 @@ fn lines_of(sc: &Scene, fused: Option<&Fused>, known: &[bool], p: usize) -> Vec<
         // the slot point is known and p is on a guide whose rotation is known
         if sl.point != p && known[sl.point] && sc.links[sl.guide].points.contains(&p) {
             if let Some((ha, hb)) = rotation_carrier(sc, known, sl.guide) {
-                let d0 = unit(xy, a, b);
+                let d0 = unit(sub(xy[b], xy[a]));
                 let shift = sub(xy[p], xy[a]);
                 let off = [shift[0] + sl.offset * d0[1], shift[1] - sl.offset * d0[0]];
                 let h = sub(xy[hb], xy[ha]);
@@ -402,7 +242,7 @@ fn find_slider(sc: &Scene, fused: Option<&Fused>, known: &[bool]) -> Option<Op> 
             continue;
         }
         let Some(&t) = pts.iter().find(|&&q| !known[q]) else { continue };
-        let d = unit(xy, sl.line.0, sl.line.1);
+        let d = unit(sub(xy[sl.line.1], xy[sl.line.0]));
         let side = if dot(d, sub(xy[sl.point], xy[k])) < 0.0 { -1.0 } else { 1.0 };
         let on = *sc.point_links[sl.point].first().expect("a slot point is on a moving link");
         return Some(Op::Rpr(Rpr {

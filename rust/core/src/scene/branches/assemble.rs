@@ -3,12 +3,14 @@
 //! come from the all-solutions homotopy on its loop equations ([`crate::solve::homotopy`]), two
 //! runs with independent random gammas merged and polished by Newton.
 
-use super::dyad::DyadOut;
-use super::group::Group;
-use super::plan::{Op, Plan};
-use super::vec2::{perp, Xy};
 use crate::error::{finite, try_grow, Error};
 use crate::interrupt::{Interrupt, Poll};
+use crate::scene::build::Plan;
+use crate::scene::model::Scene;
+use crate::scene::ops::DyadOut;
+use crate::scene::ops::Group;
+use crate::scene::ops::Op;
+use crate::scene::vec2::{perp, Xy};
 use crate::solve::homotopy::{quadric_solutions_polled, unit_circle_solutions_polled, HomotopyOptions};
 use crate::solve::newton::NewtonOptions;
 use crate::Status;
@@ -170,7 +172,7 @@ impl Walk<'_> {
     fn group(
         &mut self,
         i: usize,
-        g: &super::group::Group,
+        g: &crate::scene::ops::Group,
         pos: &mut [Xy],
         dets: &mut Vec<f64>,
         labels: &mut Vec<String>,
@@ -263,5 +265,18 @@ impl Walk<'_> {
             label: labels.concat(),
         });
         Ok(())
+    }
+}
+
+impl Scene {
+    /// Every real assembly at input angle `theta` (every point solved). `interrupt` is
+    /// asked every few thousand homotopy steps (Ctrl-C from Python).
+    pub fn assemblies(
+        &self,
+        theta: f64,
+        opts: &HomotopyOptions,
+        interrupt: &dyn Interrupt,
+    ) -> Result<Assemblies, Error> {
+        self.plan(None)?.assemblies(theta, opts, interrupt)
     }
 }

@@ -1,0 +1,185 @@
+//! Solving a group by Newton and placing its points (with their velocities and
+//! accelerations), and reading its unknowns back off positions.
+
+use nalgebra::{SMatrix, SVector};
+
+use super::equations::{cs_of, At};
+use super::{Group, GroupSolve, Node, Reader, MAX};
+use crate::scene::vec2::{cdiv, cmul, dot, sub, Xy};
+use crate::solve::newton::{self, hadamard_ratio, NewtonOptions};
+use crate::{wrap_angle, Status};
+
+impl Group {
+    /// Newton from `guess` with the anchors at `anchors`; the tangent dx/dtheta from the
+    /// anchors' velocities `anchor_vel` when given. `stall`: give up where Newton's residual
+    /// stalls ([`newton::solve_or_stall`]), as near a dead point, where a step past it has
+    /// no root.
+    pub(crate) fn solve(
+        &self,
+        anchors: &[Xy],
+        anchor_vel: Option<&[Xy]>,
+        guess: &[f64],
+        opts: &NewtonOptions,
+        stall: bool,
+    ) -> GroupSolve {
+        dispatch!(self.n(), solve_n, self, anchors, anchor_vel, guess, opts, stall)
+    }
+
+    /// Visits each node with its term's multiplier and arm.
+    pub(super) fn each_node(&self, x: &[f64], anchors: &[Xy], mut visit: impl FnMut(usize, &Node, Xy, Xy)) {
+        let cs: Vec<Xy> = x[..self.nrot].iter().map(|a| cs_of(*a)).collect();
+        for (i, nd) in self.nodes.iter().enumerate() {
+            visit(i, nd, nd.term.m(&cs, anchors), nd.term.arm(x));
+        }
+    }
+
+    /// Positions of the nodes from the anchors' positions and the unknowns.
+    pub(crate) fn place(&self, x: &[f64], anchors: &[Xy], mut put: impl FnMut(usize, Xy)) {
+        let mut pos: Vec<Xy> = anchors.to_vec();
+        self.each_node(x, anchors, |_, nd, m, arm| {
+            let r = cmul(m, arm);
+            let b = pos[nd.base];
+            let p = [b[0] + r[0], b[1] + r[1]];
+            pos.push(p);
+            put(nd.point, p);
+        });
+    }
+
+    /// Positions (as [`Group::place`] gives them, bit for bit) and velocities (per unit
+    /// input rate, from the anchors' velocities and the unknowns' rates `dx`) of the nodes
+    /// in one pass, from the rotations' (cos, sin) `cs` (those of [`GroupSolve::cs`]), with
+    /// no allocation for a group of up to 32 points (a sweep's every solved angle).
+    pub(crate) fn place_moving(
+        &self,
+        x: &[f64],
+        dx: &[f64],
+        cs: &[Xy],
+        anchors: &[Xy],
+        anchor_vel: &[Xy],
+        mut put: impl FnMut(usize, Xy, Xy),
+    ) {
+        const SMALL: usize = 32;
+        let total = anchors.len() + self.nodes.len();
+        let (mut pbuf, mut vbuf) = ([[0.0; 2]; SMALL], [[0.0; 2]; SMALL]);
+        let mut heap: (Vec<Xy>, Vec<Xy>);
+        let (pos, vel): (&mut [Xy], &mut [Xy]) = if total <= SMALL {
+            (&mut pbuf[..total], &mut vbuf[..total])
+        } else {
+            heap = (vec![[0.0; 2]; total], vec![[0.0; 2]; total]);
+            (&mut heap.0, &mut heap.1)
+        };
+        pos[..anchors.len()].copy_from_slice(anchors);
+        vel[..anchors.len()].copy_from_slice(anchor_vel);
+        for (k, nd) in (anchors.len()..).zip(&self.nodes) {
+            let (m, arm) = (nd.term.m(&cs[..self.nrot], anchors), nd.term.arm(x));
+            let r = cmul(m, arm);
+            let (b, vb) = (pos[nd.base], vel[nd.base]);
+            pos[k] = [b[0] + r[0], b[1] + r[1]];
+            let w = Self::term_rate(&nd.term, m, arm, dx, anchor_vel);
+            vel[k] = [vb[0] + w[0], vb[1] + w[1]];
+            put(nd.point, pos[k], vel[k]);
+        }
+    }
+
+    /// Accelerations of the nodes (per unit input rate squared), from the anchors'
+    /// positions, velocities and accelerations `k` and the unknowns' first and second rates.
+    pub(crate) fn place_acceleration(
+        &self,
+        x: &[f64],
+        dx: &[f64],
+        ddx: &[f64],
+        k: [&[Xy]; 3],
+        mut put: impl FnMut(usize, Xy),
+    ) {
+        let cs: Vec<Xy> = x[..self.nrot].iter().map(|a| cs_of(*a)).collect();
+        let mut acc: Vec<Xy> = k[2].to_vec();
+        let still = vec![[0.0; 2]; k[0].len()];
+        for nd in &self.nodes {
+            let t = &nd.term;
+            let m = t.m(&cs, k[0]);
+            // the x'' part: w' perp(M arm) + M s'' d
+            let lin = Self::term_rate(t, m, t.arm(x), ddx, &still);
+            let rest = Self::term_curvature(t, &cs, dx, x, k);
+            let ab = acc[nd.base];
+            let a = [ab[0] + lin[0] + rest[0], ab[1] + lin[1] + rest[1]];
+            acc.push(a);
+            put(nd.point, a);
+        }
+    }
+
+    /// The unknowns read off positions: rotations from their drawn pose, then
+    /// displacements.
+    pub(crate) fn unknowns_from(&self, pos: impl Fn(usize) -> Xy) -> Vec<f64> {
+        let anchors: Vec<Xy> = self.anchors.iter().map(|&p| pos(p)).collect();
+        let mut x = vec![0.0; self.n()];
+        for (k, r) in self.readers.iter().enumerate() {
+            if let Reader::Rotation { a, b, drawn } = r {
+                let d = sub(pos(*b), pos(*a));
+                x[k] = wrap_angle((d[1] + 0.0).atan2(d[0]) - (drawn[1] + 0.0).atan2(drawn[0]));
+            }
+        }
+        let cs: Vec<Xy> = x[..self.nrot].iter().map(|a| cs_of(*a)).collect();
+        for (k, r) in self.readers.iter().enumerate() {
+            if let Reader::Slide { from, to, term } = r {
+                let (_, d) = term.slide.expect("a slide reader's edge slides");
+                let q = sub(cdiv(sub(pos(*to), pos(*from)), term.m(&cs, &anchors)), term.v);
+                x[k] = dot(q, d) / dot(d, d);
+            }
+        }
+        x
+    }
+
+    /// The elbow signs of the group's joints at positions `pos`: "+" / "-" per joint.
+    pub(crate) fn elbow_label(&self, pos: impl Fn(usize) -> Xy) -> String {
+        self.elbows
+            .iter()
+            .map(|&(p, a, b)| {
+                let (u, v) = (sub(pos(a), pos(p)), sub(pos(b), pos(p)));
+                if u[0] * v[1] - u[1] * v[0] < 0.0 {
+                    '-'
+                } else {
+                    '+'
+                }
+            })
+            .collect()
+    }
+}
+
+pub(super) fn solve_n<const N: usize>(
+    g: &Group,
+    anchors: &[Xy],
+    anchor_vel: Option<&[Xy]>,
+    guess: &[f64],
+    opts: &NewtonOptions,
+    stall: bool,
+) -> GroupSolve {
+    let sys = At { g, anchors };
+    let x0 = SVector::<f64, N>::from_fn(|k, _| guess[k]);
+    let out = if stall { newton::solve_or_stall(&sys, x0, opts) } else { newton::solve(&sys, x0, opts, None) };
+    let mut phi = [f64::NAN; MAX];
+    let mut dphi = [f64::NAN; MAX];
+    let mut cs = [[f64::NAN; 2]; MAX];
+    // (the signed Hadamard ratio of the last Jacobian, from the last step's elimination)
+    let det = if out.conditioning.is_nan() { hadamard_ratio(&out.jacobian) } else { out.conditioning };
+    if out.status == Status::Converged {
+        for (k, (p, x)) in phi.iter_mut().zip(out.x.iter()).enumerate() {
+            *p = if g.is_angle(k) { wrap_angle(*x) } else { *x };
+        }
+        if let Some(vel) = anchor_vel {
+            // J dx = -dF/dtheta at fixed unknowns, with J at the solution: Newton's last
+            // Jacobian is one correction away from it, and where the start was predicted so
+            // well that it converged at once (nit 0) that correction is about the tolerance,
+            // and the rates would be off by as much. The rotations' sines and cosines are
+            // kept for the placement.
+            g.turns(&phi[..N], &mut cs);
+            let mut jacobian = SMatrix::<f64, N, N>::zeros();
+            g.closure_terms_with(&phi[..N], &cs[..g.nrot], anchors, |_, _| {}, |r, c, v| jacobian[(r, c)] += v);
+            let d = g.rate_terms(&phi[..N], vel);
+            let rhs = SVector::<f64, N>::from_fn(|r, _| -d[r / 2][r % 2]);
+            if let Some(t) = newton::eliminate(jacobian, rhs, &mut 1.0) {
+                dphi[..N].copy_from_slice(t.as_slice());
+            }
+        }
+    }
+    GroupSolve { phi, dphi, status: out.status, nit: out.nit, det, cs }
+}

@@ -1,0 +1,240 @@
+//! The sweep's entry, [`Plan::sweep`]: the output checked, the column path tried first
+//! where the plan allows it, the continuation over the values (and back from the drawn
+//! pose over what it left LIMIT), and LIMIT told from NOT_ASSEMBLABLE.
+
+use super::columns;
+use super::continuation::Solver;
+use super::options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
+use crate::error::{quoted, try_zeros, Error};
+use crate::interrupt::{Interrupt, Poll};
+use crate::scene::build::Plan;
+use crate::scene::ops::Op;
+use crate::solve::homotopy::HomotopyOptions;
+use crate::{wrap_angle, Status};
+
+/// A column sweep whose every step keeps at least this conditioning (and whose angles are
+/// at most `max_step` apart) has met no dead point or change point on its way.
+const CERTIFIED: f64 = 0.05;
+/// Largest group whose assemblies are counted (by the homotopy) to tell LIMIT from
+/// NOT_ASSEMBLABLE at the angles a sweep does not reach.
+const CLASSIFIED_GROUP: usize = 4;
+
+impl Plan {
+    /// Solves the plan at every input value of `theta` (radians, or a linear input's
+    /// displacements; any order): from the drawn pose to `theta[0]` (an angle the shortest
+    /// way round), then along `theta` in order. Values past a dead point are LIMIT; those
+    /// that the drawn circuit reaches the other way are then solved by continuing from the
+    /// drawn pose backwards over `theta`, from the last LIMIT value to the first. What
+    /// stays LIMIT is NOT_ASSEMBLABLE where the linkage has no assembly at all.
+    /// [`ScenePredictor::ClosedForm`] solves every value on its own instead (plans with no
+    /// group; an [`Error::InvalidParameter`] naming `predictor` otherwise).
+    /// `interrupt` is asked every few thousand angles (Ctrl-C from Python).
+    pub fn sweep(
+        &self,
+        theta: &[f64],
+        opts: &SceneSweepOptions,
+        mut out: SceneSweepOut<'_>,
+        interrupt: &dyn Interrupt,
+    ) -> Result<(), Error> {
+        let poll = Poll::new(interrupt);
+        let n = theta.len();
+        let (np, nl, ns) = (self.points.len(), self.links.len(), self.steps.len());
+        let check = |name: &str, got: usize, expected: usize| {
+            if got == expected {
+                Ok(())
+            } else {
+                Err(Error::Shape { name: name.into(), got, expected })
+            }
+        };
+        check("points", out.points.len(), n * np * 2)?;
+        check("angles", out.angles.len(), n * nl)?;
+        check("status", out.status.len(), n)?;
+        check("nit", out.nit.len(), n)?;
+        check("det", out.det.len(), n)?;
+        check("limit", out.limit.len(), n)?;
+        check("step_status", out.step_status.len(), n * ns)?;
+        check("step_det", out.step_det.len(), n * ns)?;
+        check("point_status", out.point_status.len(), n * np)?;
+        if let Some((v, w)) = out.velocity.as_ref() {
+            check("velocity", v.len(), n * np * 2)?;
+            check("angular velocity", w.len(), n * nl)?;
+        }
+        if let Some((v, w)) = out.acceleration.as_ref() {
+            check("acceleration", v.len(), n * np * 2)?;
+            check("angular acceleration", w.len(), n * nl)?;
+        }
+        if opts.predictor == ScenePredictor::ClosedForm {
+            return self.closed_form_sweep(theta, opts, out, &poll);
+        }
+        if self.columns_ok() {
+            columns::sweep(self, theta, opts, &mut out, &poll)?;
+            if self.certified(theta, opts, &out) {
+                return Ok(());
+            }
+        }
+        let limit = Status::Limit.code();
+        // the links' directions, turned into angles at the end in one vectorized pass
+        let mut dirs = try_zeros(|| "the links' directions".to_string(), 2 * n * nl)?;
+        self.continuation(theta, 0..n, opts, &mut out, &mut dirs, false, &poll)?;
+        // the rest of the drawn circuit, backwards from the drawn pose: the angles left
+        // LIMIT, from the last of them back to the first (what the other way round reaches)
+        if let (Some(first), Some(last)) =
+            (out.status.iter().position(|&s| s == limit), out.status.iter().rposition(|&s| s == limit))
+        {
+            self.continuation(theta, (first..=last).rev(), opts, &mut out, &mut dirs, true, &poll)?;
+        }
+        let (dx, dy) = dirs.split_at(n * nl);
+        crate::simd::directions_into(dx, dy, out.angles);
+        self.classify_limits(theta, &mut out, interrupt)
+    }
+
+    /// [`ScenePredictor::ClosedForm`]: the column sweep as it is (every value on its own,
+    /// each operation on its drawn side), with the values where the drawn sides do not
+    /// close told apart: LIMIT where some other assembly exists, NOT_ASSEMBLABLE where none.
+    fn closed_form_sweep(
+        &self,
+        theta: &[f64],
+        opts: &SceneSweepOptions,
+        mut out: SceneSweepOut<'_>,
+        poll: &Poll<'_>,
+    ) -> Result<(), Error> {
+        if !self.columns_ok() {
+            return Err(Error::invalid(
+                "predictor",
+                "must be 'continuation' for a plan with a group solved by Newton ('closed-form' \
+                 solves dyads, sliders and carries)",
+                quoted("closed-form"),
+            ));
+        }
+        columns::sweep(self, theta, opts, &mut out, poll)?;
+        // a closed form that does not close says NOT_ASSEMBLABLE of its own step; whether
+        // the linkage has no assembly at all is the classification's to say
+        let (limit, none) = (Status::Limit.code(), Status::NotAssemblable.code());
+        for codes in [&mut *out.status, &mut *out.step_status, &mut *out.point_status] {
+            // a select per code, no branch: the loop vectorizes
+            for code in codes.iter_mut() {
+                *code = if *code == none { limit } else { *code };
+            }
+        }
+        self.classify_limits(theta, &mut out, poll.source())
+    }
+
+    /// A column sweep (dyads and sliders on their drawn sides) is the drawn circuit's
+    /// motion when no step came near a dead point: every input value solved, each step's
+    /// conditioning at least [`CERTIFIED`] in size, and the values in sweep order (from the
+    /// drawn one; an angle the shortest way round) no more than `max_step` apart.
+    /// Otherwise the plan is followed by continuation.
+    fn certified(&self, theta: &[f64], opts: &SceneSweepOptions, out: &SceneSweepOut<'_>) -> bool {
+        let Some(&t0) = theta.first() else { return true };
+        let h0 = if self.linear { t0 - self.theta0 } else { wrap_angle(t0 - self.theta0) };
+        // folds with no early exit: these loops vectorize
+        let close =
+            theta.windows(2).fold(h0.abs() <= opts.max_step, |ok, t| ok & ((t[1] - t[0]).abs() <= opts.max_step));
+        let ok = Status::Converged.code();
+        close
+            && out.status.iter().fold(true, |all, &s| all & (s == ok))
+            && out.step_det.iter().fold(true, |all, d| all & (d.abs() >= CERTIFIED))
+    }
+
+    /// An angle that the drawn circuit does not reach is LIMIT when the linkage has some
+    /// assembly there (another circuit or branch) and NOT_ASSEMBLABLE when it has none:
+    /// every assembly is enumerated there (dyad sides; the homotopy for groups of at most
+    /// [`CLASSIFIED_GROUP`] links). A plan with a larger group keeps LIMIT (its all-solution
+    /// solve costs milliseconds per angle: [`Plan::assemblies`] answers it on request).
+    fn classify_limits(
+        &self,
+        theta: &[f64],
+        out: &mut SceneSweepOut<'_>,
+        interrupt: &dyn Interrupt,
+    ) -> Result<(), Error> {
+        let (limit, none) = (Status::Limit.code(), Status::NotAssemblable.code());
+        let (np, ns) = (self.points.len(), self.steps.len());
+        let hopts = HomotopyOptions::default();
+        if self.ops.iter().any(|o| matches!(o, Op::Group(g) if g.n() > CLASSIFIED_GROUP)) {
+            return Ok(());
+        }
+        for (k, &t) in theta.iter().enumerate() {
+            if out.status[k] != limit || !t.is_finite() {
+                continue;
+            }
+            if !self.assemblies(t, &hopts, interrupt)?.list.is_empty() {
+                continue;
+            }
+            // the dead point that stopped the motion stays in `limit`
+            out.status[k] = none;
+            for code in
+                out.step_status[k * ns..(k + 1) * ns].iter_mut().chain(&mut out.point_status[k * np..(k + 1) * np])
+            {
+                if *code == limit {
+                    *code = none;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Continuation from the drawn pose over the indices `order`; `backward` writes only the
+    /// angles the forward pass left LIMIT (and leaves non-finite angles as they are).
+    #[allow(clippy::too_many_arguments)]
+    fn continuation(
+        &self,
+        theta: &[f64],
+        order: impl Iterator<Item = usize>,
+        opts: &SceneSweepOptions,
+        out: &mut SceneSweepOut<'_>,
+        dirs: &mut [f64],
+        backward: bool,
+        poll: &Poll<'_>,
+    ) -> Result<(), Error> {
+        let mut s = Solver::new(self, *opts);
+        s.eval(self.theta0); // tangents at the drawn pose
+        let mut started = false;
+        for k in order {
+            poll.tick()?;
+            let t = theta[k];
+            s.nit = 0;
+            if !t.is_finite() {
+                s.eval(t);
+            } else {
+                if !started {
+                    // the input repeats every turn: reach theta[k] the shortest way, then
+                    // relabel the states to it
+                    let start = if self.linear { t } else { self.theta0 + wrap_angle(t - self.theta0) };
+                    s.advance(start, poll)?;
+                    for g in s.groups.iter_mut().flatten() {
+                        let shift = t - start;
+                        g.theta += shift;
+                        for tg in g.tangents.iter_mut().flatten() {
+                            tg.theta += shift;
+                        }
+                        if let Some(l) = g.limit.as_mut() {
+                            l.0 += shift;
+                        }
+                    }
+                    for d in s.dyads.iter_mut().flatten() {
+                        d.theta += t - start;
+                        if let Some(l) = d.limit.as_mut() {
+                            l.0 += t - start;
+                        }
+                    }
+                    if start == t {
+                        s.last_eval = t;
+                    } else {
+                        // the same pose, solved at the angle asked for (not a turn away)
+                        s.eval(t);
+                    }
+                    started = true;
+                } else {
+                    s.advance(t, poll)?;
+                }
+            }
+            // going back, only what the forward pass left LIMIT is written
+            if backward && (!t.is_finite() || out.status[k] != Status::Limit.code()) {
+                continue;
+            }
+            s.write(k, out, dirs);
+            out.limit[k] = s.limit_angle();
+        }
+        Ok(())
+    }
+}
