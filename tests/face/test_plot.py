@@ -190,6 +190,7 @@ def test_animation_html_is_self_contained():
     assert "<title>a &lt;b&gt; title</title>" in page
 
 
+@pytest.mark.slow  # six figures laid out and saved: 1-2 s on 2 cores
 def test_a_linkage_that_never_assembles_still_draws():
     fb = pk.FourBar(10.0, 1.0, 1.0, 1.0)
     sw = fb.sweep(THETA2, omega2=1.0, alpha2=0.0)
