@@ -241,16 +241,10 @@ def scene_figures(name: str) -> dict[str, Figure]:
     return figs
 
 
-# one scene in the inner loop (a group; its figures take about 2 s to lay out and draw), the
-# others (the widest names and units, a motion that stops, many circuits...) with the slow
-# cases
-FAST = {"stephenson3"}
-
-
-@pytest.mark.parametrize(
-    "name",
-    [n if n in FAST else pytest.param(n, marks=pytest.mark.slow) for n in pk.scenes.names()],
-)
+# a scene's figures take 2 s or more to lay out and draw on 2 cores: every built-in scene
+# is left out of the inner loop (-m "not slow"); test_axis_labels_fit_their_axes stays in it
+@pytest.mark.slow
+@pytest.mark.parametrize("name", pk.scenes.names())
 def test_no_text_over_text_nor_off_the_canvas(name):
     for what, fig in scene_figures(name).items():
         outside, overlapping = text_faults(fig, 100)
