@@ -78,6 +78,7 @@ def test_position_plots_unwrapped_degrees():
         np.testing.assert_allclose(np.radians(y) % math.tau, np.asarray(t) % math.tau, atol=1e-12)
 
 
+@pytest.mark.slow  # six figures laid out: about 1 s on 2 cores
 def test_non_grashof_spans_are_shaded_and_dead_points_marked():
     sw = _sweep(TRIPLE_ROCKER, omega2=1.0, alpha2=0.0)
     lim = pk.FourBar(*TRIPLE_ROCKER).limits()
