@@ -53,7 +53,7 @@ def read_csv(path: Path) -> tuple[list[str], dict[str, np.ndarray]]:
     return header, cols
 
 
-# `planarkin analyze` with no options draws eight figures at 300 dpi: about 3 s on 2 cores,
+# `planarkin analyze` with no options draws eight figures at 300 dpi: 2-3 s on 2 cores,
 # so the tests that read its files are left out of the inner loop
 SEED_RUN = pytest.mark.slow
 
@@ -255,7 +255,7 @@ def test_crank_angles():
 # --- linkages that cannot turn fully, and dead points ------------------------------------
 
 
-@pytest.mark.slow  # eight figures drawn: 2 s on 2 cores, the layout whatever the dpi
+@pytest.mark.slow  # eight figures drawn: 1-2 s on 2 cores, the layout whatever the dpi
 def test_non_grashof_linkage_reports_unreachable_spans(tmp_path):
     links = (5.0, 3.0, 4.0, 2.5)  # S + L = 7.5 > P + Q = 7: triple rocker
     code, out, err = run(

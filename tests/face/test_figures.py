@@ -136,7 +136,7 @@ def cli_figures(links, mode="open", newton_at=45.0):
     return res, analyze._figures(res, args)
 
 
-# drawing a case's eight figures takes 2 s or more (the layout, at any dpi): every case is
+# drawing a case's eight figures takes about 2 s (the layout, at any dpi): every case is
 # left out of the inner loop (-m "not slow"); the figures' layout engine is checked there
 CASES = [
     (SEED, "open", 45.0),

@@ -32,7 +32,7 @@ def _legend(fig: Figure) -> set[str]:
     return {t.get_text() for ax in fig.axes if ax.get_legend() for t in ax.get_legend().get_texts()}
 
 
-@pytest.mark.slow  # a fresh process importing matplotlib and drawing: 1-2 s on 2 cores
+@pytest.mark.slow  # a fresh process importing matplotlib and drawing: about 1 s on 2 cores
 def test_drawing_and_saving_never_import_pyplot():
     # pyplot would pick (and on a desktop, start) a GUI backend and keep every figure alive
     code = (

@@ -241,7 +241,7 @@ def scene_figures(name: str) -> dict[str, Figure]:
     return figs
 
 
-# a scene's figures take 2 s or more to lay out and draw on 2 cores: every built-in scene
+# a scene's figures take about 2 s to lay out and draw on 2 cores: every built-in scene
 # is left out of the inner loop (-m "not slow"); test_axis_labels_fit_their_axes stays in it
 @pytest.mark.slow
 @pytest.mark.parametrize("name", pk.scenes.names())
