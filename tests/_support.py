@@ -8,6 +8,7 @@ from __future__ import annotations
 import contextlib
 import io
 import math
+import os
 import signal
 import subprocess
 import sys
@@ -80,18 +81,32 @@ def drawn_texts(fig, dpi: float) -> list[tuple[str, object]]:
 def texts_outside(fig, dpi: float) -> list[str]:
     """Every text drawn (:func:`drawn_texts`) whose window extent leaves the figure after a
     draw at ``dpi`` (1 px of slack for antialiasing)."""
-    box = fig.bbox
-    return [
-        text
-        for text, e in drawn_texts(fig, dpi)
-        if e.x0 < box.x0 - 1 or e.y0 < box.y0 - 1 or e.x1 > box.x1 + 1 or e.y1 > box.y1 + 1
-    ]
+    return _outside(fig, drawn_texts(fig, dpi))
 
 
 def texts_overlapping(fig, dpi: float) -> list[tuple[str, str]]:
     """Pairs of drawn texts (:func:`drawn_texts`) whose extents overlap by more than a
     pixel each way: text written over text."""
+    return _overlapping(drawn_texts(fig, dpi))
+
+
+def text_faults(fig, dpi: float) -> tuple[list[str], list[tuple[str, str]]]:
+    """:func:`texts_outside` and :func:`texts_overlapping` from one draw at ``dpi`` (a
+    draw costs a constrained layout: the scene figure tests would pay it twice)."""
     texts = drawn_texts(fig, dpi)
+    return _outside(fig, texts), _overlapping(texts)
+
+
+def _outside(fig, texts) -> list[str]:
+    box = fig.bbox
+    return [
+        text
+        for text, e in texts
+        if e.x0 < box.x0 - 1 or e.y0 < box.y0 - 1 or e.x1 > box.x1 + 1 or e.y1 > box.y1 + 1
+    ]
+
+
+def _overlapping(texts) -> list[tuple[str, str]]:
     out = []
     for i, (a, ea) in enumerate(texts):
         for b, eb in texts[i + 1 :]:
@@ -100,6 +115,12 @@ def texts_overlapping(fig, dpi: float) -> list[tuple[str, str]]:
             if w > 1 and h > 1:
                 out.append((a, b))
     return out
+
+
+def examples(n: int) -> int:
+    """A property test's ``max_examples``: ``n``, or a quarter of it in the inner loop
+    (``pytest -m "not slow"``, as conftest.py records it); the full run keeps all ``n``."""
+    return max(1, n // 4) if os.environ.get("PLANARKIN_TESTS_INNER_LOOP") == "1" else n
 
 
 def tradeoff_rows(times, errs, tols, method="quadratic"):

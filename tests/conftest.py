@@ -4,6 +4,7 @@ folder: ``pythonpath = ["tests"]`` in pyproject.toml)."""
 
 from __future__ import annotations
 
+import os
 import signal
 
 import numpy as np
@@ -15,6 +16,14 @@ import pytest
 # a child at exec, so the children start as they would from a terminal.
 if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
     signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    # the inner loop (`pytest -m "not slow"`) runs each property test on a quarter of its
+    # examples (_support.examples reads this); any other run, plain `pytest` included, on
+    # all of them. Set either way, so that a value left in the shell cannot weaken a full run
+    inner = "not slow" in (config.getoption("markexpr") or "")
+    os.environ["PLANARKIN_TESTS_INNER_LOOP"] = "1" if inner else "0"
 
 
 @pytest.fixture

@@ -9,6 +9,7 @@ on the path through ``pythonpath = ["tests"]`` in pyproject.toml.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -74,9 +75,16 @@ def mp_solve(r, theta2, mode="open", dps=MP_DPS):
     """The solution of ``mode`` (sin(t4 - t3) > 0 open, < 0 crossed) at the float crank
     angle ``theta2``, computed in mpmath; None where the linkage cannot assemble. At an
     exact toggle (h = 0) both modes give the same point."""
+    # memoised on the exact floats: the extreme-case tests ask for the same truth once per
+    # predictor, and an MpPoint (mpf fields, frozen) is immutable, so sharing it is safe
+    return _mp_solve(tuple(float(x) for x in r), float(theta2), mode, dps)
+
+
+@functools.lru_cache(maxsize=1 << 16)
+def _mp_solve(r, theta2, mode, dps):
     with mpmath.workdps(dps):
-        rr = [mpmath.mpf(float(x)) for x in r]
-        pts = _mp_points(rr, mpmath.mpf(float(theta2)))
+        rr = [mpmath.mpf(x) for x in r]
+        pts = _mp_points(rr, mpmath.mpf(theta2))
         if pts is None:
             return None
         want = 1 if mode == "open" else -1

@@ -53,6 +53,11 @@ def read_csv(path: Path) -> tuple[list[str], dict[str, np.ndarray]]:
     return header, cols
 
 
+# `planarkin analyze` with no options draws eight figures at 300 dpi: 2-3 s on 2 cores,
+# so the tests that read its files are left out of the inner loop
+SEED_RUN = pytest.mark.slow
+
+
 @pytest.fixture(scope="module")
 def seed_run(tmp_path_factory):
     """``planarkin analyze`` with no options, in an empty folder (figures go to ./figures)."""
@@ -72,6 +77,7 @@ def seed_api():
 # --- analyze: the seeds' linkage ---------------------------------------------------------
 
 
+@SEED_RUN
 def test_analyze_writes_every_promised_file(seed_run):
     code, out, err, folder = seed_run
     assert code == 0, err
@@ -81,6 +87,7 @@ def test_analyze_writes_every_promised_file(seed_run):
     )
 
 
+@SEED_RUN
 def test_figures_are_300_dpi_and_not_blank(seed_run):
     folder = seed_run[3]
     for name in FIGURES:
@@ -93,6 +100,7 @@ def test_figures_are_300_dpi_and_not_blank(seed_run):
         assert (gray < 128).mean() > 0.005, f"{name} has almost no ink"
 
 
+@SEED_RUN
 def test_summary_table_is_printed(seed_run):
     out = seed_run[1]
     for expect in (
@@ -112,6 +120,7 @@ def test_summary_table_is_printed(seed_run):
     assert out.isascii()  # any console encoding can print it
 
 
+@SEED_RUN
 def test_csv_rows_and_values_agree_with_the_api(seed_run, seed_api):
     fb, sw = seed_api
     header, c = read_csv(seed_run[3] / "results.csv")
@@ -152,6 +161,7 @@ def test_csv_rows_and_values_agree_with_the_api(seed_run, seed_api):
     assert np.all(c["closed_form_deviation [deg]"] < 1e-8)
 
 
+@SEED_RUN
 def test_json_summary_agrees_with_the_api(seed_run, seed_api):
     fb, sw = seed_api
     s = json.loads((seed_run[3] / "summary.json").read_text())
@@ -245,6 +255,7 @@ def test_crank_angles():
 # --- linkages that cannot turn fully, and dead points ------------------------------------
 
 
+@pytest.mark.slow  # eight figures drawn: 1-2 s on 2 cores, the layout whatever the dpi
 def test_non_grashof_linkage_reports_unreachable_spans(tmp_path):
     links = (5.0, 3.0, 4.0, 2.5)  # S + L = 7.5 > P + Q = 7: triple rocker
     code, out, err = run(
@@ -314,6 +325,7 @@ def test_bad_option_is_one_line_and_exit_code_2(argv, tmp_path):
     assert not out_dir.exists()  # nothing written
 
 
+@pytest.mark.slow  # two fresh processes (a real exit, no 2.6 TiB in the test's process)
 def test_cli_step_too_small_is_a_one_line_error(tmp_path):
     """`analyze` and `animate` with `--step 1e-9` (360000000001 crank angles, 2.6 TiB of
     outputs): a one-line error naming --step and the count, exit code 2, no traceback."""

@@ -113,6 +113,7 @@ def _alive(pid: int) -> bool:
         return False
 
 
+@pytest.mark.slow  # a fresh process, a second of work, then the interrupt: 2 s
 @pytest.mark.skipif(os.name != "posix", reason="sends SIGINT")
 def test_ctrl_c_is_one_line_and_exit_130(tmp_path):
     # the mpmath truth of 400 linkages takes about a minute: interrupted after a second
@@ -124,6 +125,7 @@ def test_ctrl_c_is_one_line_and_exit_130(tmp_path):
     assert err == "planarkin: interrupted\n" and out == ""
 
 
+@pytest.mark.slow  # two worker processes started and run 1.5 s before the interrupt: 2-3 s
 @pytest.mark.skipif(not os.path.isdir("/proc"), reason="finds the worker processes in /proc")
 def test_ctrl_c_stops_synthesis_workers_at_once(tmp_path):
     """Ctrl-C while two worker processes run synthesis starts: within 5 s one line and exit

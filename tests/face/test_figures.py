@@ -136,20 +136,20 @@ def cli_figures(links, mode="open", newton_at=45.0):
     return res, analyze_fourbar.figures(res, args)
 
 
-# drawing a case's eight figures takes about 2 s: the inner loop (-m "not slow") keeps the
-# widest titles at 300 dpi
-SLOW = pytest.mark.slow
+# drawing a case's eight figures takes about 2 s (the layout, at any dpi): every case is
+# left out of the inner loop (-m "not slow"); the figures' layout engine is checked there
 CASES = [
-    pytest.param(SEED, "open", 45.0, marks=SLOW),
-    pytest.param(SEED, "crossed", 45.0, marks=SLOW),
-    pytest.param((4.0, 3.0, 1.5, 2.0), "open", 45.0, marks=SLOW),  # the crank cannot turn fully
-    pytest.param((6.0, 2.0, 6.0, 2.0), "open", 0.0, marks=SLOW),  # change points; demo at one
+    (SEED, "open", 45.0),
+    (SEED, "crossed", 45.0),
+    ((4.0, 3.0, 1.5, 2.0), "open", 45.0),  # the crank cannot turn fully
+    ((6.0, 2.0, 6.0, 2.0), "open", 0.0),  # change points; demo at one
     ((123.456, 2.5, 119.75, 7.125), "crossed", 200.0),  # long numbers in every title
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("links, mode, newton_at", CASES, ids=str)
-@pytest.mark.parametrize("dpi", [pytest.param(100, marks=SLOW), 300])
+@pytest.mark.parametrize("dpi", [100, 300])
 def test_no_text_leaves_the_canvas(links, mode, newton_at, dpi):
     """No text of any figure of 'analyze' leaves the canvas at 100 or 300 dpi (matplotlib's
     own text extents after a draw), for long numbers in every title, a crank that cannot

@@ -78,6 +78,7 @@ def _chromium(*args: str, timeout: float = 120) -> str:
     return out.stdout
 
 
+@pytest.mark.slow  # a browser started, and three seconds of its virtual time
 @pytest.mark.skipif(CHROMIUM is None, reason="no chromium installed")
 def test_in_headless_chromium_it_plays_and_every_button_shows_its_icon(page, tmp_path):
     from PIL import Image

@@ -32,6 +32,7 @@ def _legend(fig: Figure) -> set[str]:
     return {t.get_text() for ax in fig.axes if ax.get_legend() for t in ax.get_legend().get_texts()}
 
 
+@pytest.mark.slow  # a fresh process importing matplotlib and drawing: about 1 s on 2 cores
 def test_drawing_and_saving_never_import_pyplot():
     # pyplot would pick (and on a desktop, start) a GUI backend and keep every figure alive
     code = (
@@ -77,6 +78,7 @@ def test_position_plots_unwrapped_degrees():
         np.testing.assert_allclose(np.radians(y) % math.tau, np.asarray(t) % math.tau, atol=1e-12)
 
 
+@pytest.mark.slow  # six figures laid out: about 1 s on 2 cores
 def test_non_grashof_spans_are_shaded_and_dead_points_marked():
     sw = _sweep(TRIPLE_ROCKER, omega2=1.0, alpha2=0.0)
     lim = pk.FourBar(*TRIPLE_ROCKER).limits()
@@ -190,6 +192,7 @@ def test_animation_html_is_self_contained():
     assert "<title>a &lt;b&gt; title</title>" in page
 
 
+@pytest.mark.slow  # six figures laid out and saved: 1-2 s on 2 cores
 def test_a_linkage_that_never_assembles_still_draws():
     fb = pk.FourBar(10.0, 1.0, 1.0, 1.0)
     sw = fb.sweep(THETA2, omega2=1.0, alpha2=0.0)

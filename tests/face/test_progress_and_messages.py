@@ -24,6 +24,7 @@ def test_progress_is_quiet_in_a_pipe(tmp_path, capsys, monkeypatch):
     assert capsys.readouterr().err == ""
 
 
+@pytest.mark.slow  # two animations drawn: about 1 s on 2 cores
 def test_progress_is_drawn_when_forced_and_never_with_quiet(tmp_path, capsys, monkeypatch):
     monkeypatch.setenv(progress.ENV, "1")
     assert cli.main([*ANIMATE, "--out", str(tmp_path)]) == 0

@@ -42,6 +42,7 @@ def test_analyze_scene_writes_what_the_reference_computes(tmp_path, capsys):
     np.testing.assert_allclose(v, fd * omega, atol=1e-5 * np.abs(fd * omega).max())
 
 
+@pytest.mark.slow  # three figures laid out: 1-2 s on 2 cores (test_animate_scene draws too)
 def test_analyze_scene_figures(tmp_path):
     out = tmp_path / "f"
     code = cli.main(["analyze", "stephenson3", "--out", str(out), "--step", "10", "--dpi", "40"])

@@ -12,7 +12,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import planarkin as pk
 import pytest
-from _support import texts_outside, texts_overlapping
+from _support import text_faults
 from matplotlib.figure import Figure
 from matplotlib.patches import Polygon, Rectangle
 from planarkin.face import animate, cli, draw
@@ -241,21 +241,18 @@ def scene_figures(name: str) -> dict[str, Figure]:
     return figs
 
 
-# four scenes in the inner loop (the widest names and units, a group, a motion that stops,
-# many circuits); every other built-in scene with the slow cases
-FAST = {"jansen", "double-butterfly-1", "stephenson3", "peaucellier"}
-
-
-@pytest.mark.parametrize(
-    "name",
-    [n if n in FAST else pytest.param(n, marks=pytest.mark.slow) for n in pk.scenes.names()],
-)
+# a scene's figures take about 2 s to lay out and draw on 2 cores: every built-in scene
+# is left out of the inner loop (-m "not slow"); test_axis_labels_fit_their_axes stays in it
+@pytest.mark.slow
+@pytest.mark.parametrize("name", pk.scenes.names())
 def test_no_text_over_text_nor_off_the_canvas(name):
     for what, fig in scene_figures(name).items():
-        assert texts_outside(fig, 100) == [], what
-        assert texts_overlapping(fig, 100) == [], what
+        outside, overlapping = text_faults(fig, 100)
+        assert outside == [], what
+        assert overlapping == [], what
 
 
+@pytest.mark.slow  # every figure of four commands rendered: about 3 s on 2 cores per format
 @pytest.mark.parametrize("fmt", ["svg", "pdf"])
 def test_every_scene_figure_in_vector_formats(tmp_path, fmt):
     out = tmp_path / fmt
@@ -281,6 +278,7 @@ def test_every_scene_figure_in_vector_formats(tmp_path, fmt):
             assert f.read_bytes().startswith(b"%PDF")
 
 
+@pytest.mark.slow  # two commands' figures with fallback fonts: 1-2 s on 2 cores
 def test_cjk_and_emoji_names_draw_without_boxes_or_warnings(tmp_path):
     d = pk.scenes.data("fourbar")
     d["name"] = "脚 🦵 leg"

@@ -91,6 +91,7 @@ def _processes_mentioning(text: str) -> list[int]:
     return found
 
 
+@pytest.mark.slow  # a fresh process starting two workers, then the interrupt: about 1 s
 @pytest.mark.timeout(120)
 @pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads /proc for the workers")
 def test_cli_ctrl_c_stops_the_workers_at_once_with_one_line(tmp_path):

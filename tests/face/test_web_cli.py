@@ -60,6 +60,7 @@ def test_serves_the_page_on_localhost_and_stops_on_ctrl_c():
     assert rc == 130 and err == "planarkin: interrupted\n"
 
 
+@pytest.mark.slow  # a second server process (about 1 s); the one above stays in the inner loop
 def test_a_scene_file_is_served_to_the_page(tmp_path):
     path = tmp_path / "leg.toml"
     pk.scenes.load("klann").save(path)

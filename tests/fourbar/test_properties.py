@@ -9,6 +9,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import planarkin as pk
 import pytest
+from _support import examples
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_array_equal
@@ -38,7 +39,10 @@ predictor_st = st.sampled_from(PREDICTORS)
 tol_st = st.sampled_from([1e-9, 1e-6, 1e-12, 1e-14])
 
 SETTINGS = settings(
-    max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow], derandomize=True
+    max_examples=examples(400),
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow],
+    derandomize=True,
 )
 
 
@@ -130,7 +134,7 @@ def test_nit_never_exceeds_max_iter(r, t2, mode, predictor, max_iter, guess):
     assert sw.nit.dtype == np.uint32
 
 
-@settings(max_examples=300, deadline=None, derandomize=True)
+@settings(max_examples=examples(300), deadline=None, derandomize=True)
 @given(
     r=lengths,
     t2=st.lists(any_float, min_size=1, max_size=6),
@@ -163,7 +167,7 @@ def test_nothing_raises_for_any_crank_angle(r, t2, mode, predictor, guess):
     pk.closed_form_batch([r], t2, mode)
 
 
-@settings(max_examples=200, deadline=None, derandomize=True)
+@settings(max_examples=examples(200), deadline=None, derandomize=True)
 @given(r=lengths, t2=angle, mode=mode_st)
 def test_closed_form_status_matches_truth(r, t2, mode):
     fb = pk.FourBar(*r)
@@ -180,7 +184,7 @@ def test_closed_form_status_matches_truth(r, t2, mode):
         assert angdiff(c4, tr.theta4) <= bound_rad(r, 0.0, tr.sin34, 4)
 
 
-@settings(max_examples=200, deadline=None, derandomize=True)
+@settings(max_examples=examples(200), deadline=None, derandomize=True)
 @given(r=lengths, t2=angle)
 def test_two_modes_are_mirrors_about_a_o4(r, t2):
     """DESIGN.md: crossed is the mirror of open about the line from the crank pin A to O4:
@@ -260,7 +264,7 @@ def test_sweep_and_closed_form_concurrent_threads_identical(thread_links):
 finite_or_nan = st.one_of(angle, any_float)
 
 
-@settings(max_examples=300, deadline=None, derandomize=True)
+@settings(max_examples=examples(300), deadline=None, derandomize=True)
 @given(
     r=lengths,
     t2=st.lists(finite_or_nan, min_size=1, max_size=6),

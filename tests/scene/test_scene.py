@@ -11,6 +11,7 @@ import math
 import numpy as np
 import planarkin as pk
 import pytest
+from _support import examples
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from planarkin.reference import scene_sweep
@@ -501,7 +502,7 @@ def dyad_scenes(draw):
     return d
 
 
-@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=examples(40), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(dyad_scenes())
 def test_random_dyad_scenes_solve_and_round_trip(d):
     try:

@@ -59,6 +59,7 @@ def test_a_slot_inside_a_triad_is_one_newton_group():
     assert sorted(plan.steps[0].unknowns) == ["rocker", "rod", "tri"]
 
 
+@pytest.mark.slow  # the numpy reference marches 361 angles twice: about 5 s on 2 cores
 def test_slot_group_matches_the_numpy_reference_and_keeps_every_constraint():
     d = slot_triad()
     sc = pk.Scene(d)
@@ -281,6 +282,7 @@ def prismatic_triad():
     return d
 
 
+@pytest.mark.slow  # the numpy reference marches 361 angles twice: about 4 s on 2 cores
 def test_prismatic_group_turning_with_its_guide_matches_the_reference():
     d = prismatic_triad()
     sc = pk.Scene(d)

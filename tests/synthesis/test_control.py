@@ -85,6 +85,7 @@ class ReverseExecutor(Executor):
         self.pool.shutdown(wait=wait, cancel_futures=cancel_futures)
 
 
+@pytest.mark.slow  # eight starts to 15 iterations: about 5 s on 2 cores
 def test_results_do_not_depend_on_the_order_workers_finish():
     p, (a, b) = _small()
     x0 = [a, b, a]  # starts 0 and 2 tie exactly
@@ -135,6 +136,7 @@ def test_a_failed_start_gets_its_status_and_the_others_are_solved():
     assert good.status != -1 and res.best is good
 
 
+@pytest.mark.slow  # a start run to 300 iterations: about 1 s on 2 cores
 def test_converged_means_scipy_success_and_verified_feasibility():
     p, (a, _) = _small()
     r = run_start(p, a, maxiter=1, minimax=False)
@@ -173,6 +175,7 @@ def test_time_limit_before_any_start_returns_no_runs():
         synthesize(p, starts=1, workers=0)
 
 
+@pytest.mark.slow  # a thread pool's start to 15 iterations, then the interrupt: 1-2 s
 def test_ctrl_c_keeps_the_runs_that_finished():
     p, (a, b) = _small()
 

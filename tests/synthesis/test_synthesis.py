@@ -232,6 +232,7 @@ def _type1_space(sc: pk.Scene, x_pert: float, rng: np.random.Generator) -> tuple
     return space, x_true, x_true + rng.normal(0, x_pert, x_true.size)
 
 
+@pytest.mark.slow  # a 300-iteration least-squares run and its polish: about 2 s on 2 cores
 def test_recovery_function_generation():
     sc = _type1()
     phi = np.linspace(0.05, 1.0, 15)
@@ -322,8 +323,8 @@ def _small_problem() -> tuple[Problem, np.ndarray]:
     return Problem(space, FunctionTarget(phi, out, dense, dout), det_margin=1e-3), x0
 
 
+@pytest.mark.slow  # two starts to 60 iterations: about 2 s on 2 cores
 def test_multistart_on_a_thread_pool():
-
     p, x0 = _small_problem()
     with ThreadPoolExecutor(2) as ex:
         res = synthesize(p, starts=2, samples=0, x0=[x0, x0 + 1e-4], executor=ex, maxiter=60)

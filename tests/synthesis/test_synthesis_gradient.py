@@ -130,6 +130,7 @@ def test_gradient_choice_and_refusal():
         resolve_gradient(p, "adjoint")
 
 
+@pytest.mark.slow  # two full least-squares runs: about 15 s on 2 cores
 def test_both_gradients_reach_an_envelope_design_from_one_start():
     # one start of the steering problem, least squares only: both feasible (every joint
     # inside the box over the whole motion, verified on the 1001-angle grid) and below

@@ -84,6 +84,7 @@ def test_tolerance_aware_objective_is_the_linearized_p95():
     assert np.degrees(f(x) * t.scale) == pytest.approx(lin["p95_max_error_deg"], rel=1e-12)
 
 
+@pytest.mark.slow  # a 15-iteration robust start over sampled tolerances: 1-2 s on 2 cores
 def test_robust_start_returns_a_verified_design_no_worse_than_its_start():
     import math
 

@@ -13,6 +13,10 @@ import numpy as np
 import planarkin as pk
 import pytest
 
+# a browser for the session and seconds a test: out of the inner loop (-m "not slow");
+# plain `pytest` runs them where Chromium is installed, and CI again on a fresh build
+pytestmark = pytest.mark.slow
+
 TOL = 1e-12
 
 
