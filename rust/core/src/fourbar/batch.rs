@@ -7,7 +7,7 @@ use std::sync::atomic::AtomicBool;
 use crate::parallel::prelude::*;
 
 use super::model::{FourBar, Mode};
-use super::options::{check_len, BatchOut, Method, Predictor, SweepOptions, SweepOut};
+use super::options::{check_len, BatchOut, ClosedOut, Method, Predictor, SweepOptions, SweepOut, SweepRow};
 use super::row::{closed_form_trig, sin_cos_table, sweep_row};
 use super::simd;
 use crate::error::Error;
@@ -62,16 +62,16 @@ pub fn sweep_batch(
             .zip(out.residual.par_chunks_mut(n))
             .zip(links.par_iter())
             .try_for_each(|(((((theta3, theta4), status), nit), residual), fb)| {
-                let row = SweepOut { theta3, theta4, status, nit, residual };
+                let out = SweepOut { theta3, theta4, status, nit, residual };
                 let flag = Flag(stop);
-                sweep_row(fb, theta2, &trig, None, opts, row, None, &Poll::new(&flag))
+                let poll = Poll::new(&flag);
+                sweep_row(SweepRow { fb, theta2, trig: &trig, guess: None, opts, poll: &poll }, out, None)
             })
     })
 }
 
 /// Closed form of `mode` for every linkage at the same crank angles. The status array is
 /// optional: callers that only want the angles skip its memory.
-#[allow(clippy::too_many_arguments)]
 pub fn closed_form_batch(
     links: &[FourBar],
     theta2: &[f64],
@@ -100,13 +100,13 @@ pub fn closed_form_batch(
     run(threads, mn as u128, interrupt, |stop| match status {
         Some(status) => rows.zip(status.par_chunks_mut(n)).try_for_each(|(((t3, t4), fb), st)| {
             go(stop)?;
-            closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, Some(st));
+            closed_form_trig(fb, theta2, &trig, mode, singular, ClosedOut { theta3: t3, theta4: t4, status: Some(st) });
             Ok(())
         }),
         // `{ rows }`: a temporary, so the sequential stand-in's `try_for_each(&mut self)` works too
         None => { rows }.try_for_each(|((t3, t4), fb)| {
             go(stop)?;
-            closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, None);
+            closed_form_trig(fb, theta2, &trig, mode, singular, ClosedOut { theta3: t3, theta4: t4, status: None });
             Ok(())
         }),
     })

@@ -4,7 +4,7 @@
 //! `interrupt` every [`crate::interrupt::CHECK_EVERY`] points ([`Error::Interrupted`]).
 
 use super::model::{transmission_angle, FourBar, Mode};
-use super::options::check_len;
+use super::options::{check_len, ClosedOut};
 use super::row::{closed_form_trig, sin_cos_fill};
 use crate::error::{finite, Error};
 use crate::interrupt::{Interrupt, Poll};
@@ -21,7 +21,6 @@ fn all_finite(name: &str, rates: &[f64]) -> Result<(), Error> {
 /// Closed form of `mode` at each crank angle, with a status: Converged, NotAssemblable,
 /// Singular (conditioning below `singular`, or indeterminate), NonFinite. Angles are NaN
 /// only where no solution exists or it is indeterminate.
-#[allow(clippy::too_many_arguments)]
 pub fn closed_form_into(
     fb: &FourBar,
     theta2: &[f64],
@@ -48,14 +47,14 @@ pub fn closed_form_into(
         let (o, e) = (k * BLOCK, k * BLOCK + t.len());
         let tr = &mut trig[..t.len()];
         sin_cos_fill(t, tr);
-        closed_form_trig(fb, t, tr, mode, singular, &mut theta3[o..e], &mut theta4[o..e], Some(&mut status[o..e]));
+        let out = ClosedOut { theta3: &mut theta3[o..e], theta4: &mut theta4[o..e], status: Some(&mut status[o..e]) };
+        closed_form_trig(fb, t, tr, mode, singular, out);
     }
     Ok(())
 }
 
 /// Angular velocities at given positions. NaN and `Singular` at dead points; a crank speed
 /// that is not finite is an error naming `omega2`.
-#[allow(clippy::too_many_arguments)]
 pub fn velocity_into(
     fb: &FourBar,
     theta2: &[f64],
@@ -86,7 +85,6 @@ pub fn velocity_into(
 
 /// Angular accelerations at given positions, for crank speed omega2 and acceleration
 /// alpha2 (the coupler and rocker speeds are solved on the way).
-#[allow(clippy::too_many_arguments)]
 pub fn acceleration_into(
     fb: &FourBar,
     theta2: &[f64],
@@ -127,7 +125,6 @@ pub fn acceleration_into(
 
 /// Coupler-point positions for a point at distance `p` from the crank pin, at angle
 /// `delta` from the coupler line.
-#[allow(clippy::too_many_arguments)]
 pub fn coupler_into(
     fb: &FourBar,
     theta2: &[f64],

@@ -47,18 +47,51 @@ pub fn set_enabled(on: bool) -> bool {
     was == 2
 }
 
-#[inline(always)]
-fn table_body(theta: &[f64], out: &mut [(f64, f64)]) {
-    let out = &mut out[..theta.len()];
-    for (o, &t) in out.iter_mut().zip(theta) {
-        *o = math::sin_cos(t);
-    }
+/// A kernel compiled twice: portable (`AVX` false), and inlined into [`run_avx2`], whose
+/// `#[target_feature(enable = "avx2,fma")]` lets its loops run 4 wide with FMA (`AVX`
+/// true there, for the code written in intrinsics). Its value holds the arguments: one
+/// trampoline serves every kernel. `run` must be `#[inline(always)]`, or it would be
+/// compiled without the features.
+pub(crate) trait Kernel {
+    type Output;
+    fn run<const AVX: bool>(self) -> Self::Output;
 }
 
+/// Runs `kernel` with AVX2 and FMA where the CPU has them (checked at run time), else
+/// portable.
+#[inline(always)]
+pub(crate) fn dispatch<K: Kernel>(kernel: K) -> K::Output {
+    #[cfg(target_arch = "x86_64")]
+    if available() {
+        // SAFETY: AVX2 and FMA checked at run time.
+        return unsafe { run_avx2(kernel) };
+    }
+    kernel.run::<false>()
+}
+
+/// The one trampoline: `kernel`'s body compiled with AVX2 and FMA.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn table_avx2(theta: &[f64], out: &mut [(f64, f64)]) {
-    table_body(theta, out)
+unsafe fn run_avx2<K: Kernel>(kernel: K) -> K::Output {
+    kernel.run::<true>()
+}
+
+/// The polynomial (sin, cos) of every angle of `theta`, into `out`.
+struct Table<'a> {
+    theta: &'a [f64],
+    out: &'a mut [(f64, f64)],
+}
+
+impl Kernel for Table<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<const AVX: bool>(self) {
+        let Table { theta, out } = self;
+        let out = &mut out[..theta.len()];
+        for (o, &t) in out.iter_mut().zip(theta) {
+            *o = math::sin_cos(t);
+        }
+    }
 }
 
 /// (sin, cos) of one angle as [`sin_cos_block`] gives it in a block, bit for bit (the
@@ -111,19 +144,29 @@ pub fn direction(d: [f64; 2], fast: bool) -> f64 {
 /// the polynomial where the SIMD kernels are on; each value is the one the scalar call
 /// gives, bit for bit.
 pub fn directions_into(x: &[f64], y: &[f64], out: &mut [f64]) {
-    #[cfg(target_arch = "x86_64")]
-    if enabled() {
-        // SAFETY: the SIMD kernels are on only where the CPU has AVX2 (and FMA).
-        unsafe { directions_avx2(x, y, out) };
-        return;
+    // (where the kernels are on, the CPU has AVX2 and FMA: `dispatch` takes its AVX2 path)
+    let fast = enabled();
+    let kernel = Directions { x, y, out };
+    if fast {
+        dispatch(kernel)
+    } else {
+        kernel.run::<false>()
     }
-    directions_body(x, y, out, false);
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn directions_avx2(x: &[f64], y: &[f64], out: &mut [f64]) {
-    directions_body(x, y, out, true);
+/// [`directions_into`]'s arguments.
+struct Directions<'a> {
+    x: &'a [f64],
+    y: &'a [f64],
+    out: &'a mut [f64],
+}
+
+impl Kernel for Directions<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<const AVX: bool>(self) {
+        directions_body(self.x, self.y, self.out, AVX);
+    }
 }
 
 /// The loop of [`directions_into`], compiled into each caller (a kernel compiled with FMA
@@ -141,15 +184,7 @@ pub(crate) fn directions_body(x: &[f64], y: &[f64], out: &mut [f64], fast: bool)
 /// sizes), 4 at a time; arguments beyond the polynomial's range (|x| > 1e5, infinities,
 /// NaN) go to libm.
 pub fn sin_cos_into(theta: &[f64], out: &mut [(f64, f64)]) {
-    #[cfg(target_arch = "x86_64")]
-    if available() {
-        // SAFETY: AVX2 and FMA checked at run time.
-        unsafe { table_avx2(theta, out) };
-    } else {
-        table_body(theta, out);
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    table_body(theta, out);
+    dispatch(Table { theta, out: &mut *out });
     // beyond the polynomial's range, or NaN (which fails `<=`): one fold (it vectorizes)
     // finds whether any argument needs libm, and the loop that gives it runs only then
     let libm = |t: f64| !(t.abs() <= math::SIN_COS_MAX);

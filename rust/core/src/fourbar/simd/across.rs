@@ -11,70 +11,49 @@ use super::closed_form::{closed_form_row, RowSpec};
 use super::lane::{eval_lanes, lanes, wrap, Block, Check, Eval, M, V, W};
 use crate::error::Error;
 use crate::fourbar::model::{FourBar, Point};
-use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut};
+use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut, SweepRow};
 use crate::fourbar::point::{fill_motion, sweep_point};
-use crate::interrupt::Poll;
 use crate::simd::math::SIN_COS_MAX;
+use crate::simd::{dispatch, Kernel};
 use crate::Status;
 
 const CONVERGED: i8 = Status::Converged as i8;
 
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn closed_form_predicted(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    guess: Option<[f64; 2]>,
-    opts: &SweepOptions,
+    row: SweepRow<'_>,
     out: SweepOut<'_>,
     motion: Option<MotionOut<'_>>,
-    poll: &Poll<'_>,
 ) -> Result<(), Error> {
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::available() {
-        // SAFETY: AVX2 and FMA checked at run time.
-        return unsafe { body_avx2(fb, theta2, trig, guess, opts, out, motion, poll) };
+    dispatch(Predicted(row, out, motion))
+}
+
+/// [`closed_form_predicted`]'s arguments, as the SIMD trampoline takes them.
+struct Predicted<'a>(SweepRow<'a>, SweepOut<'a>, Option<MotionOut<'a>>);
+
+impl Kernel for Predicted<'_> {
+    type Output = Result<(), Error>;
+    #[inline(always)]
+    fn run<const AVX: bool>(self) -> Self::Output {
+        body::<AVX>(self.0, self.1, self.2)
     }
-    body::<false>(fb, theta2, trig, guess, opts, out, motion, poll)
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn body_avx2(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    guess: Option<[f64; 2]>,
-    opts: &SweepOptions,
-    out: SweepOut<'_>,
-    motion: Option<MotionOut<'_>>,
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
-    body::<true>(fb, theta2, trig, guess, opts, out, motion, poll)
-}
-
-/// `AVX`: compiled inside [`body_avx2`] (AVX2 and FMA present), where the evaluation is
-/// written in AVX2 intrinsics (the same values as the lane loop, which LLVM vectorizes
+/// `AVX`: compiled inside the AVX2 trampoline (AVX2 and FMA present), where the evaluation
+/// is written in AVX2 intrinsics (the same values as the lane loop, which LLVM vectorizes
 /// only 2 wide).
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 fn body<const AVX: bool>(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    guess: Option<[f64; 2]>,
-    opts: &SweepOptions,
-    out: SweepOut<'_>,
+    row: SweepRow<'_>,
+    mut out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
-    poll: &Poll<'_>,
 ) -> Result<(), Error> {
+    let SweepRow { fb, theta2, trig, guess, opts, poll } = row;
     let n = theta2.len();
     // the vectorized pass costs nanoseconds a point: counted at once; the points it leaves
     // to the scalar path tick one by one below
     poll.tick_n(n)?;
     let spec = RowSpec { mode: opts.mode, singular: opts.newton.singular, nan_singular: false };
-    closed_form_row(fb, theta2, trig, spec, out.theta3, out.theta4, Some(&mut *out.status));
+    closed_form_row(fb, theta2, trig, spec, out.closed());
     let check = check_of(fb, opts);
     // per point: solved here (true) or left to the scalar path
     let mut fast = vec![false; n];
@@ -169,12 +148,12 @@ fn accept(c: &Check, cand: M, b: Block<'_>) -> M {
 }
 
 /// [`accept`] in AVX2 registers (the same decisions and values): called only from
-/// `body::<true>`, inside [`body_avx2`].
+/// `body::<true>`, inside the AVX2 trampoline.
 #[inline(always)]
 fn accept_avx2(c: &Check, cand: M, b: Block<'_>) -> M {
     #[cfg(target_arch = "x86_64")]
     {
-        // SAFETY: reached only inside `body_avx2`, whose caller checked AVX2 and FMA.
+        // SAFETY: reached only inside the AVX2 trampoline, whose caller checked AVX2 and FMA.
         unsafe { super::avx2::accept4(c, cand, b) }
     }
     #[cfg(not(target_arch = "x86_64"))]

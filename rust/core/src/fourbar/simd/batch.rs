@@ -11,12 +11,13 @@ use nalgebra::Vector2;
 use super::lane::{eval_lanes, lanes, rates, wrap, Eval, M, V, W};
 use crate::error::Error;
 use crate::fourbar::model::{FourBar, Point, FLAT_ULPS};
-use crate::fourbar::options::{BatchOut, Predictor, SweepOptions, SweepOut};
+use crate::fourbar::options::{BatchOut, Predictor, SweepOptions, SweepOut, SweepRow};
 use crate::fourbar::point::{predictor_rates, sweep_point};
 use crate::fourbar::row::{sin_cos_table, sweep_row};
 use crate::interrupt::{Flag, Interrupt, Poll};
 use crate::parallel::run;
 use crate::simd::math::SIN_COS_MAX;
+use crate::simd::{dispatch, Kernel};
 use crate::{wrap_angle, Status};
 
 /// Newton steps tried in lock-step before a lane goes to the scalar path (one or two are
@@ -55,56 +56,38 @@ pub(crate) fn sweep_batch(
                     return Err(Error::Interrupted);
                 }
                 if fbs.len() == W {
-                    return group(fbs, theta2, &trig, opts, t3, t4, st, nit, res, &Poll::new(&flag));
+                    let out = BatchOut { theta3: t3, theta4: t4, status: st, nit, residual: res };
+                    return dispatch(Group { fbs, theta2, trig: &trig, opts, out, poll: &Poll::new(&flag) });
                 }
                 let rows = t3.chunks_mut(n).zip(t4.chunks_mut(n)).zip(st.chunks_mut(n));
                 let rows = rows.zip(nit.chunks_mut(n)).zip(res.chunks_mut(n)).zip(fbs);
                 for (((((theta3, theta4), status), nit), residual), fb) in rows {
-                    let row = SweepOut { theta3, theta4, status, nit, residual };
-                    sweep_row(fb, theta2, &trig, None, opts, row, None, &Poll::new(&flag))?;
+                    let out = SweepOut { theta3, theta4, status, nit, residual };
+                    let poll = Poll::new(&flag);
+                    sweep_row(SweepRow { fb, theta2, trig: &trig, guess: None, opts, poll: &poll }, out, None)?;
                 }
                 Ok(())
             })
     })
 }
 
-#[allow(clippy::too_many_arguments)]
-fn group(
-    fbs: &[FourBar],
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    opts: &SweepOptions,
-    t3: &mut [f64],
-    t4: &mut [f64],
-    st: &mut [i8],
-    nit: &mut [u32],
-    res: &mut [f64],
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::available() {
-        // SAFETY: AVX2 and FMA checked at run time.
-        return unsafe { group_avx2(fbs, theta2, trig, opts, t3, t4, st, nit, res, poll) };
-    }
-    group_body::<false>(fbs, theta2, trig, opts, t3, t4, st, nit, res, poll)
+/// One group of [`W`] linkages: its (W, N) outputs and what its rows read (the rows'
+/// [`SweepRow`] without a guess), as the SIMD trampoline takes them.
+struct Group<'a> {
+    fbs: &'a [FourBar],
+    theta2: &'a [f64],
+    trig: &'a [(f64, f64)],
+    opts: &'a SweepOptions,
+    out: BatchOut<'a>,
+    poll: &'a Poll<'a>,
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn group_avx2(
-    fbs: &[FourBar],
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    opts: &SweepOptions,
-    t3: &mut [f64],
-    t4: &mut [f64],
-    st: &mut [i8],
-    nit: &mut [u32],
-    res: &mut [f64],
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
-    group_body::<true>(fbs, theta2, trig, opts, t3, t4, st, nit, res, poll)
+impl Kernel for Group<'_> {
+    type Output = Result<(), Error>;
+    #[inline(always)]
+    fn run<const AVX: bool>(self) -> Self::Output {
+        group_body::<AVX>(self)
+    }
 }
 
 /// The last converged point of every lane, with the predictor's rates.
@@ -116,19 +99,9 @@ struct Prev {
 }
 
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn group_body<const AVX: bool>(
-    fbs: &[FourBar],
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    opts: &SweepOptions,
-    t3: &mut [f64],
-    t4: &mut [f64],
-    st: &mut [i8],
-    nit_out: &mut [u32],
-    res_out: &mut [f64],
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
+fn group_body<const AVX: bool>(group: Group<'_>) -> Result<(), Error> {
+    let Group { fbs, theta2, trig, opts, out, poll } = group;
+    let BatchOut { theta3: t3, theta4: t4, status: st, nit: nit_out, residual: res_out } = out;
     let n = theta2.len();
     let r: [V; 4] = [0, 1, 2, 3].map(|k| lanes!(|l| fbs[l].unit_lengths()[k]));
     let [r1, r2, r3, r4] = r;
@@ -205,7 +178,7 @@ fn group_body<const AVX: bool>(
         let mut jac: [V; 4] = [zero; 4];
         let mut iter = 0;
         while active.iter().any(|&a| a) {
-            // AVX is never true off x86_64 (group_avx2 exists only there)
+            // AVX is never true off x86_64 (the AVX2 trampoline exists only there)
             if AVX {
                 #[cfg(target_arch = "x86_64")]
                 {
@@ -230,7 +203,7 @@ fn group_body<const AVX: bool>(
                         resid: &mut resid,
                         jac: &mut jac,
                     };
-                    // SAFETY: AVX is true only in group_avx2, called after the run-time check.
+                    // SAFETY: AVX is true only in the AVX2 trampoline, called after the run-time check.
                     unsafe { super::avx2::iterate4(&params, s2, c2, lanes) };
                     x = [wrap(x[0]), wrap(x[1])];
                 }
@@ -352,8 +325,9 @@ mod tests {
                 nit: &mut k[rg.clone()],
                 residual: &mut r[rg],
             };
-            crate::fourbar::scalar::newton_sweep(fb, t2, &trig, None, opts, row, None, &Poll::new(&crate::Never))
-                .unwrap();
+            let poll = Poll::new(&crate::Never);
+            let input = SweepRow { fb, theta2: t2, trig: &trig, guess: None, opts, poll: &poll };
+            crate::fourbar::scalar::newton_sweep(input, row, None).unwrap();
         }
         (a, b, s, k)
     }
@@ -444,28 +418,10 @@ mod tests {
                     for fb in &links {
                         let mut a: Row = (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
                         let mut b = a.clone();
-                        crate::fourbar::scalar::newton_sweep(
-                            fb,
-                            &t2,
-                            &trig,
-                            guess,
-                            &opts,
-                            out(&mut a),
-                            None,
-                            &Poll::new(&crate::Never),
-                        )
-                        .unwrap();
-                        super::super::row::newton_row(
-                            fb,
-                            &t2,
-                            &trig,
-                            guess,
-                            &opts,
-                            out(&mut b),
-                            None,
-                            &Poll::new(&crate::Never),
-                        )
-                        .unwrap();
+                        let poll = Poll::new(&crate::Never);
+                        let row = SweepRow { fb, theta2: &t2, trig: &trig, guess, opts: &opts, poll: &poll };
+                        crate::fourbar::scalar::newton_sweep(row, out(&mut a), None).unwrap();
+                        super::super::row::newton_row(row, out(&mut b), None).unwrap();
                         assert_eq!(a.2, b.2, "{mode:?} {predictor:?} {:?}", fb.lengths());
                         nit_diffs += a.3.iter().zip(&b.3).filter(|(p, q)| p != q).count();
                         points += n;

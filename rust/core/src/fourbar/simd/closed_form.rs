@@ -6,10 +6,9 @@
 
 use crate::error::Error;
 use crate::fourbar::model::{FourBar, Mode, Point, FLAT_ULPS};
-use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut};
+use crate::fourbar::options::{ClosedOut, MotionOut, SweepOut, SweepRow};
 use crate::fourbar::point::fill_motion;
-use crate::interrupt::Poll;
-use crate::simd::directions_body;
+use crate::simd::{directions_body, dispatch, Kernel};
 use crate::Status;
 
 const CONVERGED: i8 = Status::Converged as i8;
@@ -26,16 +25,31 @@ pub(crate) struct RowSpec {
     pub nan_singular: bool,
 }
 
-#[inline(always)]
-fn row_body<const STATUS: bool, const WELL: bool>(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
+/// [`closed_form_row`]'s arguments, as the SIMD trampoline takes them; `status` is empty
+/// unless `STATUS`, and `WELL` computes the conditioning (where a status or the kept
+/// angles need it).
+struct ClosedRow<'a, const STATUS: bool, const WELL: bool> {
+    fb: &'a FourBar,
+    theta2: &'a [f64],
+    trig: &'a [(f64, f64)],
     spec: RowSpec,
-    theta3: &mut [f64],
-    theta4: &mut [f64],
-    status: &mut [i8],
-) {
+    theta3: &'a mut [f64],
+    theta4: &'a mut [f64],
+    status: &'a mut [i8],
+}
+
+impl<const STATUS: bool, const WELL: bool> Kernel for ClosedRow<'_, STATUS, WELL> {
+    type Output = ();
+    /// The loops are the same with AVX2: the trampoline's features vectorize them.
+    #[inline(always)]
+    fn run<const AVX: bool>(self) {
+        row_body::<STATUS, WELL>(self)
+    }
+}
+
+#[inline(always)]
+fn row_body<const STATUS: bool, const WELL: bool>(row: ClosedRow<'_, STATUS, WELL>) {
+    let ClosedRow { fb, theta2, trig, spec, theta3, theta4, status } = row;
     let n = theta2.len();
     let (trig, theta3, theta4) = (&trig[..n], &mut theta3[..n], &mut theta4[..n]);
     let status = if STATUS { &mut status[..n] } else { status };
@@ -103,65 +117,28 @@ fn row_body<const STATUS: bool, const WELL: bool>(
 /// Angles a block of [`row_body`] takes at once.
 const BLOCK: usize = 128;
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn row_avx2<const STATUS: bool, const WELL: bool>(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    spec: RowSpec,
-    theta3: &mut [f64],
-    theta4: &mut [f64],
-    status: &mut [i8],
-) {
-    row_body::<STATUS, WELL>(fb, theta2, trig, spec, theta3, theta4, status)
-}
-
 /// The closed form of one linkage at every crank angle (with its precomputed (sin, cos)),
 /// with the statuses of the scalar path: NonFinite, NotAssemblable, Singular (below
 /// `singular`, or indeterminate), Converged. The status is written only when given.
-pub(crate) fn closed_form_row(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    spec: RowSpec,
-    theta3: &mut [f64],
-    theta4: &mut [f64],
-    status: Option<&mut [i8]>,
-) {
+pub(crate) fn closed_form_row(fb: &FourBar, theta2: &[f64], trig: &[(f64, f64)], spec: RowSpec, out: ClosedOut<'_>) {
+    let ClosedOut { theta3, theta4, status } = out;
     // the conditioning is computed only where a status or the kept angles need it
-    macro_rules! row {
-        ($f:ident) => {
-            match (status, spec.nan_singular) {
-                (Some(s), _) => $f::<true, true>(fb, theta2, trig, spec, theta3, theta4, s),
-                (None, true) => $f::<false, true>(fb, theta2, trig, spec, theta3, theta4, &mut []),
-                (None, false) => $f::<false, false>(fb, theta2, trig, spec, theta3, theta4, &mut []),
-            }
-        };
+    match (status, spec.nan_singular) {
+        (Some(status), _) => dispatch(ClosedRow::<true, true> { fb, theta2, trig, spec, theta3, theta4, status }),
+        (None, true) => dispatch(ClosedRow::<false, true> { fb, theta2, trig, spec, theta3, theta4, status: &mut [] }),
+        (None, false) => {
+            dispatch(ClosedRow::<false, false> { fb, theta2, trig, spec, theta3, theta4, status: &mut [] })
+        }
     }
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::available() {
-        // SAFETY: the CPU has AVX2 and FMA (checked at run time just above).
-        unsafe { row!(row_avx2) };
-        return;
-    }
-    row!(row_body)
 }
 
 /// The closed-form sweep (`Method::ClosedForm`) of one linkage: NaN angles unless
 /// Converged, `nit` 0, residual NaN, then velocities and accelerations when asked for.
-pub(crate) fn sweep(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    opts: &SweepOptions,
-    out: SweepOut<'_>,
-    mut motion: Option<MotionOut<'_>>,
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
+pub(crate) fn sweep(row: SweepRow<'_>, mut out: SweepOut<'_>, mut motion: Option<MotionOut<'_>>) -> Result<(), Error> {
+    let SweepRow { fb, theta2, trig, opts, poll, .. } = row;
     poll.tick_n(theta2.len())?; // the whole row at once: closed-form points cost nanoseconds
     let spec = RowSpec { mode: opts.mode, singular: opts.newton.singular, nan_singular: true };
-    closed_form_row(fb, theta2, trig, spec, out.theta3, out.theta4, Some(&mut *out.status));
+    closed_form_row(fb, theta2, trig, spec, out.closed());
     out.nit.fill(0);
     out.residual.fill(f64::NAN);
     if let Some(m) = motion.as_mut() {
