@@ -2,7 +2,7 @@
 //! criteria, predictor, method), the caller-owned output slices of one sweep, of its
 //! optional velocities and accelerations, and of a batch, and the default crank angles.
 
-use super::model::{FourBar, Mode};
+use super::model::{FourBar, Mode, Point};
 use crate::error::{quoted, Error};
 use crate::interrupt::Poll;
 use crate::solve::newton::NewtonOptions;
@@ -111,6 +111,16 @@ pub struct SweepOut<'a> {
 }
 
 impl SweepOut<'_> {
+    /// Writes point `i`.
+    #[inline(always)]
+    pub(crate) fn set(&mut self, i: usize, p: &Point) {
+        self.theta3[i] = p.theta3;
+        self.theta4[i] = p.theta4;
+        self.status[i] = p.status.code();
+        self.nit[i] = p.nit;
+        self.residual[i] = p.residual;
+    }
+
     /// The angles and statuses, as the closed form over crank angles writes them.
     pub(crate) fn closed(&mut self) -> ClosedOut<'_> {
         ClosedOut { theta3: self.theta3, theta4: self.theta4, status: Some(self.status) }

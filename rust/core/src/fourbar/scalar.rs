@@ -34,7 +34,7 @@ impl Prev {
 /// The scalar Newton continuation sweep (bit-identical to the NumPy reference).
 pub(crate) fn newton_sweep(
     row: SweepRow<'_>,
-    out: SweepOut<'_>,
+    mut out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
 ) -> Result<(), Error> {
     let SweepRow { fb, theta2, trig, guess, opts, poll } = row;
@@ -55,11 +55,7 @@ pub(crate) fn newton_sweep(
         } else {
             (Point::failed(Status::NonFinite, 0, f64::NAN), None)
         };
-        out.theta3[i] = point.theta3;
-        out.theta4[i] = point.theta4;
-        out.status[i] = point.status.code();
-        out.nit[i] = point.nit;
-        out.residual[i] = point.residual;
+        out.set(i, &point);
         let converged = point.status == Status::Converged;
         if let Some(m) = motion.as_mut() {
             fill_motion(fb, t2, &point, converged, i, m, opts.newton.singular);

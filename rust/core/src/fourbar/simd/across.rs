@@ -93,19 +93,11 @@ fn body<const AVX: bool>(
             let sys = fb.at_sin_cos(s2, c2);
             let start = if k == 0 { guess.map(nalgebra::Vector2::from) } else { None };
             let p = sweep_point(fb, &sys, start, opts, poll)?.0;
-            out.theta3[k] = p.theta3;
-            out.theta4[k] = p.theta4;
-            out.status[k] = p.status.code();
-            out.nit[k] = p.nit;
-            out.residual[k] = p.residual;
+            out.set(k, &p);
             p
         } else {
             let p = Point::failed(Status::NonFinite, 0, f64::NAN);
-            out.theta3[k] = p.theta3;
-            out.theta4[k] = p.theta4;
-            out.status[k] = p.status.code();
-            out.nit[k] = 0;
-            out.residual[k] = f64::NAN;
+            out.set(k, &p);
             p
         };
         if let Some(m) = motion.as_mut() {

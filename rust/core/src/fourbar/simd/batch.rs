@@ -5,17 +5,14 @@
 //! position) is solved by the scalar `sweep_point` from the same start, so every status
 //! is the scalar path's; angles differ from it only by the rounding of the polynomials.
 
-use crate::parallel::prelude::*;
 use nalgebra::Vector2;
 
 use super::lane::{eval_lanes, lanes, rates, wrap, Eval, M, V, W};
 use crate::error::Error;
 use crate::fourbar::model::{FourBar, Point, FLAT_ULPS};
-use crate::fourbar::options::{BatchOut, Predictor, SweepOptions, SweepOut, SweepRow};
+use crate::fourbar::options::{BatchOut, Predictor, SweepOptions};
 use crate::fourbar::point::{predictor_rates, sweep_point};
-use crate::fourbar::row::{sin_cos_table, sweep_row};
-use crate::interrupt::{Flag, Interrupt, Poll};
-use crate::parallel::run;
+use crate::interrupt::Poll;
 use crate::simd::math::SIN_COS_MAX;
 use crate::simd::{dispatch, Kernel};
 use crate::{wrap_angle, Status};
@@ -24,55 +21,21 @@ use crate::{wrap_angle, Status};
 /// the rule on a sweep with a predictor).
 const LOCKSTEP_STEPS: u32 = 8;
 
-/// [`crate::fourbar::sweep_batch`] for `Method::Newton` with the lane kernel: groups of
-/// [`W`] linkages, rayon-parallel over groups; a last group of fewer rows runs scalar.
-/// The caller has checked the output lengths and that there is at least one angle.
-pub(crate) fn sweep_batch(
-    links: &[FourBar],
+/// One group of [`W`] linkages solved in lock-step into its (W, N) outputs (for
+/// `crate::fourbar::sweep_batch`, which has checked the output lengths and that there is
+/// at least one angle).
+pub(crate) fn group(
+    fbs: &[FourBar],
     theta2: &[f64],
+    trig: &[(f64, f64)],
     opts: &SweepOptions,
     out: BatchOut<'_>,
-    threads: Option<usize>,
-    interrupt: &dyn Interrupt,
+    poll: &Poll<'_>,
 ) -> Result<(), Error> {
-    let n = theta2.len();
-    let mn = links.len() * n;
-    let trig = sin_cos_table(theta2)?;
-    let g = W * n;
-    let size = mn as u128 * (u128::from(opts.newton.max_iter) + 1);
-    // the interrupt is asked between groups of W rows (and every few thousand points of a
-    // last, scalar group)
-    run(threads, size, interrupt, |stop| {
-        let flag = Flag(stop);
-        out.theta3
-            .par_chunks_mut(g)
-            .zip(out.theta4.par_chunks_mut(g))
-            .zip(out.status.par_chunks_mut(g))
-            .zip(out.nit.par_chunks_mut(g))
-            .zip(out.residual.par_chunks_mut(g))
-            .zip(links.par_chunks(W))
-            .try_for_each(|(((((t3, t4), st), nit), res), fbs)| {
-                if flag.interrupted() {
-                    return Err(Error::Interrupted);
-                }
-                if fbs.len() == W {
-                    let out = BatchOut { theta3: t3, theta4: t4, status: st, nit, residual: res };
-                    return dispatch(Group { fbs, theta2, trig: &trig, opts, out, poll: &Poll::new(&flag) });
-                }
-                let rows = t3.chunks_mut(n).zip(t4.chunks_mut(n)).zip(st.chunks_mut(n));
-                let rows = rows.zip(nit.chunks_mut(n)).zip(res.chunks_mut(n)).zip(fbs);
-                for (((((theta3, theta4), status), nit), residual), fb) in rows {
-                    let out = SweepOut { theta3, theta4, status, nit, residual };
-                    let poll = Poll::new(&flag);
-                    sweep_row(SweepRow { fb, theta2, trig: &trig, guess: None, opts, poll: &poll }, out, None)?;
-                }
-                Ok(())
-            })
-    })
+    dispatch(Group { fbs, theta2, trig, opts, out, poll })
 }
 
-/// One group of [`W`] linkages: its (W, N) outputs and what its rows read (the rows'
-/// [`SweepRow`] without a guess), as the SIMD trampoline takes them.
+/// [`group`]'s arguments, as the SIMD trampoline takes them.
 struct Group<'a> {
     fbs: &'a [FourBar],
     theta2: &'a [f64],
@@ -305,6 +268,7 @@ fn group_body<const AVX: bool>(group: Group<'_>) -> Result<(), Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fourbar::options::{SweepOut, SweepRow};
     use crate::fourbar::{default_angles, validate_links, Method, Mode};
     use crate::solve::newton::NewtonOptions;
 
@@ -337,7 +301,7 @@ mod tests {
         let (mut a, mut b, mut s, mut k, mut r) =
             (vec![0.0; mn], vec![0.0; mn], vec![0i8; mn], vec![0u32; mn], vec![0.0; mn]);
         let out = BatchOut { theta3: &mut a, theta4: &mut b, status: &mut s, nit: &mut k, residual: &mut r };
-        sweep_batch(links, t2, opts, out, Some(1), &crate::Never).unwrap();
+        crate::fourbar::batch::sweep_groups(links, t2, opts, out, Some(1), &crate::Never, true).unwrap();
         (a, b, s, k)
     }
 

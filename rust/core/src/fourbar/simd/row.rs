@@ -36,7 +36,7 @@ impl Kernel for NewtonRow<'_> {
 #[inline(always)]
 fn row_body<const AVX: bool>(
     row: SweepRow<'_>,
-    out: SweepOut<'_>,
+    mut out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
 ) -> Result<(), Error> {
     let SweepRow { fb, theta2, trig, guess, opts, poll } = row;
@@ -91,11 +91,7 @@ fn row_body<const AVX: bool>(
                 sweep_point(fb, &sys, first, opts, poll)?
             }
         };
-        out.theta3[i] = point.theta3;
-        out.theta4[i] = point.theta4;
-        out.status[i] = point.status.code();
-        out.nit[i] = point.nit;
-        out.residual[i] = point.residual;
+        out.set(i, &point);
         let converged = point.status == Status::Converged;
         if let Some(m) = motion.as_mut() {
             fill_motion(fb, t2, &point, converged, i, m, opts.newton.singular);
