@@ -47,50 +47,41 @@ pub fn set_enabled(on: bool) -> bool {
     was == 2
 }
 
-/// A kernel compiled twice: portable (`AVX` false), and inlined into [`run_avx2`], whose
-/// `#[target_feature(enable = "avx2,fma")]` lets its loops run 4 wide with FMA (`AVX`
-/// true there, for the code written in intrinsics). Its value holds the arguments: one
-/// trampoline serves every kernel. `run` must be `#[inline(always)]`, or it would be
-/// compiled without the features.
-pub(crate) trait Kernel {
-    type Output;
-    fn run<const AVX: bool>(self) -> Self::Output;
-}
-
-/// Runs `kernel` with AVX2 and FMA where the CPU has them (checked at run time), else
-/// portable.
-#[inline(always)]
-pub(crate) fn dispatch<K: Kernel>(kernel: K) -> K::Output {
-    #[cfg(target_arch = "x86_64")]
-    if available() {
-        // SAFETY: AVX2 and FMA checked at run time.
-        return unsafe { run_avx2(kernel) };
-    }
-    kernel.run::<false>()
-}
-
-/// The one trampoline: `kernel`'s body compiled with AVX2 and FMA.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn run_avx2<K: Kernel>(kernel: K) -> K::Output {
-    kernel.run::<true>()
-}
-
-/// The polynomial (sin, cos) of every angle of `theta`, into `out`.
-struct Table<'a> {
-    theta: &'a [f64],
-    out: &'a mut [(f64, f64)],
-}
-
-impl Kernel for Table<'_> {
-    type Output = ();
-    #[inline(always)]
-    fn run<const AVX: bool>(self) {
-        let Table { theta, out } = self;
-        let out = &mut out[..theta.len()];
-        for (o, &t) in out.iter_mut().zip(theta) {
-            *o = math::sin_cos(t);
+/// Defines `fn $name(args) -> $ret` (`$ret` optional) running `$body::<true>(args)` compiled with AVX2 and
+/// FMA where the CPU has them (checked at run time), else `$body::<false>(args)`: the one
+/// trampoline of every SIMD kernel. `$body` must be `#[inline(always)]`, so that it is
+/// compiled into the `#[target_feature(enable = "avx2,fma")]` function the macro writes
+/// (`AVX` is true there, for the code written in intrinsics).
+macro_rules! avx2_kernel {
+    ($(#[$meta:meta])* $vis:vis fn $name:ident($($arg:ident: $ty:ty),* $(,)?) $(-> $ret:ty)? = $body:ident;) => {
+        $(#[$meta])*
+        $vis fn $name($($arg: $ty),*) $(-> $ret)? {
+            #[cfg(target_arch = "x86_64")]
+            #[target_feature(enable = "avx2,fma")]
+            unsafe fn avx2($($arg: $ty),*) $(-> $ret)? {
+                $body::<true>($($arg),*)
+            }
+            #[cfg(target_arch = "x86_64")]
+            if $crate::simd::available() {
+                // SAFETY: AVX2 and FMA checked at run time.
+                return unsafe { avx2($($arg),*) };
+            }
+            $body::<false>($($arg),*)
         }
+    };
+}
+pub(crate) use avx2_kernel;
+
+avx2_kernel! {
+    /// The polynomial (sin, cos) of every angle of `theta`, into `out`.
+    fn table(theta: &[f64], out: &mut [(f64, f64)]) = table_body;
+}
+
+#[inline(always)]
+fn table_body<const AVX: bool>(theta: &[f64], out: &mut [(f64, f64)]) {
+    let out = &mut out[..theta.len()];
+    for (o, &t) in out.iter_mut().zip(theta) {
+        *o = math::sin_cos(t);
     }
 }
 
@@ -144,29 +135,23 @@ pub fn direction(d: [f64; 2], fast: bool) -> f64 {
 /// the polynomial where the SIMD kernels are on; each value is the one the scalar call
 /// gives, bit for bit.
 pub fn directions_into(x: &[f64], y: &[f64], out: &mut [f64]) {
-    // (where the kernels are on, the CPU has AVX2 and FMA: `dispatch` takes its AVX2 path)
-    let fast = enabled();
-    let kernel = Directions { x, y, out };
-    if fast {
-        dispatch(kernel)
+    // (where the kernels are on, the CPU has AVX2 and FMA: `directions` takes its AVX2 path)
+    if enabled() {
+        directions(x, y, out);
     } else {
-        kernel.run::<false>()
+        directions_body(x, y, out, false);
     }
 }
 
-/// [`directions_into`]'s arguments.
-struct Directions<'a> {
-    x: &'a [f64],
-    y: &'a [f64],
-    out: &'a mut [f64],
+avx2_kernel! {
+    /// [`directions_body`] with the polynomial, compiled with AVX2 and FMA where the CPU
+    /// has them.
+    fn directions(x: &[f64], y: &[f64], out: &mut [f64]) = directions_fast;
 }
 
-impl Kernel for Directions<'_> {
-    type Output = ();
-    #[inline(always)]
-    fn run<const AVX: bool>(self) {
-        directions_body(self.x, self.y, self.out, AVX);
-    }
+#[inline(always)]
+fn directions_fast<const AVX: bool>(x: &[f64], y: &[f64], out: &mut [f64]) {
+    directions_body(x, y, out, true);
 }
 
 /// The loop of [`directions_into`], compiled into each caller (a kernel compiled with FMA
@@ -184,7 +169,7 @@ pub(crate) fn directions_body(x: &[f64], y: &[f64], out: &mut [f64], fast: bool)
 /// sizes), 4 at a time; arguments beyond the polynomial's range (|x| > 1e5, infinities,
 /// NaN) go to libm.
 pub fn sin_cos_into(theta: &[f64], out: &mut [(f64, f64)]) {
-    dispatch(Table { theta, out: &mut *out });
+    table(theta, out);
     // beyond the polynomial's range, or NaN (which fails `<=`): one fold (it vectorizes)
     // finds whether any argument needs libm, and the loop that gives it runs only then
     let libm = |t: f64| !(t.abs() <= math::SIN_COS_MAX);

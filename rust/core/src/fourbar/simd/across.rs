@@ -13,29 +13,18 @@ use crate::error::Error;
 use crate::fourbar::model::{FourBar, Point};
 use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut, SweepRow};
 use crate::fourbar::point::{fill_motion, sweep_point};
+use crate::simd::avx2_kernel;
 use crate::simd::math::SIN_COS_MAX;
-use crate::simd::{dispatch, Kernel};
 use crate::Status;
 
 const CONVERGED: i8 = Status::Converged as i8;
 
-pub(crate) fn closed_form_predicted(
-    row: SweepRow<'_>,
-    out: SweepOut<'_>,
-    motion: Option<MotionOut<'_>>,
-) -> Result<(), Error> {
-    dispatch(Predicted(row, out, motion))
-}
-
-/// [`closed_form_predicted`]'s arguments, as the SIMD trampoline takes them.
-struct Predicted<'a>(SweepRow<'a>, SweepOut<'a>, Option<MotionOut<'a>>);
-
-impl Kernel for Predicted<'_> {
-    type Output = Result<(), Error>;
-    #[inline(always)]
-    fn run<const AVX: bool>(self) -> Self::Output {
-        body::<AVX>(self.0, self.1, self.2)
-    }
+avx2_kernel! {
+    pub(crate) fn closed_form_predicted(
+        row: SweepRow<'_>,
+        out: SweepOut<'_>,
+        motion: Option<MotionOut<'_>>,
+    ) -> Result<(), Error> = body;
 }
 
 /// `AVX`: compiled inside the AVX2 trampoline (AVX2 and FMA present), where the evaluation

@@ -13,44 +13,26 @@ use crate::fourbar::model::{FourBar, Point, FLAT_ULPS};
 use crate::fourbar::options::{BatchOut, Predictor, SweepOptions};
 use crate::fourbar::point::{predictor_rates, sweep_point};
 use crate::interrupt::Poll;
+use crate::simd::avx2_kernel;
 use crate::simd::math::SIN_COS_MAX;
-use crate::simd::{dispatch, Kernel};
 use crate::{wrap_angle, Status};
 
 /// Newton steps tried in lock-step before a lane goes to the scalar path (one or two are
 /// the rule on a sweep with a predictor).
 const LOCKSTEP_STEPS: u32 = 8;
 
-/// One group of [`W`] linkages solved in lock-step into its (W, N) outputs (for
-/// `crate::fourbar::sweep_batch`, which has checked the output lengths and that there is
-/// at least one angle).
-pub(crate) fn group(
-    fbs: &[FourBar],
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    opts: &SweepOptions,
-    out: BatchOut<'_>,
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
-    dispatch(Group { fbs, theta2, trig, opts, out, poll })
-}
-
-/// [`group`]'s arguments, as the SIMD trampoline takes them.
-struct Group<'a> {
-    fbs: &'a [FourBar],
-    theta2: &'a [f64],
-    trig: &'a [(f64, f64)],
-    opts: &'a SweepOptions,
-    out: BatchOut<'a>,
-    poll: &'a Poll<'a>,
-}
-
-impl Kernel for Group<'_> {
-    type Output = Result<(), Error>;
-    #[inline(always)]
-    fn run<const AVX: bool>(self) -> Self::Output {
-        group_body::<AVX>(self)
-    }
+avx2_kernel! {
+    /// One group of [`W`] linkages solved in lock-step into its (W, N) outputs (for
+    /// `crate::fourbar::sweep_batch`, which has checked the output lengths and that there
+    /// is at least one angle).
+    pub(crate) fn group(
+        fbs: &[FourBar],
+        theta2: &[f64],
+        trig: &[(f64, f64)],
+        opts: &SweepOptions,
+        out: BatchOut<'_>,
+        poll: &Poll<'_>,
+    ) -> Result<(), Error> = group_body;
 }
 
 /// The last converged point of every lane, with the predictor's rates.
@@ -62,8 +44,14 @@ struct Prev {
 }
 
 #[inline(always)]
-fn group_body<const AVX: bool>(group: Group<'_>) -> Result<(), Error> {
-    let Group { fbs, theta2, trig, opts, out, poll } = group;
+fn group_body<const AVX: bool>(
+    fbs: &[FourBar],
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    opts: &SweepOptions,
+    out: BatchOut<'_>,
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
     let BatchOut { theta3: t3, theta4: t4, status: st, nit: nit_out, residual: res_out } = out;
     let n = theta2.len();
     let r: [V; 4] = [0, 1, 2, 3].map(|k| lanes!(|l| fbs[l].unit_lengths()[k]));

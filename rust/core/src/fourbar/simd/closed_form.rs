@@ -8,7 +8,7 @@ use crate::error::Error;
 use crate::fourbar::model::{FourBar, Mode, Point, FLAT_ULPS};
 use crate::fourbar::options::{ClosedOut, MotionOut, SweepOut, SweepRow};
 use crate::fourbar::point::fill_motion;
-use crate::simd::{directions_body, dispatch, Kernel};
+use crate::simd::{avx2_kernel, directions_body};
 use crate::Status;
 
 const CONVERGED: i8 = Status::Converged as i8;
@@ -25,31 +25,16 @@ pub(crate) struct RowSpec {
     pub nan_singular: bool,
 }
 
-/// [`closed_form_row`]'s arguments, as the SIMD trampoline takes them; `status` is empty
-/// unless `STATUS`, and `WELL` computes the conditioning (where a status or the kept
-/// angles need it).
-struct ClosedRow<'a, const STATUS: bool, const WELL: bool> {
-    fb: &'a FourBar,
-    theta2: &'a [f64],
-    trig: &'a [(f64, f64)],
-    spec: RowSpec,
-    theta3: &'a mut [f64],
-    theta4: &'a mut [f64],
-    status: &'a mut [i8],
-}
-
-impl<const STATUS: bool, const WELL: bool> Kernel for ClosedRow<'_, STATUS, WELL> {
-    type Output = ();
-    /// The loops are the same with AVX2: the trampoline's features vectorize them.
-    #[inline(always)]
-    fn run<const AVX: bool>(self) {
-        row_body::<STATUS, WELL>(self)
-    }
-}
-
 #[inline(always)]
-fn row_body<const STATUS: bool, const WELL: bool>(row: ClosedRow<'_, STATUS, WELL>) {
-    let ClosedRow { fb, theta2, trig, spec, theta3, theta4, status } = row;
+fn row_body<const STATUS: bool, const WELL: bool>(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    spec: RowSpec,
+    theta3: &mut [f64],
+    theta4: &mut [f64],
+    status: &mut [i8],
+) {
     let n = theta2.len();
     let (trig, theta3, theta4) = (&trig[..n], &mut theta3[..n], &mut theta4[..n]);
     let status = if STATUS { &mut status[..n] } else { status };
@@ -117,18 +102,30 @@ fn row_body<const STATUS: bool, const WELL: bool>(row: ClosedRow<'_, STATUS, WEL
 /// Angles a block of [`row_body`] takes at once.
 const BLOCK: usize = 128;
 
-/// The closed form of one linkage at every crank angle (with its precomputed (sin, cos)),
-/// with the statuses of the scalar path: NonFinite, NotAssemblable, Singular (below
-/// `singular`, or indeterminate), Converged. The status is written only when given.
-pub(crate) fn closed_form_row(fb: &FourBar, theta2: &[f64], trig: &[(f64, f64)], spec: RowSpec, out: ClosedOut<'_>) {
+avx2_kernel! {
+    /// The closed form of one linkage at every crank angle (with its precomputed (sin,
+    /// cos)), with the statuses of the scalar path: NonFinite, NotAssemblable, Singular
+    /// (below `singular`, or indeterminate), Converged. The status is written only when
+    /// given.
+    pub(crate) fn closed_form_row(
+        fb: &FourBar,
+        theta2: &[f64],
+        trig: &[(f64, f64)],
+        spec: RowSpec,
+        out: ClosedOut<'_>,
+    ) = rows;
+}
+
+/// [`row_body`] for what `out` asks: the conditioning is computed only where a status or
+/// the kept angles need it. The loops are the same with AVX2 (`_AVX`): the trampoline's
+/// features vectorize them.
+#[inline(always)]
+fn rows<const _AVX: bool>(fb: &FourBar, theta2: &[f64], trig: &[(f64, f64)], spec: RowSpec, out: ClosedOut<'_>) {
     let ClosedOut { theta3, theta4, status } = out;
-    // the conditioning is computed only where a status or the kept angles need it
     match (status, spec.nan_singular) {
-        (Some(status), _) => dispatch(ClosedRow::<true, true> { fb, theta2, trig, spec, theta3, theta4, status }),
-        (None, true) => dispatch(ClosedRow::<false, true> { fb, theta2, trig, spec, theta3, theta4, status: &mut [] }),
-        (None, false) => {
-            dispatch(ClosedRow::<false, false> { fb, theta2, trig, spec, theta3, theta4, status: &mut [] })
-        }
+        (Some(s), _) => row_body::<true, true>(fb, theta2, trig, spec, theta3, theta4, s),
+        (None, true) => row_body::<false, true>(fb, theta2, trig, spec, theta3, theta4, &mut []),
+        (None, false) => row_body::<false, false>(fb, theta2, trig, spec, theta3, theta4, &mut []),
     }
 }
 

@@ -11,26 +11,15 @@ use crate::error::Error;
 use crate::fourbar::model::{Point, FLAT_ULPS};
 use crate::fourbar::options::{MotionOut, Predictor, SweepOut, SweepRow};
 use crate::fourbar::point::{fill_motion, predictor_rates, sweep_point};
+use crate::simd::avx2_kernel;
 use crate::simd::math::{sin_cos, SIN_COS_MAX};
-use crate::simd::{dispatch, Kernel};
 use crate::{wrap_angle, Status};
 
 /// Newton steps tried on the fast path before the scalar path takes the point over.
 const FAST_STEPS: u32 = 8;
 
-pub(crate) fn newton_row(row: SweepRow<'_>, out: SweepOut<'_>, motion: Option<MotionOut<'_>>) -> Result<(), Error> {
-    dispatch(NewtonRow(row, out, motion))
-}
-
-/// [`newton_row`]'s arguments, as the SIMD trampoline takes them.
-struct NewtonRow<'a>(SweepRow<'a>, SweepOut<'a>, Option<MotionOut<'a>>);
-
-impl Kernel for NewtonRow<'_> {
-    type Output = Result<(), Error>;
-    #[inline(always)]
-    fn run<const AVX: bool>(self) -> Self::Output {
-        row_body::<AVX>(self.0, self.1, self.2)
-    }
+avx2_kernel! {
+    pub(crate) fn newton_row(row: SweepRow<'_>, out: SweepOut<'_>, motion: Option<MotionOut<'_>>) -> Result<(), Error> = row_body;
 }
 
 #[inline(always)]
