@@ -7,7 +7,7 @@ use std::sync::atomic::AtomicBool;
 use crate::parallel::prelude::*;
 
 use super::model::{FourBar, Mode};
-use super::options::{check_len, BatchOut, ClosedOut, Method, Predictor, SweepOptions, SweepOut, SweepRow};
+use super::options::{check_len, BatchOut, Method, Predictor, SweepOptions, SweepOut};
 use super::row::{closed_form_trig, sin_cos_table, sweep_row};
 use super::simd;
 use crate::error::Error;
@@ -87,15 +87,13 @@ pub(crate) fn sweep_groups(
                     return Err(Error::Interrupted);
                 }
                 if lock_step && fbs.len() == simd::W {
-                    let out = BatchOut { theta3: t3, theta4: t4, status: st, nit, residual: res };
-                    return simd::batch::group(fbs, theta2, &trig, opts, out, &Poll::new(&flag));
+                    return simd::batch::group(fbs, theta2, &trig, opts, t3, t4, st, nit, res, &Poll::new(&flag));
                 }
                 let rows = t3.chunks_mut(n).zip(t4.chunks_mut(n)).zip(st.chunks_mut(n));
                 let rows = rows.zip(nit.chunks_mut(n)).zip(res.chunks_mut(n)).zip(fbs);
                 for (((((theta3, theta4), status), nit), residual), fb) in rows {
-                    let out = SweepOut { theta3, theta4, status, nit, residual };
-                    let poll = Poll::new(&flag);
-                    sweep_row(SweepRow { fb, theta2, trig: &trig, guess: None, opts, poll: &poll }, out, None)?;
+                    let row = SweepOut { theta3, theta4, status, nit, residual };
+                    sweep_row(fb, theta2, &trig, None, opts, row, None, &Poll::new(&flag))?;
                 }
                 Ok(())
             })
@@ -132,13 +130,13 @@ pub fn closed_form_batch(
     run(threads, mn as u128, interrupt, |stop| match status {
         Some(status) => rows.zip(status.par_chunks_mut(n)).try_for_each(|(((t3, t4), fb), st)| {
             go(stop)?;
-            closed_form_trig(fb, theta2, &trig, mode, singular, ClosedOut { theta3: t3, theta4: t4, status: Some(st) });
+            closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, Some(st));
             Ok(())
         }),
         // `{ rows }`: a temporary, so the sequential stand-in's `try_for_each(&mut self)` works too
         None => { rows }.try_for_each(|((t3, t4), fb)| {
             go(stop)?;
-            closed_form_trig(fb, theta2, &trig, mode, singular, ClosedOut { theta3: t3, theta4: t4, status: None });
+            closed_form_trig(fb, theta2, &trig, mode, singular, t3, t4, None);
             Ok(())
         }),
     })

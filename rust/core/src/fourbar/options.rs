@@ -2,9 +2,8 @@
 //! criteria, predictor, method), the caller-owned output slices of one sweep, of its
 //! optional velocities and accelerations, and of a batch, and the default crank angles.
 
-use super::model::{FourBar, Mode, Point};
+use super::model::{Mode, Point};
 use crate::error::{quoted, Error};
-use crate::interrupt::Poll;
 use crate::solve::newton::NewtonOptions;
 
 /// How the next point's first guess is made from the last converged one.
@@ -88,19 +87,6 @@ impl SweepOptions {
     }
 }
 
-/// What one sweep row reads, as its kernels take it: the linkage, the crank angles with
-/// their (sin, cos) (a table a batch shares), the first point's guess, the options and the
-/// interrupt's countdown. The outputs travel beside it ([`SweepOut`], [`MotionOut`]).
-#[derive(Clone, Copy)]
-pub(crate) struct SweepRow<'a> {
-    pub fb: &'a FourBar,
-    pub theta2: &'a [f64],
-    pub trig: &'a [(f64, f64)],
-    pub guess: Option<[f64; 2]>,
-    pub opts: &'a SweepOptions,
-    pub poll: &'a Poll<'a>,
-}
-
 /// Output slices of one sweep, all of the length of the crank-angle array.
 pub struct SweepOut<'a> {
     pub theta3: &'a mut [f64],
@@ -120,19 +106,6 @@ impl SweepOut<'_> {
         self.nit[i] = p.nit;
         self.residual[i] = p.residual;
     }
-
-    /// The angles and statuses, as the closed form over crank angles writes them.
-    pub(crate) fn closed(&mut self) -> ClosedOut<'_> {
-        ClosedOut { theta3: self.theta3, theta4: self.theta4, status: Some(self.status) }
-    }
-}
-
-/// Output slices of the closed form over crank angles: the angles, and the statuses when
-/// the caller wants them.
-pub(crate) struct ClosedOut<'a> {
-    pub theta3: &'a mut [f64],
-    pub theta4: &'a mut [f64],
-    pub status: Option<&'a mut [i8]>,
 }
 
 /// Optional velocity (and acceleration) outputs, computed only when asked for.

@@ -4,7 +4,7 @@
 //! `interrupt` every [`crate::interrupt::CHECK_EVERY`] points ([`Error::Interrupted`]).
 
 use super::model::{transmission_angle, FourBar, Mode};
-use super::options::{check_len, ClosedOut};
+use super::options::check_len;
 use super::row::{closed_form_trig, sin_cos_fill};
 use crate::error::{finite, Error};
 use crate::interrupt::{Interrupt, Poll};
@@ -47,8 +47,7 @@ pub fn closed_form_into(
         let (o, e) = (k * BLOCK, k * BLOCK + t.len());
         let tr = &mut trig[..t.len()];
         sin_cos_fill(t, tr);
-        let out = ClosedOut { theta3: &mut theta3[o..e], theta4: &mut theta4[o..e], status: Some(&mut status[o..e]) };
-        closed_form_trig(fb, t, tr, mode, singular, out);
+        closed_form_trig(fb, t, tr, mode, singular, &mut theta3[o..e], &mut theta4[o..e], Some(&mut status[o..e]));
     }
     Ok(())
 }

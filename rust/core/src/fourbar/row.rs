@@ -3,9 +3,10 @@
 //! crank-angle sines and cosines shared by every linkage of a batch.
 
 use super::model::{FourBar, Mode};
-use super::options::{ClosedOut, Method, MotionOut, Predictor, SweepOut, SweepRow};
+use super::options::{Method, MotionOut, Predictor, SweepOptions, SweepOut};
 use super::{scalar, simd};
 use crate::error::{try_zeros, Error};
+use crate::interrupt::Poll;
 
 /// (sin, cos) of every crank angle: computed once, shared by every linkage of a batch
 /// (4 at a time by polynomials when [`crate::simd::enabled`], libm otherwise). Allocated
@@ -29,17 +30,25 @@ pub(crate) fn sin_cos_fill(theta2: &[f64], out: &mut [(f64, f64)]) {
 
 /// One sweep row, for slices known to have the right lengths: the closed-form or the
 /// Newton kernel, SIMD when [`crate::simd::enabled`], else scalar.
-pub(crate) fn sweep_row(row: SweepRow<'_>, out: SweepOut<'_>, motion: Option<MotionOut<'_>>) -> Result<(), Error> {
+pub(crate) fn sweep_row(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
     let vectorized = crate::simd::enabled();
-    let opts = row.opts;
     match opts.method {
-        Method::ClosedForm if vectorized => simd::closed_form::sweep(row, out, motion),
-        Method::ClosedForm => scalar::closed_form_sweep(row, out, motion),
+        Method::ClosedForm if vectorized => simd::closed_form::sweep(fb, theta2, trig, opts, out, motion, poll),
+        Method::ClosedForm => scalar::closed_form_sweep(fb, theta2, trig, opts, out, motion, poll),
         Method::Newton if vectorized && opts.predictor == Predictor::ClosedForm => {
-            simd::across::closed_form_predicted(row, out, motion)
+            simd::across::closed_form_predicted(fb, theta2, trig, guess, opts, out, motion, poll)
         }
-        Method::Newton if vectorized => simd::row::newton_row(row, out, motion),
-        Method::Newton => scalar::newton_sweep(row, out, motion),
+        Method::Newton if vectorized => simd::row::newton_row(fb, theta2, trig, guess, opts, out, motion, poll),
+        Method::Newton => scalar::newton_sweep(fb, theta2, trig, guess, opts, out, motion, poll),
     }
 }
 
@@ -51,13 +60,14 @@ pub(crate) fn closed_form_trig(
     trig: &[(f64, f64)],
     mode: Mode,
     singular: f64,
-    out: ClosedOut<'_>,
+    theta3: &mut [f64],
+    theta4: &mut [f64],
+    mut status: Option<&mut [i8]>,
 ) {
     if crate::simd::enabled() {
         let spec = simd::closed_form::RowSpec { mode, singular, nan_singular: false };
-        return simd::closed_form::closed_form_row(fb, theta2, trig, spec, out);
+        return simd::closed_form::closed_form_row(fb, theta2, trig, spec, theta3, theta4, status);
     }
-    let ClosedOut { theta3, theta4, mut status } = out;
     for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
         let (t3, t4, st) = scalar::closed_point(fb, t2, s2, c2, mode, singular);
         theta3[i] = t3;

@@ -6,9 +6,10 @@ use nalgebra::Vector2;
 
 use super::closed_form::ClosedForm;
 use super::model::{FourBar, Mode, Point};
-use super::options::{MotionOut, Predictor, SweepOut, SweepRow};
+use super::options::{MotionOut, Predictor, SweepOptions, SweepOut};
 use super::point::{fill_motion, predictor_rates, sweep_point};
 use crate::error::Error;
+use crate::interrupt::Poll;
 use crate::{wrap_angle, Status};
 
 /// The last converged point, with what the predictors need.
@@ -33,11 +34,15 @@ impl Prev {
 
 /// The scalar Newton continuation sweep (bit-identical to the NumPy reference).
 pub(crate) fn newton_sweep(
-    row: SweepRow<'_>,
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
     mut out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
 ) -> Result<(), Error> {
-    let SweepRow { fb, theta2, trig, guess, opts, poll } = row;
     let mut prev: Option<Prev> = None;
     for (i, &t2) in theta2.iter().enumerate() {
         poll.tick()?;
@@ -75,11 +80,14 @@ pub(crate) fn newton_sweep(
 /// A sweep by the closed form: each point on its own, NaN angles unless `Converged`
 /// (`Singular` where the conditioning is below the threshold), `nit` 0, residual NaN.
 pub(crate) fn closed_form_sweep(
-    row: SweepRow<'_>,
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    opts: &SweepOptions,
     out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
 ) -> Result<(), Error> {
-    let SweepRow { fb, theta2, trig, opts, poll, .. } = row;
     for (i, (&t2, &(s2, c2))) in theta2.iter().zip(trig).enumerate() {
         poll.tick()?;
         let status = if !t2.is_finite() {

@@ -4,7 +4,7 @@
 //! branch), or the closed form point by point.
 
 use super::model::FourBar;
-use super::options::{check_len, MotionOut, SweepOptions, SweepOut, SweepRow};
+use super::options::{check_len, MotionOut, SweepOptions, SweepOut};
 use super::row::{sin_cos_table, sweep_row};
 use crate::error::{finite, Error};
 use crate::interrupt::{Interrupt, Never, Poll};
@@ -36,8 +36,7 @@ pub fn sweep_into(
             check_len("alpha4", a4.len(), n)?;
         }
     }
-    let (trig, poll) = (sin_cos_table(theta2)?, Poll::new(interrupt));
-    sweep_row(SweepRow { fb, theta2, trig: &trig, guess, opts, poll: &poll }, out, motion)
+    sweep_row(fb, theta2, &sin_cos_table(theta2)?, guess, opts, out, motion, &Poll::new(interrupt))
 }
 
 /// Owned results of one sweep, for Rust callers (the bindings fill their own buffers).
@@ -69,8 +68,7 @@ pub fn sweep(fb: &FourBar, theta2: &[f64], guess: Option<[f64; 2]>, opts: &Sweep
     };
     let trig: Vec<(f64, f64)> = theta2.iter().map(|t| t.sin_cos()).collect();
     // Never interrupts: the sweep always completes
-    let poll = Poll::new(&Never);
-    let _ = sweep_row(SweepRow { fb, theta2, trig: &trig, guess, opts, poll: &poll }, out, None);
+    let _ = sweep_row(fb, theta2, &trig, guess, opts, out, None, &Poll::new(&Never));
     s
 }
 

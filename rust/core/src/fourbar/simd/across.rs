@@ -11,8 +11,9 @@ use super::closed_form::{closed_form_row, RowSpec};
 use super::lane::{eval_lanes, lanes, wrap, Block, Check, Eval, M, V, W};
 use crate::error::Error;
 use crate::fourbar::model::{FourBar, Point};
-use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut, SweepRow};
+use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut};
 use crate::fourbar::point::{fill_motion, sweep_point};
+use crate::interrupt::Poll;
 use crate::simd::avx2_kernel;
 use crate::simd::math::SIN_COS_MAX;
 use crate::Status;
@@ -21,9 +22,14 @@ const CONVERGED: i8 = Status::Converged as i8;
 
 avx2_kernel! {
     pub(crate) fn closed_form_predicted(
-        row: SweepRow<'_>,
+        fb: &FourBar,
+        theta2: &[f64],
+        trig: &[(f64, f64)],
+        guess: Option<[f64; 2]>,
+        opts: &SweepOptions,
         out: SweepOut<'_>,
         motion: Option<MotionOut<'_>>,
+        poll: &Poll<'_>,
     ) -> Result<(), Error> = body;
 }
 
@@ -32,17 +38,21 @@ avx2_kernel! {
 /// only 2 wide).
 #[inline(always)]
 fn body<const AVX: bool>(
-    row: SweepRow<'_>,
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
     mut out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
 ) -> Result<(), Error> {
-    let SweepRow { fb, theta2, trig, guess, opts, poll } = row;
     let n = theta2.len();
     // the vectorized pass costs nanoseconds a point: counted at once; the points it leaves
     // to the scalar path tick one by one below
     poll.tick_n(n)?;
     let spec = RowSpec { mode: opts.mode, singular: opts.newton.singular, nan_singular: false };
-    closed_form_row(fb, theta2, trig, spec, out.closed());
+    closed_form_row(fb, theta2, trig, spec, out.theta3, out.theta4, Some(&mut *out.status));
     let check = check_of(fb, opts);
     // per point: solved here (true) or left to the scalar path
     let mut fast = vec![false; n];

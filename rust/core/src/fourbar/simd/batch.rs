@@ -10,7 +10,7 @@ use nalgebra::Vector2;
 use super::lane::{eval_lanes, lanes, rates, wrap, Eval, M, V, W};
 use crate::error::Error;
 use crate::fourbar::model::{FourBar, Point, FLAT_ULPS};
-use crate::fourbar::options::{BatchOut, Predictor, SweepOptions};
+use crate::fourbar::options::{Predictor, SweepOptions};
 use crate::fourbar::point::{predictor_rates, sweep_point};
 use crate::interrupt::Poll;
 use crate::simd::avx2_kernel;
@@ -30,7 +30,11 @@ avx2_kernel! {
         theta2: &[f64],
         trig: &[(f64, f64)],
         opts: &SweepOptions,
-        out: BatchOut<'_>,
+        t3: &mut [f64],
+        t4: &mut [f64],
+        st: &mut [i8],
+        nit: &mut [u32],
+        res: &mut [f64],
         poll: &Poll<'_>,
     ) -> Result<(), Error> = group_body;
 }
@@ -49,10 +53,13 @@ fn group_body<const AVX: bool>(
     theta2: &[f64],
     trig: &[(f64, f64)],
     opts: &SweepOptions,
-    out: BatchOut<'_>,
+    t3: &mut [f64],
+    t4: &mut [f64],
+    st: &mut [i8],
+    nit_out: &mut [u32],
+    res_out: &mut [f64],
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
-    let BatchOut { theta3: t3, theta4: t4, status: st, nit: nit_out, residual: res_out } = out;
     let n = theta2.len();
     let r: [V; 4] = [0, 1, 2, 3].map(|k| lanes!(|l| fbs[l].unit_lengths()[k]));
     let [r1, r2, r3, r4] = r;
@@ -256,7 +263,7 @@ fn group_body<const AVX: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fourbar::options::{SweepOut, SweepRow};
+    use crate::fourbar::options::{BatchOut, SweepOut};
     use crate::fourbar::{default_angles, validate_links, Method, Mode};
     use crate::solve::newton::NewtonOptions;
 
@@ -277,9 +284,8 @@ mod tests {
                 nit: &mut k[rg.clone()],
                 residual: &mut r[rg],
             };
-            let poll = Poll::new(&crate::Never);
-            let input = SweepRow { fb, theta2: t2, trig: &trig, guess: None, opts, poll: &poll };
-            crate::fourbar::scalar::newton_sweep(input, row, None).unwrap();
+            crate::fourbar::scalar::newton_sweep(fb, t2, &trig, None, opts, row, None, &Poll::new(&crate::Never))
+                .unwrap();
         }
         (a, b, s, k)
     }
@@ -370,10 +376,28 @@ mod tests {
                     for fb in &links {
                         let mut a: Row = (vec![0.0; n], vec![0.0; n], vec![0i8; n], vec![0u32; n], vec![0.0; n]);
                         let mut b = a.clone();
-                        let poll = Poll::new(&crate::Never);
-                        let row = SweepRow { fb, theta2: &t2, trig: &trig, guess, opts: &opts, poll: &poll };
-                        crate::fourbar::scalar::newton_sweep(row, out(&mut a), None).unwrap();
-                        super::super::row::newton_row(row, out(&mut b), None).unwrap();
+                        crate::fourbar::scalar::newton_sweep(
+                            fb,
+                            &t2,
+                            &trig,
+                            guess,
+                            &opts,
+                            out(&mut a),
+                            None,
+                            &Poll::new(&crate::Never),
+                        )
+                        .unwrap();
+                        super::super::row::newton_row(
+                            fb,
+                            &t2,
+                            &trig,
+                            guess,
+                            &opts,
+                            out(&mut b),
+                            None,
+                            &Poll::new(&crate::Never),
+                        )
+                        .unwrap();
                         assert_eq!(a.2, b.2, "{mode:?} {predictor:?} {:?}", fb.lengths());
                         nit_diffs += a.3.iter().zip(&b.3).filter(|(p, q)| p != q).count();
                         points += n;

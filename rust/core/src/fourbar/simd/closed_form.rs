@@ -6,8 +6,9 @@
 
 use crate::error::Error;
 use crate::fourbar::model::{FourBar, Mode, Point, FLAT_ULPS};
-use crate::fourbar::options::{ClosedOut, MotionOut, SweepOut, SweepRow};
+use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut};
 use crate::fourbar::point::fill_motion;
+use crate::interrupt::Poll;
 use crate::simd::{avx2_kernel, directions_body};
 use crate::Status;
 
@@ -112,7 +113,9 @@ avx2_kernel! {
         theta2: &[f64],
         trig: &[(f64, f64)],
         spec: RowSpec,
-        out: ClosedOut<'_>,
+        theta3: &mut [f64],
+        theta4: &mut [f64],
+        status: Option<&mut [i8]>,
     ) = rows;
 }
 
@@ -120,8 +123,15 @@ avx2_kernel! {
 /// the kept angles need it. The loops are the same with AVX2 (`_AVX`): the trampoline's
 /// features vectorize them.
 #[inline(always)]
-fn rows<const _AVX: bool>(fb: &FourBar, theta2: &[f64], trig: &[(f64, f64)], spec: RowSpec, out: ClosedOut<'_>) {
-    let ClosedOut { theta3, theta4, status } = out;
+fn rows<const _AVX: bool>(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    spec: RowSpec,
+    theta3: &mut [f64],
+    theta4: &mut [f64],
+    status: Option<&mut [i8]>,
+) {
     match (status, spec.nan_singular) {
         (Some(s), _) => row_body::<true, true>(fb, theta2, trig, spec, theta3, theta4, s),
         (None, true) => row_body::<false, true>(fb, theta2, trig, spec, theta3, theta4, &mut []),
@@ -131,11 +141,18 @@ fn rows<const _AVX: bool>(fb: &FourBar, theta2: &[f64], trig: &[(f64, f64)], spe
 
 /// The closed-form sweep (`Method::ClosedForm`) of one linkage: NaN angles unless
 /// Converged, `nit` 0, residual NaN, then velocities and accelerations when asked for.
-pub(crate) fn sweep(row: SweepRow<'_>, mut out: SweepOut<'_>, mut motion: Option<MotionOut<'_>>) -> Result<(), Error> {
-    let SweepRow { fb, theta2, trig, opts, poll, .. } = row;
+pub(crate) fn sweep(
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    opts: &SweepOptions,
+    out: SweepOut<'_>,
+    mut motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
+) -> Result<(), Error> {
     poll.tick_n(theta2.len())?; // the whole row at once: closed-form points cost nanoseconds
     let spec = RowSpec { mode: opts.mode, singular: opts.newton.singular, nan_singular: true };
-    closed_form_row(fb, theta2, trig, spec, out.closed());
+    closed_form_row(fb, theta2, trig, spec, out.theta3, out.theta4, Some(&mut *out.status));
     out.nit.fill(0);
     out.residual.fill(f64::NAN);
     if let Some(m) = motion.as_mut() {

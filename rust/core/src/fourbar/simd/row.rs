@@ -8,9 +8,10 @@
 use nalgebra::{Matrix2, Vector2};
 
 use crate::error::Error;
-use crate::fourbar::model::{Point, FLAT_ULPS};
-use crate::fourbar::options::{MotionOut, Predictor, SweepOut, SweepRow};
+use crate::fourbar::model::{FourBar, Point, FLAT_ULPS};
+use crate::fourbar::options::{MotionOut, Predictor, SweepOptions, SweepOut};
 use crate::fourbar::point::{fill_motion, predictor_rates, sweep_point};
+use crate::interrupt::Poll;
 use crate::simd::avx2_kernel;
 use crate::simd::math::{sin_cos, SIN_COS_MAX};
 use crate::{wrap_angle, Status};
@@ -19,16 +20,29 @@ use crate::{wrap_angle, Status};
 const FAST_STEPS: u32 = 8;
 
 avx2_kernel! {
-    pub(crate) fn newton_row(row: SweepRow<'_>, out: SweepOut<'_>, motion: Option<MotionOut<'_>>) -> Result<(), Error> = row_body;
+    pub(crate) fn newton_row(
+        fb: &FourBar,
+        theta2: &[f64],
+        trig: &[(f64, f64)],
+        guess: Option<[f64; 2]>,
+        opts: &SweepOptions,
+        out: SweepOut<'_>,
+        motion: Option<MotionOut<'_>>,
+        poll: &Poll<'_>,
+    ) -> Result<(), Error> = row_body;
 }
 
 #[inline(always)]
 fn row_body<const AVX: bool>(
-    row: SweepRow<'_>,
+    fb: &FourBar,
+    theta2: &[f64],
+    trig: &[(f64, f64)],
+    guess: Option<[f64; 2]>,
+    opts: &SweepOptions,
     mut out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
+    poll: &Poll<'_>,
 ) -> Result<(), Error> {
-    let SweepRow { fb, theta2, trig, guess, opts, poll } = row;
     let [r1, r2, r3, r4] = fb.unit_lengths();
     let r = [r1, r2, r3, r4];
     let scale = fb.longest();
