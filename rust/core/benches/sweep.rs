@@ -45,6 +45,12 @@ impl Bufs {
             residual: &mut self.res,
         }
     }
+
+    /// The same buffers as the (M, N) outputs of a batch.
+    fn batch(&mut self) -> BatchOut<'_> {
+        let SweepOut { theta3, theta4, status, nit, residual } = self.out();
+        BatchOut { theta3, theta4, status, nit, residual }
+    }
 }
 
 fn seed_sweep(c: &mut Criterion) {
@@ -135,16 +141,7 @@ fn batch(c: &mut Criterion) {
         g.bench_function(format!("sweep_threads_{threads}"), |bch| {
             bch.iter_batched_ref(
                 || Bufs::new(m * N),
-                |b| {
-                    let out = BatchOut {
-                        theta3: &mut b.t3,
-                        theta4: &mut b.t4,
-                        status: &mut b.st,
-                        nit: &mut b.nit,
-                        residual: &mut b.res,
-                    };
-                    sweep_batch(&fbs, &t2, &o, out, Some(threads), &Never).unwrap()
-                },
+                |b| sweep_batch(&fbs, &t2, &o, b.batch(), Some(threads), &Never).unwrap(),
                 BatchSize::LargeInput,
             )
         });
@@ -164,16 +161,7 @@ fn batch(c: &mut Criterion) {
             g.bench_function("sweep_threads_1_scalar", |bch| {
                 bch.iter_batched_ref(
                     || Bufs::new(m * N),
-                    |b| {
-                        let out = BatchOut {
-                            theta3: &mut b.t3,
-                            theta4: &mut b.t4,
-                            status: &mut b.st,
-                            nit: &mut b.nit,
-                            residual: &mut b.res,
-                        };
-                        sweep_batch(&fbs, &t2, &o, out, Some(1), &Never).unwrap()
-                    },
+                    |b| sweep_batch(&fbs, &t2, &o, b.batch(), Some(1), &Never).unwrap(),
                     BatchSize::LargeInput,
                 )
             });

@@ -13,9 +13,6 @@
 //! [`status`], [`interrupt`], [`parallel`] (thread pools), [`simd`] (the SIMD switch and
 //! polynomial sin/cos/atan2), and [`wrap_angle`].
 
-// `!(x >= t)` is deliberate throughout: it is true for NaN, which must fail every check.
-#![allow(clippy::neg_cmp_op_on_partial_ord)]
-
 pub mod error;
 pub mod fourbar;
 pub mod interrupt;

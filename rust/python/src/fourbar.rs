@@ -10,7 +10,7 @@ use planarkin_core::fourbar::{
 use planarkin_core::interrupt::Poll;
 use planarkin_core::parallel;
 use planarkin_core::solve::newton::SINGULAR_THRESHOLD;
-use planarkin_core::{FourBar, Mode, NewtonOptions, SweepOptions};
+use planarkin_core::{Error, FourBar, Mode, NewtonOptions, SweepOptions};
 use pyo3::prelude::*;
 
 use crate::buffers::{contiguous, grid, grid_len, slice, writable, zeros, zeros_named, Arr1, Arr2};
@@ -35,6 +35,19 @@ type SweepArrays<'py> = (
 type LimitsOut = (Vec<f64>, Vec<f64>, Vec<(f64, f64)>, bool, Option<((f64, f64), (f64, f64))>);
 type Triple<'py, T> = (Arr1<'py, T>, Arr1<'py, T>, Arr1<'py, i8>);
 
+/// Three outputs of `n` points named `names` (two angles or rates, then the status),
+/// filled by `kernel` with the GIL released.
+fn triple<'py>(
+    py: Python<'py>,
+    names: [&str; 3],
+    n: usize,
+    kernel: impl FnOnce(&mut [f64], &mut [f64], &mut [i8], &Signals) -> Result<(), Error> + Send,
+) -> PyResult<Triple<'py, f64>> {
+    let (mut a, mut b, mut st) = (zeros(names[0], n)?, zeros(names[1], n)?, zeros(names[2], n)?);
+    Signals::detach(py, |signals| kernel(&mut a, &mut b, &mut st, signals))?;
+    Ok((a.into_pyarray(py), b.into_pyarray(py), st.into_pyarray(py)))
+}
+
 #[pymethods]
 impl PyFourBar {
     #[new]
@@ -51,7 +64,6 @@ impl PyFourBar {
 
     /// Newton-Raphson at one crank angle: (theta3, theta4, status, nit, residual, history).
     #[pyo3(signature = (theta2, mode, guess, tol, max_iter, history))]
-    #[allow(clippy::too_many_arguments)]
     fn solve<'py>(
         &self,
         py: Python<'py>,
@@ -75,7 +87,6 @@ impl PyFourBar {
 
     /// Continuation sweep: (theta3, theta4, status, nit, residual, (omega3, omega4)?, (alpha3, alpha4)?).
     #[pyo3(signature = (theta2, mode, guess, tol, max_iter, predictor, method, omega2, alpha2))]
-    #[allow(clippy::too_many_arguments)]
     fn sweep<'py>(
         &self,
         py: Python<'py>,
@@ -133,13 +144,10 @@ impl PyFourBar {
     ) -> PyResult<Triple<'py, f64>> {
         let mode = Mode::parse(mode).map_err(err)?;
         let t2 = slice("theta2", &theta2)?;
-        let n = t2.len();
-        let (mut t3, mut t4, mut st) = (zeros("theta3", n)?, zeros("theta4", n)?, zeros("status", n)?);
         let fb = self.inner;
-        Signals::detach(py, |signals| {
-            closed_form_into(&fb, t2, mode, SINGULAR_THRESHOLD, &mut t3, &mut t4, &mut st, signals)
-        })?;
-        Ok((t3.into_pyarray(py), t4.into_pyarray(py), st.into_pyarray(py)))
+        triple(py, ["theta3", "theta4", "status"], t2.len(), |t3, t4, st, signals| {
+            closed_form_into(&fb, t2, mode, SINGULAR_THRESHOLD, t3, t4, st, signals)
+        })
     }
 
     /// (omega3, omega4, status) at given positions.
@@ -157,17 +165,13 @@ impl PyFourBar {
             slice("theta4", &theta4)?,
             slice("omega2", &omega2)?,
         );
-        let n = t2.len();
-        let (mut w3, mut w4, mut st) = (zeros("omega3", n)?, zeros("omega4", n)?, zeros("status", n)?);
         let fb = self.inner;
-        Signals::detach(py, |signals| {
-            velocity_into(&fb, t2, t3, t4, w2, SINGULAR_THRESHOLD, &mut w3, &mut w4, &mut st, signals)
-        })?;
-        Ok((w3.into_pyarray(py), w4.into_pyarray(py), st.into_pyarray(py)))
+        triple(py, ["omega3", "omega4", "status"], t2.len(), |w3, w4, st, signals| {
+            velocity_into(&fb, t2, t3, t4, w2, SINGULAR_THRESHOLD, w3, w4, st, signals)
+        })
     }
 
     /// (alpha3, alpha4, status) at given positions.
-    #[allow(clippy::too_many_arguments)]
     fn acceleration<'py>(
         &self,
         py: Python<'py>,
@@ -179,13 +183,10 @@ impl PyFourBar {
     ) -> PyResult<Triple<'py, f64>> {
         let (t2, t3, t4) = (slice("theta2", &theta2)?, slice("theta3", &theta3)?, slice("theta4", &theta4)?);
         let (w2, a2) = (slice("omega2", &omega2)?, slice("alpha2", &alpha2)?);
-        let n = t2.len();
-        let (mut a3, mut a4, mut st) = (zeros("alpha3", n)?, zeros("alpha4", n)?, zeros("status", n)?);
         let fb = self.inner;
-        Signals::detach(py, |signals| {
-            acceleration_into(&fb, t2, t3, t4, w2, a2, SINGULAR_THRESHOLD, &mut a3, &mut a4, &mut st, signals)
-        })?;
-        Ok((a3.into_pyarray(py), a4.into_pyarray(py), st.into_pyarray(py)))
+        triple(py, ["alpha3", "alpha4", "status"], t2.len(), |a3, a4, st, signals| {
+            acceleration_into(&fb, t2, t3, t4, w2, a2, SINGULAR_THRESHOLD, a3, a4, st, signals)
+        })
     }
 
     /// (x, y) of a coupler point at distance p from the crank pin, angle delta from the coupler.
@@ -250,7 +251,6 @@ type BatchArrays<'py> = (Arr2<'py, f64>, Arr2<'py, f64>, Arr2<'py, i8>, Arr2<'py
 /// Sweeps M linkages over N crank angles in parallel: (M, N) arrays.
 #[pyfunction(name = "sweep_batch")]
 #[pyo3(signature = (links, theta2, mode, tol, max_iter, predictor, method, threads))]
-#[allow(clippy::too_many_arguments)]
 fn sweep_batch_py<'py>(
     py: Python<'py>,
     links: PyReadonlyArray2<'py, f64>,

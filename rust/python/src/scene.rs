@@ -297,7 +297,6 @@ impl PyPlan {
     /// step_det (N,S), point_status (N,P), (velocity (N,P,2), angular velocity (N,L),
     /// acceleration (N,P,2), angular acceleration (N,L))?).
     #[pyo3(signature = (theta, tol, max_iter, max_step, omega, predictor))]
-    #[allow(clippy::too_many_arguments)]
     fn sweep<'py>(
         &self,
         py: Python<'py>,

@@ -48,30 +48,60 @@ pub fn sweep_batch(
     if n == 0 {
         return Ok(());
     }
-    if opts.method == Method::Newton && opts.predictor != Predictor::ClosedForm && crate::simd::enabled() {
-        return simd::batch::sweep_batch(links, theta2, opts, out, threads, interrupt);
-    }
+    let lock_step = opts.method == Method::Newton && opts.predictor != Predictor::ClosedForm && crate::simd::enabled();
+    sweep_groups(links, theta2, opts, out, threads, interrupt, lock_step)
+}
+
+/// [`sweep_batch`] once the output lengths are checked and there is at least one angle:
+/// rayon-parallel over rows, or with `lock_step` (Newton with continuation on the SIMD
+/// path) over groups of [`simd::W`] linkages, solved in lock-step by the lane kernel (a
+/// last group of fewer rows runs row by row).
+pub(crate) fn sweep_groups(
+    links: &[FourBar],
+    theta2: &[f64],
+    opts: &SweepOptions,
+    out: BatchOut<'_>,
+    threads: Option<usize>,
+    interrupt: &dyn Interrupt,
+    lock_step: bool,
+) -> Result<(), Error> {
+    let n = theta2.len();
+    let mn = links.len() * n;
     let trig = sin_cos_table(theta2)?;
+    let rows = if lock_step { simd::W } else { 1 };
+    let g = rows * n;
     let size = mn as u128 * (u128::from(opts.newton.max_iter) + 1);
+    // in lock-step, the interrupt is also asked between groups of W rows (and every few
+    // thousand points of a last group, row by row)
     run(threads, size, interrupt, |stop| {
+        let flag = Flag(stop);
         out.theta3
-            .par_chunks_mut(n)
-            .zip(out.theta4.par_chunks_mut(n))
-            .zip(out.status.par_chunks_mut(n))
-            .zip(out.nit.par_chunks_mut(n))
-            .zip(out.residual.par_chunks_mut(n))
-            .zip(links.par_iter())
-            .try_for_each(|(((((theta3, theta4), status), nit), residual), fb)| {
-                let row = SweepOut { theta3, theta4, status, nit, residual };
-                let flag = Flag(stop);
-                sweep_row(fb, theta2, &trig, None, opts, row, None, &Poll::new(&flag))
+            .par_chunks_mut(g)
+            .zip(out.theta4.par_chunks_mut(g))
+            .zip(out.status.par_chunks_mut(g))
+            .zip(out.nit.par_chunks_mut(g))
+            .zip(out.residual.par_chunks_mut(g))
+            .zip(links.par_chunks(rows))
+            .try_for_each(|(((((t3, t4), st), nit), res), fbs)| {
+                if lock_step && flag.interrupted() {
+                    return Err(Error::Interrupted);
+                }
+                if lock_step && fbs.len() == simd::W {
+                    return simd::batch::group(fbs, theta2, &trig, opts, t3, t4, st, nit, res, &Poll::new(&flag));
+                }
+                let rows = t3.chunks_mut(n).zip(t4.chunks_mut(n)).zip(st.chunks_mut(n));
+                let rows = rows.zip(nit.chunks_mut(n)).zip(res.chunks_mut(n)).zip(fbs);
+                for (((((theta3, theta4), status), nit), residual), fb) in rows {
+                    let row = SweepOut { theta3, theta4, status, nit, residual };
+                    sweep_row(fb, theta2, &trig, None, opts, row, None, &Poll::new(&flag))?;
+                }
+                Ok(())
             })
     })
 }
 
 /// Closed form of `mode` for every linkage at the same crank angles. The status array is
 /// optional: callers that only want the angles skip its memory.
-#[allow(clippy::too_many_arguments)]
 pub fn closed_form_batch(
     links: &[FourBar],
     theta2: &[f64],

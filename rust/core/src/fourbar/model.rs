@@ -176,7 +176,6 @@ impl FourBar {
 
     /// Angular accelerations (alpha3, alpha4), differentiating the loop twice: the same
     /// Jacobian with a right-hand side of centripetal terms and the crank's alpha2.
-    #[allow(clippy::too_many_arguments)]
     pub fn acceleration(
         &self,
         theta2: f64,

@@ -2,7 +2,7 @@
 //! criteria, predictor, method), the caller-owned output slices of one sweep, of its
 //! optional velocities and accelerations, and of a batch, and the default crank angles.
 
-use super::model::Mode;
+use super::model::{Mode, Point};
 use crate::error::{quoted, Error};
 use crate::solve::newton::NewtonOptions;
 
@@ -94,6 +94,18 @@ pub struct SweepOut<'a> {
     pub status: &'a mut [i8],
     pub nit: &'a mut [u32],
     pub residual: &'a mut [f64],
+}
+
+impl SweepOut<'_> {
+    /// Writes point `i`.
+    #[inline(always)]
+    pub(crate) fn set(&mut self, i: usize, p: &Point) {
+        self.theta3[i] = p.theta3;
+        self.theta4[i] = p.theta4;
+        self.status[i] = p.status.code();
+        self.nit[i] = p.nit;
+        self.residual[i] = p.residual;
+    }
 }
 
 /// Optional velocity (and acceleration) outputs, computed only when asked for.

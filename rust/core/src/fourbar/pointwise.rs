@@ -21,7 +21,6 @@ fn all_finite(name: &str, rates: &[f64]) -> Result<(), Error> {
 /// Closed form of `mode` at each crank angle, with a status: Converged, NotAssemblable,
 /// Singular (conditioning below `singular`, or indeterminate), NonFinite. Angles are NaN
 /// only where no solution exists or it is indeterminate.
-#[allow(clippy::too_many_arguments)]
 pub fn closed_form_into(
     fb: &FourBar,
     theta2: &[f64],
@@ -55,7 +54,6 @@ pub fn closed_form_into(
 
 /// Angular velocities at given positions. NaN and `Singular` at dead points; a crank speed
 /// that is not finite is an error naming `omega2`.
-#[allow(clippy::too_many_arguments)]
 pub fn velocity_into(
     fb: &FourBar,
     theta2: &[f64],
@@ -86,7 +84,6 @@ pub fn velocity_into(
 
 /// Angular accelerations at given positions, for crank speed omega2 and acceleration
 /// alpha2 (the coupler and rocker speeds are solved on the way).
-#[allow(clippy::too_many_arguments)]
 pub fn acceleration_into(
     fb: &FourBar,
     theta2: &[f64],
@@ -127,7 +124,6 @@ pub fn acceleration_into(
 
 /// Coupler-point positions for a point at distance `p` from the crank pin, at angle
 /// `delta` from the coupler line.
-#[allow(clippy::too_many_arguments)]
 pub fn coupler_into(
     fb: &FourBar,
     theta2: &[f64],

@@ -30,7 +30,6 @@ pub(crate) fn sin_cos_fill(theta2: &[f64], out: &mut [(f64, f64)]) {
 
 /// One sweep row, for slices known to have the right lengths: the closed-form or the
 /// Newton kernel, SIMD when [`crate::simd::enabled`], else scalar.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn sweep_row(
     fb: &FourBar,
     theta2: &[f64],
@@ -55,7 +54,6 @@ pub(crate) fn sweep_row(
 
 /// [`closed_form_into`] from precomputed (sin, cos) of the crank angles (shared across a
 /// batch); the status is written only when a slice is given.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn closed_form_trig(
     fb: &FourBar,
     theta2: &[f64],

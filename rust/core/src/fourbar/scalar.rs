@@ -33,14 +33,13 @@ impl Prev {
 }
 
 /// The scalar Newton continuation sweep (bit-identical to the NumPy reference).
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn newton_sweep(
     fb: &FourBar,
     theta2: &[f64],
     trig: &[(f64, f64)],
     guess: Option<[f64; 2]>,
     opts: &SweepOptions,
-    out: SweepOut<'_>,
+    mut out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
@@ -61,11 +60,7 @@ pub(crate) fn newton_sweep(
         } else {
             (Point::failed(Status::NonFinite, 0, f64::NAN), None)
         };
-        out.theta3[i] = point.theta3;
-        out.theta4[i] = point.theta4;
-        out.status[i] = point.status.code();
-        out.nit[i] = point.nit;
-        out.residual[i] = point.residual;
+        out.set(i, &point);
         let converged = point.status == Status::Converged;
         if let Some(m) = motion.as_mut() {
             fill_motion(fb, t2, &point, converged, i, m, opts.newton.singular);

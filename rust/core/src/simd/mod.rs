@@ -47,18 +47,42 @@ pub fn set_enabled(on: bool) -> bool {
     was == 2
 }
 
+/// Defines `fn $name(args) -> $ret` (`$ret` optional) running `$body::<true>(args)` compiled with AVX2 and
+/// FMA where the CPU has them (checked at run time), else `$body::<false>(args)`: the one
+/// trampoline of every SIMD kernel. `$body` must be `#[inline(always)]`, so that it is
+/// compiled into the `#[target_feature(enable = "avx2,fma")]` function the macro writes
+/// (`AVX` is true there, for the code written in intrinsics).
+macro_rules! avx2_kernel {
+    ($(#[$meta:meta])* $vis:vis fn $name:ident($($arg:ident: $ty:ty),* $(,)?) $(-> $ret:ty)? = $body:ident;) => {
+        $(#[$meta])*
+        $vis fn $name($($arg: $ty),*) $(-> $ret)? {
+            #[cfg(target_arch = "x86_64")]
+            #[target_feature(enable = "avx2,fma")]
+            unsafe fn avx2($($arg: $ty),*) $(-> $ret)? {
+                $body::<true>($($arg),*)
+            }
+            #[cfg(target_arch = "x86_64")]
+            if $crate::simd::available() {
+                // SAFETY: AVX2 and FMA checked at run time.
+                return unsafe { avx2($($arg),*) };
+            }
+            $body::<false>($($arg),*)
+        }
+    };
+}
+pub(crate) use avx2_kernel;
+
+avx2_kernel! {
+    /// The polynomial (sin, cos) of every angle of `theta`, into `out`.
+    fn table(theta: &[f64], out: &mut [(f64, f64)]) = table_body;
+}
+
 #[inline(always)]
-fn table_body(theta: &[f64], out: &mut [(f64, f64)]) {
+fn table_body<const AVX: bool>(theta: &[f64], out: &mut [(f64, f64)]) {
     let out = &mut out[..theta.len()];
     for (o, &t) in out.iter_mut().zip(theta) {
         *o = math::sin_cos(t);
     }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn table_avx2(theta: &[f64], out: &mut [(f64, f64)]) {
-    table_body(theta, out)
 }
 
 /// (sin, cos) of one angle as [`sin_cos_block`] gives it in a block, bit for bit (the
@@ -111,18 +135,22 @@ pub fn direction(d: [f64; 2], fast: bool) -> f64 {
 /// the polynomial where the SIMD kernels are on; each value is the one the scalar call
 /// gives, bit for bit.
 pub fn directions_into(x: &[f64], y: &[f64], out: &mut [f64]) {
-    #[cfg(target_arch = "x86_64")]
+    // (where the kernels are on, the CPU has AVX2 and FMA: `directions` takes its AVX2 path)
     if enabled() {
-        // SAFETY: the SIMD kernels are on only where the CPU has AVX2 (and FMA).
-        unsafe { directions_avx2(x, y, out) };
-        return;
+        directions(x, y, out);
+    } else {
+        directions_body(x, y, out, false);
     }
-    directions_body(x, y, out, false);
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn directions_avx2(x: &[f64], y: &[f64], out: &mut [f64]) {
+avx2_kernel! {
+    /// [`directions_body`] with the polynomial, compiled with AVX2 and FMA where the CPU
+    /// has them.
+    fn directions(x: &[f64], y: &[f64], out: &mut [f64]) = directions_fast;
+}
+
+#[inline(always)]
+fn directions_fast<const AVX: bool>(x: &[f64], y: &[f64], out: &mut [f64]) {
     directions_body(x, y, out, true);
 }
 
@@ -141,15 +169,7 @@ pub(crate) fn directions_body(x: &[f64], y: &[f64], out: &mut [f64], fast: bool)
 /// sizes), 4 at a time; arguments beyond the polynomial's range (|x| > 1e5, infinities,
 /// NaN) go to libm.
 pub fn sin_cos_into(theta: &[f64], out: &mut [(f64, f64)]) {
-    #[cfg(target_arch = "x86_64")]
-    if available() {
-        // SAFETY: AVX2 and FMA checked at run time.
-        unsafe { table_avx2(theta, out) };
-    } else {
-        table_body(theta, out);
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    table_body(theta, out);
+    table(theta, out);
     // beyond the polynomial's range, or NaN (which fails `<=`): one fold (it vectorizes)
     // finds whether any argument needs libm, and the loop that gives it runs only then
     let libm = |t: f64| !(t.abs() <= math::SIN_COS_MAX);

@@ -14,58 +14,36 @@ use crate::fourbar::model::{FourBar, Point};
 use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut};
 use crate::fourbar::point::{fill_motion, sweep_point};
 use crate::interrupt::Poll;
+use crate::simd::avx2_kernel;
 use crate::simd::math::SIN_COS_MAX;
 use crate::Status;
 
 const CONVERGED: i8 = Status::Converged as i8;
 
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn closed_form_predicted(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    guess: Option<[f64; 2]>,
-    opts: &SweepOptions,
-    out: SweepOut<'_>,
-    motion: Option<MotionOut<'_>>,
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::available() {
-        // SAFETY: AVX2 and FMA checked at run time.
-        return unsafe { body_avx2(fb, theta2, trig, guess, opts, out, motion, poll) };
-    }
-    body::<false>(fb, theta2, trig, guess, opts, out, motion, poll)
+avx2_kernel! {
+    pub(crate) fn closed_form_predicted(
+        fb: &FourBar,
+        theta2: &[f64],
+        trig: &[(f64, f64)],
+        guess: Option<[f64; 2]>,
+        opts: &SweepOptions,
+        out: SweepOut<'_>,
+        motion: Option<MotionOut<'_>>,
+        poll: &Poll<'_>,
+    ) -> Result<(), Error> = body;
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn body_avx2(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    guess: Option<[f64; 2]>,
-    opts: &SweepOptions,
-    out: SweepOut<'_>,
-    motion: Option<MotionOut<'_>>,
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
-    body::<true>(fb, theta2, trig, guess, opts, out, motion, poll)
-}
-
-/// `AVX`: compiled inside [`body_avx2`] (AVX2 and FMA present), where the evaluation is
-/// written in AVX2 intrinsics (the same values as the lane loop, which LLVM vectorizes
+/// `AVX`: compiled inside the AVX2 trampoline (AVX2 and FMA present), where the evaluation
+/// is written in AVX2 intrinsics (the same values as the lane loop, which LLVM vectorizes
 /// only 2 wide).
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 fn body<const AVX: bool>(
     fb: &FourBar,
     theta2: &[f64],
     trig: &[(f64, f64)],
     guess: Option<[f64; 2]>,
     opts: &SweepOptions,
-    out: SweepOut<'_>,
+    mut out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
@@ -114,19 +92,11 @@ fn body<const AVX: bool>(
             let sys = fb.at_sin_cos(s2, c2);
             let start = if k == 0 { guess.map(nalgebra::Vector2::from) } else { None };
             let p = sweep_point(fb, &sys, start, opts, poll)?.0;
-            out.theta3[k] = p.theta3;
-            out.theta4[k] = p.theta4;
-            out.status[k] = p.status.code();
-            out.nit[k] = p.nit;
-            out.residual[k] = p.residual;
+            out.set(k, &p);
             p
         } else {
             let p = Point::failed(Status::NonFinite, 0, f64::NAN);
-            out.theta3[k] = p.theta3;
-            out.theta4[k] = p.theta4;
-            out.status[k] = p.status.code();
-            out.nit[k] = 0;
-            out.residual[k] = f64::NAN;
+            out.set(k, &p);
             p
         };
         if let Some(m) = motion.as_mut() {
@@ -169,12 +139,12 @@ fn accept(c: &Check, cand: M, b: Block<'_>) -> M {
 }
 
 /// [`accept`] in AVX2 registers (the same decisions and values): called only from
-/// `body::<true>`, inside [`body_avx2`].
+/// `body::<true>`, inside the AVX2 trampoline.
 #[inline(always)]
 fn accept_avx2(c: &Check, cand: M, b: Block<'_>) -> M {
     #[cfg(target_arch = "x86_64")]
     {
-        // SAFETY: reached only inside `body_avx2`, whose caller checked AVX2 and FMA.
+        // SAFETY: reached only inside the AVX2 trampoline, whose caller checked AVX2 and FMA.
         unsafe { super::avx2::accept4(c, cand, b) }
     }
     #[cfg(not(target_arch = "x86_64"))]

@@ -5,17 +5,15 @@
 //! position) is solved by the scalar `sweep_point` from the same start, so every status
 //! is the scalar path's; angles differ from it only by the rounding of the polynomials.
 
-use crate::parallel::prelude::*;
 use nalgebra::Vector2;
 
 use super::lane::{eval_lanes, lanes, rates, wrap, Eval, M, V, W};
 use crate::error::Error;
 use crate::fourbar::model::{FourBar, Point, FLAT_ULPS};
-use crate::fourbar::options::{BatchOut, Predictor, SweepOptions, SweepOut};
+use crate::fourbar::options::{Predictor, SweepOptions};
 use crate::fourbar::point::{predictor_rates, sweep_point};
-use crate::fourbar::row::{sin_cos_table, sweep_row};
-use crate::interrupt::{Flag, Interrupt, Poll};
-use crate::parallel::run;
+use crate::interrupt::Poll;
+use crate::simd::avx2_kernel;
 use crate::simd::math::SIN_COS_MAX;
 use crate::{wrap_angle, Status};
 
@@ -23,88 +21,22 @@ use crate::{wrap_angle, Status};
 /// the rule on a sweep with a predictor).
 const LOCKSTEP_STEPS: u32 = 8;
 
-/// [`crate::fourbar::sweep_batch`] for `Method::Newton` with the lane kernel: groups of
-/// [`W`] linkages, rayon-parallel over groups; a last group of fewer rows runs scalar.
-/// The caller has checked the output lengths and that there is at least one angle.
-pub(crate) fn sweep_batch(
-    links: &[FourBar],
-    theta2: &[f64],
-    opts: &SweepOptions,
-    out: BatchOut<'_>,
-    threads: Option<usize>,
-    interrupt: &dyn Interrupt,
-) -> Result<(), Error> {
-    let n = theta2.len();
-    let mn = links.len() * n;
-    let trig = sin_cos_table(theta2)?;
-    let g = W * n;
-    let size = mn as u128 * (u128::from(opts.newton.max_iter) + 1);
-    // the interrupt is asked between groups of W rows (and every few thousand points of a
-    // last, scalar group)
-    run(threads, size, interrupt, |stop| {
-        let flag = Flag(stop);
-        out.theta3
-            .par_chunks_mut(g)
-            .zip(out.theta4.par_chunks_mut(g))
-            .zip(out.status.par_chunks_mut(g))
-            .zip(out.nit.par_chunks_mut(g))
-            .zip(out.residual.par_chunks_mut(g))
-            .zip(links.par_chunks(W))
-            .try_for_each(|(((((t3, t4), st), nit), res), fbs)| {
-                if flag.interrupted() {
-                    return Err(Error::Interrupted);
-                }
-                if fbs.len() == W {
-                    return group(fbs, theta2, &trig, opts, t3, t4, st, nit, res, &Poll::new(&flag));
-                }
-                let rows = t3.chunks_mut(n).zip(t4.chunks_mut(n)).zip(st.chunks_mut(n));
-                let rows = rows.zip(nit.chunks_mut(n)).zip(res.chunks_mut(n)).zip(fbs);
-                for (((((theta3, theta4), status), nit), residual), fb) in rows {
-                    let row = SweepOut { theta3, theta4, status, nit, residual };
-                    sweep_row(fb, theta2, &trig, None, opts, row, None, &Poll::new(&flag))?;
-                }
-                Ok(())
-            })
-    })
-}
-
-#[allow(clippy::too_many_arguments)]
-fn group(
-    fbs: &[FourBar],
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    opts: &SweepOptions,
-    t3: &mut [f64],
-    t4: &mut [f64],
-    st: &mut [i8],
-    nit: &mut [u32],
-    res: &mut [f64],
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::available() {
-        // SAFETY: AVX2 and FMA checked at run time.
-        return unsafe { group_avx2(fbs, theta2, trig, opts, t3, t4, st, nit, res, poll) };
-    }
-    group_body::<false>(fbs, theta2, trig, opts, t3, t4, st, nit, res, poll)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn group_avx2(
-    fbs: &[FourBar],
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    opts: &SweepOptions,
-    t3: &mut [f64],
-    t4: &mut [f64],
-    st: &mut [i8],
-    nit: &mut [u32],
-    res: &mut [f64],
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
-    group_body::<true>(fbs, theta2, trig, opts, t3, t4, st, nit, res, poll)
+avx2_kernel! {
+    /// One group of [`W`] linkages solved in lock-step into its (W, N) outputs (for
+    /// `crate::fourbar::sweep_batch`, which has checked the output lengths and that there
+    /// is at least one angle).
+    pub(crate) fn group(
+        fbs: &[FourBar],
+        theta2: &[f64],
+        trig: &[(f64, f64)],
+        opts: &SweepOptions,
+        t3: &mut [f64],
+        t4: &mut [f64],
+        st: &mut [i8],
+        nit: &mut [u32],
+        res: &mut [f64],
+        poll: &Poll<'_>,
+    ) -> Result<(), Error> = group_body;
 }
 
 /// The last converged point of every lane, with the predictor's rates.
@@ -116,7 +48,6 @@ struct Prev {
 }
 
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 fn group_body<const AVX: bool>(
     fbs: &[FourBar],
     theta2: &[f64],
@@ -205,7 +136,7 @@ fn group_body<const AVX: bool>(
         let mut jac: [V; 4] = [zero; 4];
         let mut iter = 0;
         while active.iter().any(|&a| a) {
-            // AVX is never true off x86_64 (group_avx2 exists only there)
+            // AVX is never true off x86_64 (the AVX2 trampoline exists only there)
             if AVX {
                 #[cfg(target_arch = "x86_64")]
                 {
@@ -230,7 +161,7 @@ fn group_body<const AVX: bool>(
                         resid: &mut resid,
                         jac: &mut jac,
                     };
-                    // SAFETY: AVX is true only in group_avx2, called after the run-time check.
+                    // SAFETY: AVX is true only in the AVX2 trampoline, called after the run-time check.
                     unsafe { super::avx2::iterate4(&params, s2, c2, lanes) };
                     x = [wrap(x[0]), wrap(x[1])];
                 }
@@ -332,6 +263,7 @@ fn group_body<const AVX: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fourbar::options::{BatchOut, SweepOut};
     use crate::fourbar::{default_angles, validate_links, Method, Mode};
     use crate::solve::newton::NewtonOptions;
 
@@ -363,7 +295,7 @@ mod tests {
         let (mut a, mut b, mut s, mut k, mut r) =
             (vec![0.0; mn], vec![0.0; mn], vec![0i8; mn], vec![0u32; mn], vec![0.0; mn]);
         let out = BatchOut { theta3: &mut a, theta4: &mut b, status: &mut s, nit: &mut k, residual: &mut r };
-        sweep_batch(links, t2, opts, out, Some(1), &crate::Never).unwrap();
+        crate::fourbar::batch::sweep_groups(links, t2, opts, out, Some(1), &crate::Never, true).unwrap();
         (a, b, s, k)
     }
 

@@ -9,7 +9,7 @@ use crate::fourbar::model::{FourBar, Mode, Point, FLAT_ULPS};
 use crate::fourbar::options::{MotionOut, SweepOptions, SweepOut};
 use crate::fourbar::point::fill_motion;
 use crate::interrupt::Poll;
-use crate::simd::directions_body;
+use crate::simd::{avx2_kernel, directions_body};
 use crate::Status;
 
 const CONVERGED: i8 = Status::Converged as i8;
@@ -103,24 +103,27 @@ fn row_body<const STATUS: bool, const WELL: bool>(
 /// Angles a block of [`row_body`] takes at once.
 const BLOCK: usize = 128;
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn row_avx2<const STATUS: bool, const WELL: bool>(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    spec: RowSpec,
-    theta3: &mut [f64],
-    theta4: &mut [f64],
-    status: &mut [i8],
-) {
-    row_body::<STATUS, WELL>(fb, theta2, trig, spec, theta3, theta4, status)
+avx2_kernel! {
+    /// The closed form of one linkage at every crank angle (with its precomputed (sin,
+    /// cos)), with the statuses of the scalar path: NonFinite, NotAssemblable, Singular
+    /// (below `singular`, or indeterminate), Converged. The status is written only when
+    /// given.
+    pub(crate) fn closed_form_row(
+        fb: &FourBar,
+        theta2: &[f64],
+        trig: &[(f64, f64)],
+        spec: RowSpec,
+        theta3: &mut [f64],
+        theta4: &mut [f64],
+        status: Option<&mut [i8]>,
+    ) = rows;
 }
 
-/// The closed form of one linkage at every crank angle (with its precomputed (sin, cos)),
-/// with the statuses of the scalar path: NonFinite, NotAssemblable, Singular (below
-/// `singular`, or indeterminate), Converged. The status is written only when given.
-pub(crate) fn closed_form_row(
+/// [`row_body`] for what `out` asks: the conditioning is computed only where a status or
+/// the kept angles need it. The loops are the same with AVX2 (`_AVX`): the trampoline's
+/// features vectorize them.
+#[inline(always)]
+fn rows<const _AVX: bool>(
     fb: &FourBar,
     theta2: &[f64],
     trig: &[(f64, f64)],
@@ -129,23 +132,11 @@ pub(crate) fn closed_form_row(
     theta4: &mut [f64],
     status: Option<&mut [i8]>,
 ) {
-    // the conditioning is computed only where a status or the kept angles need it
-    macro_rules! row {
-        ($f:ident) => {
-            match (status, spec.nan_singular) {
-                (Some(s), _) => $f::<true, true>(fb, theta2, trig, spec, theta3, theta4, s),
-                (None, true) => $f::<false, true>(fb, theta2, trig, spec, theta3, theta4, &mut []),
-                (None, false) => $f::<false, false>(fb, theta2, trig, spec, theta3, theta4, &mut []),
-            }
-        };
+    match (status, spec.nan_singular) {
+        (Some(s), _) => row_body::<true, true>(fb, theta2, trig, spec, theta3, theta4, s),
+        (None, true) => row_body::<false, true>(fb, theta2, trig, spec, theta3, theta4, &mut []),
+        (None, false) => row_body::<false, false>(fb, theta2, trig, spec, theta3, theta4, &mut []),
     }
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::available() {
-        // SAFETY: the CPU has AVX2 and FMA (checked at run time just above).
-        unsafe { row!(row_avx2) };
-        return;
-    }
-    row!(row_body)
 }
 
 /// The closed-form sweep (`Method::ClosedForm`) of one linkage: NaN angles unless

@@ -14,3 +14,5 @@ pub(super) mod batch;
 pub(super) mod closed_form;
 mod lane;
 pub(super) mod row;
+
+pub(super) use lane::W;

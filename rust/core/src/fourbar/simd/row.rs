@@ -12,56 +12,34 @@ use crate::fourbar::model::{FourBar, Point, FLAT_ULPS};
 use crate::fourbar::options::{MotionOut, Predictor, SweepOptions, SweepOut};
 use crate::fourbar::point::{fill_motion, predictor_rates, sweep_point};
 use crate::interrupt::Poll;
+use crate::simd::avx2_kernel;
 use crate::simd::math::{sin_cos, SIN_COS_MAX};
 use crate::{wrap_angle, Status};
 
 /// Newton steps tried on the fast path before the scalar path takes the point over.
 const FAST_STEPS: u32 = 8;
 
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn newton_row(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    guess: Option<[f64; 2]>,
-    opts: &SweepOptions,
-    out: SweepOut<'_>,
-    motion: Option<MotionOut<'_>>,
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::available() {
-        // SAFETY: AVX2 and FMA checked at run time.
-        return unsafe { row_avx2(fb, theta2, trig, guess, opts, out, motion, poll) };
-    }
-    row_body::<false>(fb, theta2, trig, guess, opts, out, motion, poll)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn row_avx2(
-    fb: &FourBar,
-    theta2: &[f64],
-    trig: &[(f64, f64)],
-    guess: Option<[f64; 2]>,
-    opts: &SweepOptions,
-    out: SweepOut<'_>,
-    motion: Option<MotionOut<'_>>,
-    poll: &Poll<'_>,
-) -> Result<(), Error> {
-    row_body::<true>(fb, theta2, trig, guess, opts, out, motion, poll)
+avx2_kernel! {
+    pub(crate) fn newton_row(
+        fb: &FourBar,
+        theta2: &[f64],
+        trig: &[(f64, f64)],
+        guess: Option<[f64; 2]>,
+        opts: &SweepOptions,
+        out: SweepOut<'_>,
+        motion: Option<MotionOut<'_>>,
+        poll: &Poll<'_>,
+    ) -> Result<(), Error> = row_body;
 }
 
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 fn row_body<const AVX: bool>(
     fb: &FourBar,
     theta2: &[f64],
     trig: &[(f64, f64)],
     guess: Option<[f64; 2]>,
     opts: &SweepOptions,
-    out: SweepOut<'_>,
+    mut out: SweepOut<'_>,
     mut motion: Option<MotionOut<'_>>,
     poll: &Poll<'_>,
 ) -> Result<(), Error> {
@@ -73,6 +51,7 @@ fn row_body<const AVX: bool>(
     let sign = opts.mode.sign();
     let (tol, singular, max_iter) = (opts.newton.tol, opts.newton.singular, opts.newton.max_iter);
     let cap = max_iter.min(FAST_STEPS);
+    let fixed = Fixed { r, scale, r3r4, cond_scale, sign, tol, singular, max_iter, cap };
     // the last converged point: angles, and the predictor's rates
     let mut prev: Option<([f64; 2], [f64; 2], [f64; 2])> = None;
     for (i, &t2) in theta2.iter().enumerate() {
@@ -104,7 +83,7 @@ fn row_body<const AVX: bool>(
             if d != 0.0 && !((q1 >= -slack) & (q2 >= -slack) & (q3 >= -slack)) {
                 result = Some((Point::failed(Status::NotAssemblable, 0, f64::NAN), [f64::NAN; 4]));
             } else if d != 0.0 && closes {
-                result = fast_newton::<AVX>(r, scale, r3r4, cond_scale, s2, c2, x0, sign, tol, singular, max_iter, cap);
+                result = fast_newton::<AVX>(&fixed, s2, c2, x0);
             }
         }
         let (point, j) = match result {
@@ -115,11 +94,7 @@ fn row_body<const AVX: bool>(
                 sweep_point(fb, &sys, first, opts, poll)?
             }
         };
-        out.theta3[i] = point.theta3;
-        out.theta4[i] = point.theta4;
-        out.status[i] = point.status.code();
-        out.nit[i] = point.nit;
-        out.residual[i] = point.residual;
+        out.set(i, &point);
         let converged = point.status == Status::Converged;
         if let Some(m) = motion.as_mut() {
             fill_motion(fb, t2, &point, converged, i, m, opts.newton.singular);
@@ -134,25 +109,27 @@ fn row_body<const AVX: bool>(
     Ok(())
 }
 
-/// Newton from `x0` as `newton::solve` does it (the scalar `Loop::eval` and `cramer`
-/// in their operation order), with the mode check; `None` (the scalar path takes over)
-/// unless it converges on the mode within `cap` steps.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn fast_newton<const AVX: bool>(
+/// What [`fast_newton`] takes that is fixed for a whole row: the linkage's lengths and scales,
+/// the mode's sign and the stopping criteria (`cap`: the steps tried on the fast path).
+#[derive(Clone, Copy)]
+struct Fixed {
     r: [f64; 4],
     scale: f64,
     r3r4: f64,
     cond_scale: f64,
-    s2: f64,
-    c2: f64,
-    x0: [f64; 2],
     sign: f64,
     tol: f64,
     singular: f64,
     max_iter: u32,
     cap: u32,
-) -> Option<(Point, [f64; 4])> {
+}
+
+/// Newton from `x0` as `newton::solve` does it (the scalar `Loop::eval` and `cramer`
+/// in their operation order), with the mode check; `None` (the scalar path takes over)
+/// unless it converges on the mode within `cap` steps.
+#[inline(always)]
+fn fast_newton<const AVX: bool>(fixed: &Fixed, s2: f64, c2: f64, x0: [f64; 2]) -> Option<(Point, [f64; 4])> {
+    let Fixed { r, scale, r3r4, cond_scale, sign, tol, singular, max_iter, cap } = *fixed;
     let [r1, r2, r3, r4] = r;
     let mut x = x0;
     let mut nit = 0;
@@ -163,7 +140,7 @@ fn fast_newton<const AVX: bool>(
         }
         #[cfg(target_arch = "x86_64")]
         let [s3, c3, s4, c4] = if AVX {
-            // SAFETY: AVX is true only inside row_avx2, called after the run-time check.
+            // SAFETY: AVX is true only inside the AVX2 trampoline, called after the run-time check.
             unsafe { super::avx2::sin_cos2(x[0], x[1]) }
         } else {
             let ((s3, c3), (s4, c4)) = (sin_cos(x[0]), sin_cos(x[1]));

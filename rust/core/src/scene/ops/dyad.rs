@@ -137,7 +137,6 @@ impl Dyad {
     /// Acceleration of the solved point (velocity `v`) from the known points' velocities
     /// and accelerations: (p - k_i) . (w - w_i) + |v - v_i|^2 = 0. `None` at a dead point.
     #[inline]
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn acceleration(p: Xy, a: Xy, b: Xy, v: Xy, va: Xy, vb: Xy, wa: Xy, wb: Xy) -> Option<Xy> {
         let (e1, e2) = (sub(p, a), sub(p, b));
         let (d1, d2) = (sub(v, va), sub(v, vb));

@@ -175,7 +175,6 @@ impl Plan {
 
     /// Continuation from the drawn pose over the indices `order`; `backward` writes only the
     /// angles the forward pass left LIMIT (and leaves non-finite angles as they are).
-    #[allow(clippy::too_many_arguments)]
     fn continuation(
         &self,
         theta: &[f64],

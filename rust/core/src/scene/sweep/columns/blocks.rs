@@ -79,7 +79,6 @@ pub(super) fn carry_block((q, a, bb): (usize, usize, usize), ratio: Xy, c: &mut 
 
 /// [`slider_block`] for a circle-line whose line is fixed (through `p` along unit `u` at
 /// every value): only its known point moves. Branch-free over the block's values.
-#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(super) fn rrp_fixed_line_block(
     r: &Rrp,
@@ -161,7 +160,6 @@ pub(super) fn slider_block(
 
 /// [`slider_block`] with first and second derivatives by the input: each value's solve is
 /// the continuation's own ([`Op::solve_slider`] on the drawn side).
-#[allow(clippy::too_many_arguments)]
 pub(super) fn slider_rates_block(
     op: &Op,
     ins: &[usize],

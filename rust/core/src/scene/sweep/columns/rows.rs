@@ -14,7 +14,6 @@ use crate::scene::vec2::angular_acceleration;
 /// The block's rows of the outputs, written point by point (and link by link, step by
 /// step) down the block's values: a point failing at a value is NaN there unless every
 /// step solved (then its status is CONVERGED too).
-#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(super) fn write_block(
     plan: &Plan,
