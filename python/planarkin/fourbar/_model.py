@@ -5,7 +5,8 @@ arrays in the plain result objects of ``_results``; ``to_scene`` draws it as a S
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -66,6 +67,12 @@ class FourBar:
     """
 
     __slots__ = ("_core",)
+
+    #: How :meth:`to_scene` makes a Scene of the data it draws: set by ``planarkin.scene``
+    #: when it is imported (``import planarkin`` imports both subjects). The scene subject
+    #: imports this one (``Scene.as_fourbar``); the way back is this hook, not an import,
+    #: so the two subjects form no import circle.
+    scene_from_dict: ClassVar[Callable[[dict[str, Any]], Scene] | None] = None
 
     def __init__(self, r1: float, r2: float, r3: float, r4: float) -> None:
         r = [
@@ -285,10 +292,6 @@ class FourBar:
         assemble there (or anywhere) or sits at a dead point there.
         :meth:`planarkin.Scene.as_fourbar` goes the other way.
         """
-        # imported here, through the package face: the scene subject imports this one
-        # (Scene.as_fourbar), and a file-level import back would close a cycle
-        from ..scene import Scene
-
         mode = as_str("mode", mode)
         if theta2 is None:
             t2 = 0.0
@@ -325,7 +328,9 @@ class FourBar:
                 raise ValueError(f"coupler must be finite, got {coupler!r}")
             points[COUPLER_POINT] = on_coupler(p, delta)
             links["coupler"].append(COUPLER_POINT)
-        return Scene.from_dict({
+        if FourBar.scene_from_dict is None:  # only where planarkin.scene was never imported
+            raise RuntimeError("FourBar.to_scene needs planarkin.scene: import planarkin")
+        return FourBar.scene_from_dict({
             "name": "four-bar ({:g}, {:g}, {:g}, {:g})".format(*self.lengths),
             "points": points,
             "links": links,
