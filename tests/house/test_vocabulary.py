@@ -200,3 +200,23 @@ def test_one_angle_wrap():
     for name in ("generated", "problem", "verify"):
         mod = importlib.import_module(f"planarkin.synthesis.{name}")
         assert mod.wrap_array is _angles.wrap_array
+
+
+@pytest.mark.parametrize(
+    ("name", "kind", "unit", "at", "shown"),
+    [
+        ("fourbar", "angle", "deg", math.radians(30.0), 30.0),
+        ("hydraulic-boom", "displacement", "mm", 12.5, 12.5),
+    ],
+)
+def test_the_circuits_report_names_its_input_alike_for_both_kinds(name, kind, unit, at, shown):
+    # the same three keys for an angle and a linear input (the former ones kept beside them)
+    from planarkin.scene import report
+
+    sc = pk.scenes.load(name)
+    axis = report.input_axis(sc.input_kind, sc.units)
+    d = report.circuits_summary(sc, axis, at, [], [], None, "", 0.0)
+    assert (d["input_kind"], d["input_unit"]) == (kind, unit)
+    assert d["input"] == pytest.approx(shown, abs=1e-12)
+    former = "theta_deg" if kind == "angle" else "theta"
+    assert d[former] == d["input"]

@@ -457,3 +457,16 @@ def test_auto_rotate_moves_and_rocks_at_limits(page):
         time.sleep(0.02)
     assert len(seen) > 5
     page.el("auto").click()
+
+
+@pytest.mark.parametrize("name", ["slider-crank", "scotch-yoke"])
+def test_a_linear_output_is_the_cores_as_pythons(page, name):
+    # the declared output along a slot or prismatic pair: one computation in the core,
+    # read by Python's sw.output and shown by the page
+    sc = pk.scenes.load(name)
+    text, theta = _url_theta(sc)
+    page.open(f"?scene={name}&theta={text}")
+    reply = page.d.execute_script(f"return pk.call({{op: 'pose', theta: {theta!r}}})")
+    want = float(sc.sweep([theta]).output[0])
+    assert reply["output"] == pytest.approx(want, rel=0, abs=TOL)
+    assert f"output: {want:.2f}" in page.el("info").text

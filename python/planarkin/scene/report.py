@@ -78,8 +78,11 @@ class InputAxis:
         return rpm * math.tau / 60
 
     def head(self, scene: Scene, at: float) -> dict[str, Any]:
-        """The circuits report's entries naming the input ``at``."""
-        return {"theta_deg": self.value(at)}
+        """The circuits report's entries naming the input ``at``: the same three keys for
+        both input kinds (``input_kind``, ``input_unit``, ``input``: the value in that
+        unit), and this kind's former key (``theta_deg``)."""
+        v = self.value(at)
+        return {"input_kind": self.kind, "input_unit": self.unit, "input": v, "theta_deg": v}
 
     def circuit(self, c: Circuit, at: float) -> dict[str, Any]:
         """A circuit's motion: its net turn, turning points and input range, shown in the
@@ -135,7 +138,10 @@ class LinearAxis(InputAxis):
         return 1.0
 
     def head(self, scene: Scene, at: float) -> dict[str, Any]:
-        return {"input_kind": self.kind, "units": scene.units, "theta": at}
+        # the shared keys, then this kind's former ones (units, theta)
+        v = float(at)
+        shared = {"input_kind": self.kind, "input_unit": self.unit, "input": v}
+        return {**shared, "units": scene.units, "theta": v}
 
     def circuit(self, c: Circuit, at: float) -> dict[str, Any]:
         tps = [float(v) for v in c.turning_points]

@@ -566,6 +566,9 @@
     const fails = S.path.status.filter((s) => s !== 0).length;
     let t = `${badge(p ? p.status : "?")} at ${sym()} = ${fmtIn(S.theta)}\n`;
     if (p && p.status === "LIMIT") t += `past the dead point at ${fmtIn(p.limit)}: the motion stops there\n`;
+    // the declared output along a slot or prismatic pair: the core's coordinate, as Python's sw.output
+    const lout = S.info.linear_output;
+    if (lout && p && typeof p.output === "number") t += `output: ${fmtLen(p.output)} along ${lout.kind} '${lout.name}'\n`;
     t += `steps: ${S.info.steps.join(", ")}\n`;
     if (linear()) {
       const li = S.info.linear_input, [lo, hi] = S.info.stroke;
