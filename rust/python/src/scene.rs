@@ -4,7 +4,7 @@
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3};
 use planarkin_core::scene::format::{self, Drive, Parsed};
 use planarkin_core::scene::{
-    assemble_sketch, Assemblies, Plan, Scene, ScenePredictor, SceneSweepBuffers, SceneSweepOptions, Trace, TraceOptions,
+    Assemblies, Plan, Scene, ScenePredictor, SceneSweepBuffers, SceneSweepOptions, Trace, TraceOptions,
 };
 use planarkin_core::solve::homotopy::HomotopyOptions;
 use planarkin_core::NewtonOptions;
@@ -55,19 +55,12 @@ fn drive_out(d: &Drive) -> DriveOut {
 /// Python's words), a sketch's `lengths` assembled into the exact pose.
 #[pyfunction]
 fn load_scene(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<Loaded> {
-    let Parsed { mut spec, name, description, units, input, output, outputs, lengths } =
-        format::parse(&value_of(data, 1)?).map_err(err)?;
-    let moved = match &lengths {
+    let mut parsed = format::parse(&value_of(data, 1)?).map_err(err)?;
+    let moved = match parsed.lengths {
         None => None,
-        Some(l) => {
-            let rough = spec.clone();
-            let s = Signals::detach(py, |signals| assemble_sketch(rough, l, signals))?;
-            for (p, xy) in spec.points.iter_mut().zip(s.points) {
-                p.1 = xy;
-            }
-            Some(s.moved)
-        }
+        Some(_) => Signals::detach(py, |signals| parsed.assemble(signals))?,
     };
+    let Parsed { spec, name, description, units, input, output, outputs, lengths } = parsed;
     let points = spec.points.iter().map(|(n, [x, y])| (n.clone(), (*x, *y))).collect();
     let links = spec.links.clone();
     let ground = spec.ground.clone();

@@ -7,7 +7,7 @@
 //! the page shows what `pk.Scene` computes.
 
 use planarkin_core::scene::format::{self, Drive, Parsed};
-use planarkin_core::scene::{assemble_sketch, LinearKind, Plan, Scene, SceneSweepBuffers, SceneSweepOptions, Trace};
+use planarkin_core::scene::{LinearKind, Plan, Scene, SceneSweepBuffers, SceneSweepOptions, Trace};
 use planarkin_core::Never;
 use serde_json::{json, Value};
 
@@ -46,15 +46,10 @@ fn value(v: &Value) -> format::Value {
 impl Kept {
     /// Validates a scene (the file format's data) as `pk.Scene(data)` does.
     pub(crate) fn new(data: &Value) -> Result<Kept, String> {
-        let Parsed { mut spec, output, outputs, lengths, .. } =
-            format::parse(&value(data)).map_err(|e| e.to_string())?;
-        if let Some(l) = lengths {
-            // a sketch: the core assembles the exact pose, which is what is drawn and saved
-            let exact = assemble_sketch(spec.clone(), &l, &Never).map_err(|e| e.to_string())?;
-            for (p, xy) in spec.points.iter_mut().zip(exact.points) {
-                p.1 = xy;
-            }
-        }
+        let mut parsed = format::parse(&value(data)).map_err(|e| e.to_string())?;
+        // a sketch: the core assembles the exact pose, which is what is drawn and saved
+        parsed.assemble(&Never).map_err(|e| e.to_string())?;
+        let Parsed { spec, output, outputs, .. } = parsed;
         let scene = Scene::new(spec).map_err(|e| e.to_string())?;
         // names checked, as Python does; the stroke is found on this plan, as Python's is
         let outputs_plan = match outputs {

@@ -22,7 +22,9 @@ pub use output::linear_output;
 pub use parse::{kind_name, parse};
 pub use value::{float_repr, str_repr, Describe, Described, Foreign, Like, Value};
 
-use crate::scene::{LengthSpec, LinearKind, SceneSpec};
+use crate::error::Error;
+use crate::interrupt::Interrupt;
+use crate::scene::{assemble_sketch, LengthSpec, LinearKind, SceneSpec};
 
 /// The keys a scene may have, in the order messages list them.
 pub const KEYS: [&str; 12] = [
@@ -85,4 +87,19 @@ pub struct Parsed {
     pub outputs: Option<Vec<String>>,
     /// A sketch's lengths (name, name, distance), unchecked (the sketch checks them).
     pub lengths: Option<Vec<LengthSpec>>,
+}
+
+impl Parsed {
+    /// A sketch's exact pose: with `lengths`, every point moves to the nearest exact
+    /// assembly ([`assemble_sketch`]) and the spec holds that pose; returns how far each
+    /// point moved (None for data without `lengths`, which is left as it is). Every
+    /// binding loads a scene as parse, this, then [`Scene::new`](crate::scene::Scene::new).
+    pub fn assemble(&mut self, interrupt: &dyn Interrupt) -> Result<Option<Vec<f64>>, Error> {
+        let Some(lengths) = &self.lengths else { return Ok(None) };
+        let exact = assemble_sketch(self.spec.clone(), lengths, interrupt)?;
+        for (p, xy) in self.spec.points.iter_mut().zip(exact.points) {
+            p.1 = xy;
+        }
+        Ok(Some(exact.moved))
+    }
 }
