@@ -99,7 +99,7 @@ class Scene:
     (361, 2)
     """
 
-    __slots__ = ("_core", "_data", "_moved", "_plans", "_theta")
+    __slots__ = ("_core", "_data", "_max_step", "_moved", "_plans", "_theta")
 
     def __init__(self, data: Mapping[str, Any]) -> None:
         # the core reads the data (every check and message is the file format's, there)
@@ -108,6 +108,7 @@ class Scene:
         )
         pts = dict(points)
         self._core = core
+        self._max_step = core.max_step  # the default, read once (every sweep takes it)
         self._moved = (
             dict.fromkeys(pts, 0.0) if moved is None else dict(zip(pts, moved, strict=True))
         )
@@ -359,7 +360,7 @@ class Scene:
         each end)."""
         _entry(self.input_kind == "displacement", "input", "stroke() is for a linear input")
         _, core = self._compiled(None)
-        return core.stroke(self._core.size, TOL, MAX_ITER, self._core.max_step)
+        return core.stroke(self._core.size, TOL, MAX_ITER, self._max_step)
 
     def plan(self, outputs: Iterable[str] | str | None = None) -> Plan:
         """The steps that solve ``outputs`` (point or link names; None: the scene's
@@ -415,7 +416,7 @@ class Scene:
         plan, core = self._compiled(outputs)
         kind = self.input_kind
         if max_step is None:
-            max_step = self._core.max_step
+            max_step = self._max_step
         if theta is None:
             t = self._default_theta()
         else:
@@ -438,23 +439,23 @@ class Scene:
         )
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
         # the output coordinate is computed when it is first read
-        output = None if self._data["output"] is None else partial(self._output_of, core.points)
+        output = None if self._data["output"] is None else partial(self._output_of, core)
         return SceneSweep.build(
             plan, t, pts, ang, status, nit, det, limit, sst, sdet, pst, vel, acc,
             w, kind, output, self._data["units"],
         )  # fmt: skip
 
     def _output_of(
-        self, indices: list[int], names: tuple[str, ...], coords: np.ndarray
+        self, core: Any, names: tuple[str, ...], coords: np.ndarray
     ) -> np.ndarray | None:
-        """The output coordinate along a sweep, from its reported points (their scene
-        ``indices`` and ``names``); None: no output, or its points are not among those
-        reported. A displacement is the core's (as the web page's)."""
+        """The output coordinate along a sweep of the plan ``core``, from its reported points
+        (``names``); None: no output, or its points are not among those reported. A
+        displacement is the core's (as the web page's)."""
         o = self.output
         if o is None:
             return None
         if "link" not in self._data["output"]:
-            return self._core.linear_output(indices, np.ascontiguousarray(coords))
+            return self._core.linear_output(core.points, np.ascontiguousarray(coords))
         link, pivot = o
         tip = next(q for q in self._data["links"][link] if q != pivot)
         if pivot not in names or tip not in names:
