@@ -4,7 +4,7 @@
 
 use numpy::ndarray::{Array2, Array3};
 use numpy::{
-    IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray2,
+    IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadwriteArray2,
     PyUntypedArrayMethods,
 };
 use pyo3::exceptions::PyMemoryError;
@@ -98,6 +98,15 @@ pub(crate) fn contiguous<'a>(name: &str, a: &'a mut PyReadwriteArray2<'_, f64>) 
 /// The contiguous values of a 1-D float64 array.
 pub(crate) fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
     a.as_slice().map_err(|_| array(name, "must be a contiguous 1-D float64 array"))
+}
+
+/// The rows of a (P, 2) array as points.
+pub(crate) fn points_of(name: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<[f64; 2]>> {
+    let v = a.as_array();
+    if v.ncols() != 2 {
+        return Err(array(name, "must have shape (P, 2)"));
+    }
+    Ok(v.rows().into_iter().map(|r| [r[0], r[1]]).collect())
 }
 
 /// `v` (m * n values, row-major) as an (m, n) array.

@@ -1,7 +1,8 @@
-//! Python bindings of planarkin-core, the extension module `planarkin._core`: one file
-//! per subject of the core (`fourbar`, `scene`, `simd`), plus the error map (`errors`)
-//! and the output buffers (`buffers`). This crate only converts arguments, releases the
-//! GIL around kernel calls and maps core errors; every number is computed in
+//! Python bindings of planarkin-core, the extension module `planarkin._core`: one module
+//! per subject of the core, laid out as the core lays it out (`fourbar`, `simd`, and the
+//! `scene/` folder: `format`, `sweep`, `branches`, `gradient`), plus the error map
+//! (`errors`) and the output buffers (`buffers`). This crate only converts arguments,
+//! releases the GIL around kernel calls and maps core errors; every number is computed in
 //! planarkin-core.
 
 use numpy::PyArray1;
@@ -11,7 +12,6 @@ use pyo3::prelude::*;
 
 mod buffers;
 mod errors;
-mod format;
 mod fourbar;
 mod scene;
 mod simd;
@@ -23,7 +23,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // Python code, and a Ctrl-C pending at that moment would turn into a panic.
     PyArray1::<f64>::zeros(m.py(), 0, false);
     fourbar::register(m)?;
-    format::register(m)?;
     scene::register(m)?;
     simd::register(m)?;
     // (code, name, message): planarkin.Status is checked against this table

@@ -18,8 +18,9 @@
 //! - `fourbar`: a four-bar by its lengths: pose, coupler path, Grashof and Barker class,
 //!   limit positions.
 //!
-//! Inside: `scene` and `fourbar` convert one subject each; `json` holds the shared
-//! conversions (status names, numbers).
+//! Inside, laid out as the core and the Python bindings are: `fourbar` and the `scene/`
+//! folder (`format`, `sweep`, `branches`) convert one subject each; `json` holds the
+//! shared conversions (status names, numbers).
 
 mod fourbar;
 mod json;

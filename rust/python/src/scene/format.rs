@@ -58,7 +58,7 @@ fn real(v: &Bound<'_, PyAny>) -> Option<f64> {
 /// `v` (at nesting `depth`, the scene itself 1) as the format's data. Lists and mappings
 /// deeper than one level past [`MAX_DEPTH`] are left empty: the core refuses them by
 /// their depth before it reads anything in them.
-pub(crate) fn value_of(v: &Bound<'_, PyAny>, depth: usize) -> PyResult<Value> {
+pub(super) fn value_of(v: &Bound<'_, PyAny>, depth: usize) -> PyResult<Value> {
     let deep = depth > MAX_DEPTH;
     if v.is_exact_instance_of::<PyFloat>() {
         return Ok(Value::Float(v.extract()?));
@@ -115,7 +115,7 @@ pub(crate) fn value_of(v: &Bound<'_, PyAny>, depth: usize) -> PyResult<Value> {
 }
 
 /// Adds the scene format's keys and defaults (written once, in the core) to the module.
-pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SCENE_KEYS", format::KEYS.to_vec())?;
     m.add("SCENE_REQUIRED", format::REQUIRED.to_vec())?;
     m.add("SCENE_MAX_DEPTH", format::MAX_DEPTH)?;
