@@ -3,7 +3,7 @@
 //! a scene is solved with. Bindings convert their data to a [`Value`] and call [`parse`].
 //!
 //! Inside: `value` (the data and its `repr`) is the leaf; `parse` reads it into a
-//! [`SceneSpec`](crate::scene::SceneSpec); `defaults` and `output` serve what a binding
+//! [`SceneSpec`]; `defaults` and `output` serve what a binding
 //! computes with a scene once it is built.
 
 mod defaults;
