@@ -152,9 +152,11 @@ def test_the_input_kind_and_rate_have_one_name_and_keep_their_old_ones():
 def test_det_is_one_name():
     fb = pk.FourBar(*SEED)
     sw = fb.sweep()
+    # what DESIGN defines: sin(theta4 - theta3), the determinant over r3 r4 (sign flipped)
+    np.testing.assert_allclose(sw.det, np.sin(sw.theta4 - sw.theta3), rtol=0, atol=1e-15)
     np.testing.assert_array_equal(fb.det(sw.theta3, sw.theta4), sw.det)
     np.testing.assert_array_equal(fb.branch_indicator(sw.theta3, sw.theta4), sw.det)  # kept
-    assert isinstance(pk.FourBar.det(0.1, 0.5), float)
+    assert pk.FourBar.det(0.1, 0.5) == pytest.approx(math.sin(0.4), abs=1e-16)
 
 
 def test_a_batch_speaks_the_shared_names_row_by_row():
@@ -194,8 +196,14 @@ def test_synthesis_names_scipys_code_as_such():
 def test_one_angle_wrap():
     from planarkin import _angles
 
-    a = np.array([-7.0, -math.pi, 0.5, math.pi, 4.0, np.nan])
-    np.testing.assert_array_equal(_angles.wrap_array(a), np.angle(np.exp(1j * a)))
+    # the truth: w = a - 2 pi k for the integer k that puts w in (-pi, pi], in mpmath
+    mp = pytest.importorskip("mpmath")
+    a = np.array([-7.0, -3.0, 0.5, math.pi, 4.0, 1e3, -25.0])
+    with mp.workdps(40):
+        want = [float(x - 2 * mp.pi * mp.ceil((x - mp.pi) / (2 * mp.pi))) for x in map(mp.mpf, a)]
+    np.testing.assert_allclose(_angles.wrap_array(a), want, rtol=0, atol=4e-13)
+    assert [_angles.wrap(float(x)) for x in a] == pytest.approx(want, abs=4e-13)
+    assert np.isnan(_angles.wrap_array(np.nan)) and math.isnan(_angles.wrap(math.nan))
     assert _angles.wrap(-math.pi) == math.pi and _angles.wrap(0.5) == 0.5
     for name in ("generated", "problem", "verify"):
         mod = importlib.import_module(f"planarkin.synthesis.{name}")
