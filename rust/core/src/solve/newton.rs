@@ -173,9 +173,14 @@ impl NewtonOptions {
     }
 }
 
+/// The default tolerance (every binding's default `tol`).
+pub const DEFAULT_TOL: f64 = 1e-9;
+/// The default largest number of Newton steps.
+pub const DEFAULT_MAX_ITER: u32 = 100;
+
 impl Default for NewtonOptions {
     fn default() -> Self {
-        Self { tol: 1e-9, max_iter: 100, singular: SINGULAR_THRESHOLD }
+        Self { tol: DEFAULT_TOL, max_iter: DEFAULT_MAX_ITER, singular: SINGULAR_THRESHOLD }
     }
 }
 

@@ -8,3 +8,4 @@ mod trace;
 pub use assemble::{Assemblies, Assembly};
 pub use circuits::Circuit;
 pub use trace::{Trace, TraceOptions, Tracer};
+pub(crate) use trace::{DEFAULT_MAX_POINTS, DEFAULT_STEP};

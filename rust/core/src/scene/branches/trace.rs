@@ -28,9 +28,14 @@ pub struct TraceOptions {
     pub max_points: usize,
 }
 
+/// The default largest arclength step of a trace (radians of rotation, all links).
+pub(crate) const DEFAULT_STEP: f64 = 0.05;
+/// The default largest number of points of a trace.
+pub(crate) const DEFAULT_MAX_POINTS: usize = 50_000;
+
 impl Default for TraceOptions {
     fn default() -> Self {
-        Self { step: 0.05, max_points: 50_000 }
+        Self { step: DEFAULT_STEP, max_points: DEFAULT_MAX_POINTS }
     }
 }
 

@@ -4,25 +4,27 @@
 use std::f64::consts::{PI, TAU};
 
 use crate::error::Error;
+use crate::scene::branches::{DEFAULT_MAX_POINTS, DEFAULT_STEP};
 use crate::scene::{SceneSweepOptions, TraceOptions, Xy};
-use crate::solve::homotopy::HomotopyOptions;
-use crate::solve::newton::NewtonOptions;
+use crate::solve::homotopy::{HomotopyOptions, DEFAULT_RUNS, DEFAULT_SEED};
+use crate::solve::newton::{NewtonOptions, DEFAULT_MAX_ITER, DEFAULT_TOL};
 
+// the solvers' own defaults (their `Default` options), as the bindings take them
 /// Newton's tolerance.
-pub const TOL: f64 = 1e-9;
+pub const TOL: f64 = DEFAULT_TOL;
 /// Newton's steps at most.
-pub const MAX_ITER: i64 = 100;
+pub const MAX_ITER: i64 = DEFAULT_MAX_ITER as i64;
 /// Largest continuation step of an angle input (3 degrees, as `math.radians(3.0)`); a
 /// linear input's is this times the drawing's size.
 pub const MAX_STEP: f64 = 3.0 * (PI / 180.0);
 /// Seed of the homotopy's random gammas (results are reproducible).
-pub const SEED: u64 = 0x5EED_2026;
+pub const SEED: u64 = DEFAULT_SEED;
 /// Homotopy runs merged.
-pub const RUNS: i64 = 2;
+pub const RUNS: i64 = DEFAULT_RUNS as i64;
 /// Largest arclength step of a trace (radians of rotation, all links together).
-pub const TRACE_STEP: f64 = 0.05;
+pub const TRACE_STEP: f64 = DEFAULT_STEP;
 /// Points of a trace at most.
-pub const TRACE_MAX_POINTS: i64 = 50_000;
+pub const TRACE_MAX_POINTS: i64 = DEFAULT_MAX_POINTS as i64;
 /// Input values of the default sweep.
 pub const SWEEP_LEN: usize = 361;
 

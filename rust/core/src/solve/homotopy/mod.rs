@@ -53,9 +53,14 @@ pub struct HomotopyOptions {
     pub max_step: f64,
 }
 
+/// The default seed of the random gammas (results are reproducible).
+pub const DEFAULT_SEED: u64 = 0x5EED_2026;
+/// The default number of independent trackings merged.
+pub const DEFAULT_RUNS: u32 = 2;
+
 impl Default for HomotopyOptions {
     fn default() -> Self {
-        Self { seed: 0x5EED_2026, runs: 2, max_steps: 3000, max_step: 0.05 }
+        Self { seed: DEFAULT_SEED, runs: DEFAULT_RUNS, max_steps: 3000, max_step: 0.05 }
     }
 }
 
