@@ -4,13 +4,14 @@
 
 use super::columns;
 use super::continuation::Solver;
+use super::ways;
 use super::options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
 use crate::error::{quoted, try_zeros, Error};
 use crate::interrupt::{Interrupt, Poll};
 use crate::scene::build::Plan;
 use crate::scene::ops::Op;
 use crate::solve::homotopy::HomotopyOptions;
-use crate::{wrap_angle, Status};
+use crate::Status;
 
 /// A column sweep whose every step keeps at least this conditioning (and whose angles are
 /// at most `max_step` apart) has met no dead point or change point on its way.
@@ -21,11 +22,12 @@ const CLASSIFIED_GROUP: usize = 4;
 
 impl Plan {
     /// Solves the plan at every input value of `theta` (radians, or a linear input's
-    /// displacements; any order): from the drawn pose to `theta[0]` (an angle the shortest
-    /// way round), then along `theta` in order. Values past a dead point are LIMIT; those
-    /// that the drawn circuit reaches the other way are then solved by continuing from the
-    /// drawn pose backwards over `theta`, from the last LIMIT value to the first. What
-    /// stays LIMIT is NOT_ASSEMBLABLE where the linkage has no assembly at all.
+    /// displacements; any order, any number of turns): each value's pose is the one
+    /// reached from the drawn pose by moving the input straight to it, or where a dead
+    /// point stops that, for an angle, the other way round ([`ways`]); a value neither
+    /// way reaches is LIMIT, and names the dead point met on the shorter way. The answer at
+    /// a value does not depend on the other values in the array. What stays LIMIT is
+    /// NOT_ASSEMBLABLE where the linkage has no assembly at all.
     /// [`ScenePredictor::ClosedForm`] solves every value on its own instead (plans with no
     /// group; an [`Error::InvalidParameter`] naming `predictor` otherwise).
     /// `interrupt` is asked every few thousand angles (Ctrl-C from Python).
@@ -75,13 +77,23 @@ impl Plan {
         let limit = Status::Limit.code();
         // the links' directions, turned into angles at the end in one vectorized pass
         let mut dirs = try_zeros(|| "the links' directions".to_string(), 2 * n * nl)?;
-        self.continuation(theta, 0..n, opts, &mut out, &mut dirs, false, &poll)?;
-        // the rest of the drawn circuit, backwards from the drawn pose: the angles left
-        // LIMIT, from the last of them back to the first (what the other way round reaches)
-        if let (Some(first), Some(last)) =
-            (out.status.iter().position(|&s| s == limit), out.status.iter().rposition(|&s| s == limit))
-        {
-            self.continuation(theta, (first..=last).rev(), opts, &mut out, &mut dirs, true, &poll)?;
+        let nonfinite: Vec<usize> = (0..n).filter(|&k| !theta[k].is_finite()).collect();
+        if !nonfinite.is_empty() {
+            let mut s = Solver::new(self, *opts);
+            s.eval(f64::NAN);
+            for &k in &nonfinite {
+                s.write(k, &mut out, &mut dirs);
+            }
+        }
+        for run in ways::direct(theta, self.theta0) {
+            self.continuation(&run, None, opts, &mut out, &mut dirs, &poll)?;
+        }
+        // an angle stopped by a dead point one way may be reached the other way round
+        if !self.linear {
+            let stopped = (0..n).filter(|&k| out.status[k] == limit);
+            for run in ways::other(theta, self.theta0, stopped) {
+                self.continuation(&run, Some(theta), opts, &mut out, &mut dirs, &poll)?;
+            }
         }
         let (dx, dy) = dirs.split_at(n * nl);
         crate::simd::directions_into(dx, dy, out.angles);
@@ -121,19 +133,15 @@ impl Plan {
 
     /// A column sweep (dyads and sliders on their drawn sides) is the drawn circuit's
     /// motion when no step came near a dead point: every input value solved, each step's
-    /// conditioning at least [`CERTIFIED`] in size, and the values in sweep order (from the
-    /// drawn one; an angle the shortest way round) no more than `max_step` apart.
-    /// Otherwise the plan is followed by continuation.
+    /// conditioning at least [`CERTIFIED`] in size, and the ways from the drawn value to
+    /// every value crossed in steps of at most `max_step` ([`ways::covered`]). Otherwise
+    /// the plan is followed by continuation.
     fn certified(&self, theta: &[f64], opts: &SceneSweepOptions, out: &SceneSweepOut<'_>) -> bool {
-        let Some(&t0) = theta.first() else { return true };
-        let h0 = if self.linear { t0 - self.theta0 } else { wrap_angle(t0 - self.theta0) };
-        // folds with no early exit: these loops vectorize
-        let close =
-            theta.windows(2).fold(h0.abs() <= opts.max_step, |ok, t| ok & ((t[1] - t[0]).abs() <= opts.max_step));
         let ok = Status::Converged.code();
-        close
-            && out.status.iter().fold(true, |all, &s| all & (s == ok))
+        // folds with no early exit: these loops vectorize
+        out.status.iter().fold(true, |all, &s| all & (s == ok))
             && out.step_det.iter().fold(true, |all, d| all & (d.abs() >= CERTIFIED))
+            && ways::covered(theta, self.theta0, opts.max_step, self.linear)
     }
 
     /// An angle that the drawn circuit does not reach is LIMIT when the linkage has some
@@ -173,62 +181,41 @@ impl Plan {
         Ok(())
     }
 
-    /// Continuation from the drawn pose over the indices `order`; `backward` writes only the
-    /// angles the forward pass left LIMIT (and leaves non-finite angles as they are).
+    /// Continuation from the drawn pose along `run` (one way, in order). The direct ways
+    /// (`other` None) write every row; the other way round (`other`: the values asked for)
+    /// writes only the rows the direct way left LIMIT, and where it is stopped too, names
+    /// its dead point when it is the shorter way.
     fn continuation(
         &self,
-        theta: &[f64],
-        order: impl Iterator<Item = usize>,
+        run: &ways::Run,
+        other: Option<&[f64]>,
         opts: &SceneSweepOptions,
         out: &mut SceneSweepOut<'_>,
         dirs: &mut [f64],
-        backward: bool,
         poll: &Poll<'_>,
     ) -> Result<(), Error> {
+        if run.is_empty() {
+            return Ok(());
+        }
         let mut s = Solver::new(self, *opts);
         s.eval(self.theta0); // tangents at the drawn pose
-        let mut started = false;
-        for k in order {
+        for &(k, t) in run {
             poll.tick()?;
-            let t = theta[k];
             s.nit = 0;
-            if !t.is_finite() {
-                s.eval(t);
-            } else {
-                if !started {
-                    // the input repeats every turn: reach theta[k] the shortest way, then
-                    // relabel the states to it
-                    let start = if self.linear { t } else { self.theta0 + wrap_angle(t - self.theta0) };
-                    s.advance(start, poll)?;
-                    for g in s.groups.iter_mut().flatten() {
-                        let shift = t - start;
-                        g.theta += shift;
-                        for tg in g.tangents.iter_mut().flatten() {
-                            tg.theta += shift;
-                        }
-                        if let Some(l) = g.limit.as_mut() {
-                            l.0 += shift;
-                        }
+            s.advance(t, poll)?;
+            if let Some(asked) = other {
+                if s.status() == Status::Limit {
+                    if (t - self.theta0).abs() < (asked[k] - self.theta0).abs() {
+                        out.limit[k] = s.limit_angle();
                     }
-                    for d in s.dyads.iter_mut().flatten() {
-                        d.theta += t - start;
-                        if let Some(l) = d.limit.as_mut() {
-                            l.0 += t - start;
-                        }
-                    }
-                    if start == t {
-                        s.last_eval = t;
-                    } else {
-                        // the same pose, solved at the angle asked for (not a turn away)
-                        s.eval(t);
-                    }
-                    started = true;
-                } else {
-                    s.advance(t, poll)?;
+                    continue;
                 }
-            }
-            // going back, only what the forward pass left LIMIT is written
-            if backward && (!t.is_finite() || out.status[k] != Status::Limit.code()) {
+                // the same pose, solved at the angle asked for (not a turn away)
+                let turns = asked[k] - t;
+                s.shift(turns);
+                s.eval(asked[k]);
+                s.write(k, out, dirs);
+                s.shift(-turns);
                 continue;
             }
             s.write(k, out, dirs);

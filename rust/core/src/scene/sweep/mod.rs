@@ -10,6 +10,7 @@ mod options;
 mod predict;
 mod step;
 mod stroke;
+mod ways;
 mod write;
 
 pub use buffers::{Advise, NoAdvice, Rates, SceneSweepBuffers};

@@ -159,6 +159,26 @@ impl Solver<'_> {
         Some(a + dir * d.clamp(0.5 * floor, len - 0.5 * floor))
     }
 
+    /// Relabels every state `by` (whole turns): the same poses at input values `by` away.
+    pub(super) fn shift(&mut self, by: f64) {
+        for g in self.groups.iter_mut().flatten() {
+            g.theta += by;
+            for tg in g.tangents.iter_mut().flatten() {
+                tg.theta += by;
+            }
+            if let Some(l) = g.limit.as_mut() {
+                l.0 += by;
+            }
+        }
+        for d in self.dyads.iter_mut().flatten() {
+            d.theta += by;
+            if let Some(l) = d.limit.as_mut() {
+                l.0 += by;
+            }
+        }
+        self.last_eval += by;
+    }
+
     /// The dead point (input angle) that stops the first group at LIMIT, if any.
     pub(super) fn limit_angle(&self) -> f64 {
         for (i, (g, d)) in self.groups.iter().zip(&self.dyads).enumerate() {

@@ -7,6 +7,15 @@ use crate::scene::vec2::{angular_acceleration, cross, dot, sub};
 use crate::Status;
 
 impl Solver<'_> {
+    /// The status of the last evaluation: the first operation's that did not converge.
+    pub(super) fn status(&self) -> Status {
+        if self.any_failure {
+            self.op_status.iter().copied().find(|s| *s != Status::Converged).unwrap_or(Status::Converged)
+        } else {
+            Status::Converged
+        }
+    }
+
     /// Writes row `k` of the outputs; the links' directions go to `dirs` (row `k` of its x
     /// half and of its y half, NaN where a point is not solved), whose angles
     /// [`Plan::sweep`] takes at the end, all at once.
@@ -64,11 +73,7 @@ impl Solver<'_> {
                 *dst = if ok(a) && ok(b) { angular_acceleration(d, dv, dw) * w2 } else { f64::NAN };
             }
         }
-        let status = if all_ok {
-            Status::Converged
-        } else {
-            self.op_status.iter().copied().find(|s| *s != Status::Converged).unwrap_or(Status::Converged)
-        };
+        let status = self.status();
         let mut det = 1.0;
         let (sst, sdet) = (&mut out.step_status[k * ns..(k + 1) * ns], &mut out.step_det[k * ns..(k + 1) * ns]);
         for ((code, d), &i) in sst.iter_mut().zip(sdet.iter_mut()).zip(&plan.step_op) {
