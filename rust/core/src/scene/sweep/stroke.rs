@@ -3,13 +3,15 @@
 //! of up to [`REACH`] sizes of the drawing; each end is bracketed between the last value
 //! reached and the first not reached, and the
 //! bracket is narrowed by sweeps of [`REFINE`] values inside it until it is a few
-//! rounding errors wide: the end is the last value reached.
+//! rounding errors wide: the end is the last value reached, the dead point itself (SINGULAR
+//! there, as an angle input's dead point is: its rates are unbounded).
 
 use super::buffers::{NoAdvice, SceneSweepBuffers};
 use super::options::SceneSweepOptions;
 use crate::error::Error;
 use crate::interrupt::Interrupt;
 use crate::scene::build::Plan;
+use crate::Status;
 
 /// How far the probe looks each way, in sizes of the drawing.
 const REACH: f64 = 4.0;
@@ -23,6 +25,14 @@ const ROUNDS: usize = 12;
 /// Statuses of a sweep of a plan at input values `s`.
 struct Probe {
     status: Vec<i8>,
+}
+
+impl Probe {
+    /// The value `k` is reached from the drawn pose: solved, or at a dead point (SINGULAR:
+    /// the stroke's end itself, within rounding, where the rates are unbounded).
+    fn reached(&self, k: usize) -> bool {
+        self.status[k] == Status::Converged.code() || self.status[k] == Status::Singular.code()
+    }
 }
 
 impl Plan {
@@ -48,7 +58,7 @@ impl Plan {
             // values out from the drawn pose on this side, nearest first
             let mut side: Vec<usize> = (0..PROBE).filter(|&k| s[k] * dir > 0.0).collect();
             side.sort_by(|&a, &b| (s[a] * dir).total_cmp(&(s[b] * dir)));
-            let stop = side.iter().position(|&k| p.status[k] != 0);
+            let stop = side.iter().position(|&k| !p.reached(k));
             let Some(stop) = stop else {
                 *e = side.last().map_or(0.0, |&k| s[k]); // reached to the end of the probe
                 continue;
@@ -77,8 +87,8 @@ impl Plan {
             // nearest the drawn pose first: the sweep follows them in order from it
             let s: Vec<f64> = (0..=REFINE).map(|k| reached + (beyond - reached) * k as f64 / (REFINE as f64)).collect();
             let p = self.probe(&s, opts, interrupt)?;
-            let stop = (1..s.len()).find(|&k| p.status[k] != 0).unwrap_or(s.len() - 1);
-            if p.status[stop - 1] != 0 {
+            let stop = (1..s.len()).find(|&k| !p.reached(k)).unwrap_or(s.len() - 1);
+            if !p.reached(stop - 1) {
                 break; // the start of the bracket no longer solves: keep what we have
             }
             let (r, b) = (s[stop - 1], s[stop]);
