@@ -244,7 +244,7 @@ impl<'p> Solver<'p> {
             return (Status::Singular, 0.0);
         }
         let mut state = self.dyads[i].expect("a dyad has a state");
-        let chosen = state.choose(theta, self.opts.max_step, self.fine(), self.opts.newton.singular, |side| {
+        let chosen = state.choose(theta, self.opts.max_step, self.fine(), self.opts.closed_form_singular(), |side| {
             match d.solve_side(a, b, side) {
                 DyadOut::Solved(p, det) => Some((det, p)),
                 _ => None,
@@ -292,7 +292,7 @@ impl<'p> Solver<'p> {
     /// A slider's closed form or a fused linear input's operation at input value `theta`
     /// (a displacement for a linear input): sided ones carry their side as dyads do.
     pub(super) fn slider(&mut self, i: usize, op: &Op, theta: f64) -> (Status, f64) {
-        let singular = self.opts.newton.singular;
+        let singular = self.opts.closed_form_singular();
         // the fused guide reads the displacement in the solving frame
         let s = if self.plan.linear { theta / self.plan.scale } else { theta };
         let k: Known<'_> = [&self.pos, &self.vel, &self.acc];

@@ -82,7 +82,8 @@ impl Solver<'_> {
             det *= self.op_det[i];
         }
         out.status[k] = status.code();
-        out.det[k] = det;
+        // a pose not solved has no conditioning (a dead point's is in `step_det`)
+        out.det[k] = if status == Status::Converged { det } else { f64::NAN };
         out.limit[k] = f64::NAN;
         out.nit[k] = self.nit;
     }

@@ -269,8 +269,11 @@ impl Edges {
             if sc.linear.is_some_and(|l| l.kind == LinearKind::Slot && l.index == i) {
                 input = Some(k);
             }
-            if known[a] {
-                anchor_index(anchors, a);
+            // a known slot point (a crank pin in a slot of the group's link) anchors the group
+            for p in [a, s.point] {
+                if known[p] {
+                    anchor_index(anchors, p);
+                }
             }
             readers.push(Reader::Slide { from: a, to: s.point, term });
             edges.push((a, s.point, term));

@@ -120,7 +120,7 @@ fn sweep_body(
                 }
                 Op::Dyad(d) => {
                     let s = step_of[i];
-                    dyad_block(d, &mut c, m, opts.newton.singular, vel, &mut sdet[s * B..], &mut sst[s * B..]);
+                    dyad_block(d, &mut c, m, opts.closed_form_singular(), vel, &mut sdet[s * B..], &mut sst[s * B..]);
                     note(&mut first_bad[..m], &sst[s * B..s * B + m]);
                 }
                 Op::Group(_) => unreachable!("the column sweep runs plans with no group"),
@@ -131,7 +131,7 @@ fn sweep_body(
                     };
                     let sv = if plan.linear { &sv[..m] } else { &block[..m] };
                     let ins = &inputs[i];
-                    let singular = opts.newton.singular;
+                    let singular = opts.closed_form_singular();
                     match (scratch.as_mut(), op) {
                         // a slot on a line fixed in ground (a slider-crank's): the line once
                         (None, Op::Rrp(r)) if r.line.inputs().iter().all(|&p| fixed[p]) => {
