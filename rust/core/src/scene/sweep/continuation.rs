@@ -17,7 +17,7 @@
 //! same.
 
 use super::options::SceneSweepOptions;
-use super::predict::{DyadState, GroupState, Tangent, JUMP, NEAR_DEAD};
+use super::predict::{DyadState, GroupState, Jump, Tangent, BOUNDED, JUMP, NEAR_DEAD, ON_PATH};
 use crate::scene::build::Plan;
 use crate::scene::ops::Known;
 use crate::scene::ops::Op;
@@ -72,6 +72,8 @@ pub(super) struct Solver<'p> {
     pub(super) aimed_left: u32,
     /// The solution (its input value) the last aimed split was predicted from.
     pub(super) aimed_from: f64,
+    /// A step across a group's change point being taken (see [`Solver::jump`]).
+    pub(super) jump: Option<Jump>,
 }
 
 impl<'p> Solver<'p> {
@@ -122,6 +124,7 @@ impl<'p> Solver<'p> {
             anchor_vel: Vec::new(),
             aimed_left: 0,
             aimed_from: f64::NAN,
+            jump: None,
         };
         for &(p, xy) in &plan.fixed {
             s.pos[p] = xy;
@@ -356,7 +359,8 @@ impl<'p> Solver<'p> {
                 return (Status::Limit, f64::NAN);
             }
         }
-        let guess = state.predict(theta, g, self.opts.max_step);
+        let across = self.jump.filter(|j| j.op == i);
+        let guess = across.map_or_else(|| state.predict(theta, g, self.opts.max_step), |j| j.guess);
         let (det0, sign0) = (state.det(), state.sign);
         anchors.clear();
         anchors.extend(g.anchors.iter().map(|&a| self.pos[a]));
@@ -373,6 +377,21 @@ impl<'p> Solver<'p> {
         let jump =
             |out: &GroupSolve, guess: &[f64]| (0..n).map(|k| g.gap(k, out.phi[k], guess[k]).abs()).fold(0.0, f64::max);
         let newton = if longer { &near_newton } else { &self.step_newton };
+        if let Some(j) = across {
+            // across a change point: kept only on the carried path (see `jump`)
+            let out = solve(&guess[..n], &self.opts.newton);
+            self.nit += out.nit;
+            let h = (theta - j.from).abs();
+            let size = (0..n).map(|k| j.tangent[k].abs()).fold(1.0, f64::max);
+            let on_path = out.status == Status::Converged
+                && out.det * sign0 < 0.0
+                && (0..n).all(|k| g.gap(k, out.phi[k], guess[k]).abs() <= ON_PATH * h * size)
+                && (0..n).all(|k| (out.dphi[k] * self.rate() - j.tangent[k]).abs() <= ON_PATH * size);
+            if !on_path {
+                return (Status::BranchJump, out.det);
+            }
+            return self.commit_group(i, theta, out, -sign0, anchors, anchor_vel);
+        }
         let mut out: GroupSolve = solve(&guess[..n], newton);
         self.nit += out.nit;
         let mut sign = sign0;
@@ -386,6 +405,11 @@ impl<'p> Solver<'p> {
                 out = again;
             } else if self.step <= self.opts.max_step * 2f64.powi(-FLIP_HALVINGS)
                 && jump(&out, &guess[..n]) <= FLIP_JUMP
+                && self.groups[i].as_ref().and_then(|st| st.tangent()).is_some_and(|t| {
+                    // the branch that crosses there has another tangent
+                    let size = (0..n).map(|k| t.dphi[k].abs()).fold(1.0, f64::max);
+                    (0..n).all(|k| (out.dphi[k] * self.rate() - t.dphi[k]).abs() <= ON_PATH * size)
+                })
             {
                 // on the predicted path over a tiny step, through a change point
                 sign = -sign;
@@ -395,9 +419,50 @@ impl<'p> Solver<'p> {
         if status == Status::Converged && (out.det * sign < 0.0 || jump(&out, &guess[..n]) > JUMP) {
             status = Status::BranchJump;
         }
+        if status == Status::Converged && near_dead && !self.carried(i, theta, &out) {
+            // near a change point the branch that crosses ours is close, with the same sign
+            status = Status::BranchJump;
+        }
         if status != Status::Converged {
             return (status, out.det);
         }
+        self.commit_group(i, theta, out, sign, anchors, anchor_vel)
+    }
+
+    /// A solution approaching a dead or change point (the conditioning falling) keeps the
+    /// tangent carried along the path, where that tangent is bounded (a change point: at a
+    /// fold it grows as one over the conditioning and says nothing): within [`ON_PATH`] of
+    /// its size of the tangent extrapolated from the last two solutions.
+    fn carried(&self, i: usize, theta: f64, out: &GroupSolve) -> bool {
+        let Some(st) = self.groups[i].as_ref() else { return true };
+        let (Some(t1), Some(t0)) = (st.tangent(), st.previous()) else { return true };
+        let Op::Group(g) = &self.plan.ops[i] else { return true };
+        let n = g.n();
+        let s = t1.theta - t0.theta;
+        let norm = |v: &[f64; MAX]| v[..n].iter().map(|x| x * x).sum::<f64>().sqrt();
+        if s == 0.0 || !(t1.det.abs() < t0.det.abs()) || !(norm(&t1.dphi) <= BOUNDED * norm(&t0.dphi)) {
+            return true;
+        }
+        let size = (0..n).map(|k| t1.dphi[k].abs()).fold(1.0, f64::max);
+        (0..n).all(|k| {
+            let want = t1.dphi[k] + (t1.dphi[k] - t0.dphi[k]) / s * (theta - t1.theta);
+            (out.dphi[k] * self.rate() - want).abs() <= ON_PATH * size
+        })
+    }
+
+    /// Places a group's converged solution `out` at `theta` (positions, rates) and records
+    /// it on the branch of sign `sign`.
+    fn commit_group(
+        &mut self,
+        i: usize,
+        theta: f64,
+        out: GroupSolve,
+        sign: f64,
+        anchors: &[Xy],
+        anchor_vel: &[Xy],
+    ) -> (Status, f64) {
+        let Op::Group(g) = &self.plan.ops[i] else { unreachable!("op {i} is a group") };
+        let n = g.n();
         let (pos, vel) = (&mut self.pos, &mut self.vel);
         g.place_moving(&out.phi[..n], &out.dphi[..n], &out.cs[..g.nrot], anchors, anchor_vel, |p, xy, v| {
             pos[p] = xy;

@@ -6,6 +6,7 @@ mod buffers;
 mod columns;
 mod continuation;
 mod entry;
+mod jump;
 mod options;
 mod predict;
 mod step;

@@ -12,6 +12,28 @@ pub(super) const JUMP: f64 = 0.25;
 /// there gets up to NEAR_DEAD_ITER Newton steps and a mirrored start.
 pub(super) const NEAR_DEAD: f64 = 1e-2;
 
+/// A jump lands a few times the distance to the estimated crossing past it (and at least
+/// `max_step / JUMP_MIN` past, at most `max_step`): far enough from the crossing for Newton
+/// to tell the two branches apart.
+pub(super) const JUMP_REACH: f64 = 4.0;
+pub(super) const JUMP_MIN: f64 = 64.0;
+/// A bounded tangent: the last one at most this times the one before, while the
+/// conditioning fell (at a fold it grows as one over the conditioning).
+pub(super) const BOUNDED: f64 = 1.5;
+/// The solution after the jump lies within this fraction of the jump's length (times the
+/// tangent's size) of its prediction, with a tangent within this fraction of the carried
+/// one: the crossing branch's differ by order one.
+pub(super) const ON_PATH: f64 = 0.1;
+
+/// A step across a change point (see `jump`): the group (op `op`), its start and carried tangent there.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Jump {
+    pub(super) op: usize,
+    pub(super) from: f64,
+    pub(super) guess: [f64; MAX],
+    pub(super) tangent: [f64; MAX],
+}
+
 /// Continuation state of one dyad: the side it is on and its last signed conditioning.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct DyadState {

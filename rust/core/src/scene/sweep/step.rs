@@ -77,6 +77,10 @@ impl Solver<'_> {
         }
         // (halving alone reaches `floor` at depth MAX_HALVINGS; aimed splits add levels)
         if (b - a).abs() <= floor * (1.0 + 1e-9) || depth >= 4 * MAX_HALVINGS || !b.is_finite() {
+            // a group at a change point goes on across it, with its tangent
+            if let Some(past) = b.is_finite().then(|| self.jump(a, b)).flatten() {
+                return (past - b) * (b - a) >= 0.0 || self.reach_within(past, b, depth + 1, floor);
+            }
             // what still fails this close to its last solution is at a dead point
             for (i, st) in self.groups.iter_mut().enumerate() {
                 if let Some(g) = st.as_mut() {
