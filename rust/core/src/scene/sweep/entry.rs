@@ -168,8 +168,9 @@ impl Plan {
             if !self.assemblies(t, &hopts, interrupt)?.list.is_empty() {
                 continue;
             }
-            // the dead point that stopped the motion stays in `limit`
+            // no assembly at all: no dead point to name
             out.status[k] = none;
+            out.limit[k] = f64::NAN;
             for code in
                 out.step_status[k * ns..(k + 1) * ns].iter_mut().chain(&mut out.point_status[k * np..(k + 1) * np])
             {
