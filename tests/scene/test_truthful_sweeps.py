@@ -146,8 +146,8 @@ def test_an_angle_past_dead_points_both_ways_names_the_one_on_the_shorter_way():
     assert stopped.sum() > 10
     up = np.angle(np.exp(1j * (sw.theta - sc.input_angle))) >= 0  # the shorter way is up
     named = np.angle(np.exp(1j * sw.limit))
-    np.testing.assert_allclose(named[stopped & up], hi, rtol=0, atol=1e-6)
-    np.testing.assert_allclose(named[stopped & ~up], lo, rtol=0, atol=1e-6)
+    np.testing.assert_allclose(named[stopped & up], hi, rtol=0, atol=1e-8)
+    np.testing.assert_allclose(named[stopped & ~up], lo, rtol=0, atol=1e-8)
     assert (stopped & up).any() and (stopped & ~up).any()
 
 

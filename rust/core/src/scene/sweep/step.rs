@@ -183,16 +183,32 @@ impl Solver<'_> {
         self.last_eval += by;
     }
 
-    /// The dead point (input angle) that stops the first group at LIMIT, if any.
+    /// The dead point (input angle) that stops the first operation at LIMIT, if any: past
+    /// the last solution, where its conditioning's square (linear in the input near a fold)
+    /// reaches zero, from the last two solutions (a group) or the conditioning's slope (a
+    /// dyad or slider), within the smallest split beyond it (the bracket): about 1e-12 rad
+    /// off where the bracket is 1e-6 wide, where the bracket's end is 5e-7 off.
     pub(super) fn limit_angle(&self) -> f64 {
+        let bracket = self.opts.max_step * 2f64.powi(-(MAX_HALVINGS as i32));
         for (i, (g, d)) in self.groups.iter().zip(&self.dyads).enumerate() {
             if self.op_status[i] != Status::Limit {
                 continue;
             }
-            let limit = g.and_then(|g| g.limit).or_else(|| d.and_then(|d| d.limit));
-            if let Some((at, _)) = limit {
-                return at;
-            }
+            let (at, dir, ahead) = if let Some((at, dir)) = g.and_then(|g| g.limit) {
+                let ahead = g.as_ref().and_then(|g| Some((g.tangent()?, g.previous()?))).map(|(t1, t0)| {
+                    let (s1, s0) = (t1.det * t1.det, t0.det * t0.det);
+                    s1 * (t1.theta - t0.theta).abs() / (s0 - s1)
+                });
+                (at, dir, ahead)
+            } else if let Some((at, dir)) = d.and_then(|d| d.limit) {
+                // det^2 falls at 2 det ddet: zero det / (2 |ddet|) ahead
+                let ahead = d.map(|d| (d.det / (2.0 * d.ddet)).abs());
+                (at, dir, ahead)
+            } else {
+                continue;
+            };
+            let ahead = ahead.filter(|x| x.is_finite() && *x >= 0.0).map_or(0.0, |x| x.min(bracket));
+            return at + dir * ahead;
         }
         f64::NAN
     }
