@@ -8,7 +8,7 @@ import math
 from collections.abc import Iterable, Mapping
 from functools import partial
 from pathlib import Path
-from typing import Any, NamedTuple, NoReturn
+from typing import Any, ClassVar, NamedTuple, NoReturn
 
 import numpy as np
 
@@ -101,6 +101,10 @@ class Scene:
 
     __slots__ = ("_core", "_data", "_max_step", "_moved", "_plans", "_theta")
 
+    #: Other tools' formats, set by ``planarkin.interop`` (the scene subject imports none):
+    #: format name -> (reader, writer) behind ``from_pyslvs`` and ``to_pyslvs``.
+    formats: ClassVar[dict[str, tuple[Any, Any]]] = {}
+
     def __init__(self, data: Mapping[str, Any]) -> None:
         # the core reads the data (every check and message is the file format's, there)
         core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, moved = (
@@ -138,6 +142,18 @@ class Scene:
     def from_dict(cls, data: Mapping[str, Any]) -> Scene:
         """A scene from a mapping with the file format's keys."""
         return cls(data)
+
+    @classmethod
+    def from_pyslvs(
+        cls, expr: str, inputs: Iterable[tuple[int, int]] | None = None, *, name: str | None = None
+    ) -> Scene:
+        """A scene from a Pyslvs expression ``M[J[...], ...]`` and its one input pair
+        ``[(base, driver)]``: joint k is point ``J<k>`` (``planarkin.interop.pyslvs``)."""
+        return cls.formats["pyslvs"][0](expr, inputs, name=name)
+
+    def to_pyslvs(self) -> str:
+        """The scene as a Pyslvs expression ``M[...]`` (``planarkin.interop.pyslvs``)."""
+        return self.formats["pyslvs"][1](self)
 
     @classmethod
     def load(cls, path: str | Path) -> Scene:

@@ -1,0 +1,10 @@
+"""Into and out of the tools users already have: Pyslvs expressions (``pyslvs``), cutting
+sheets as DXF and SVG (``sheet``), MuJoCo models with closed loops (``mujoco``). Each
+format is one module; the heavy libraries are optional extras, imported when used."""
+
+from ..scene import Scene
+from . import pyslvs
+
+__all__ = ["pyslvs"]
+
+Scene.formats["pyslvs"] = (pyslvs.from_pyslvs, pyslvs.to_pyslvs)
