@@ -11,7 +11,7 @@ import planarkin as pk
 import pytest
 from _support import dyad_point
 from planarkin.face.cli import main
-from planarkin.interop import pyslvs
+from planarkin.interop import _lines, pyslvs
 
 FOURBAR = """M[
   J[R, color[Green], P[0.0, 0.0], L[ground, crank]],
@@ -131,7 +131,7 @@ def test_built_in_scenes_round_trip(name: str) -> None:
     b = back.sweep(theta, outputs=list(back.points))
     assert a.success.sum() >= 3 and (b.success == a.success).all()
     size = max(np.ptp(np.array(list(sc.points.values())), axis=0))
-    joints = [p for p in sc.points if p not in pyslvs._helpers(sc)]  # J0, J1, ... in order
+    joints = [p for p in sc.points if p not in _lines.helpers(sc)]  # J0, J1, ... in order
     for k, p in enumerate(joints):
         ok = a.success
         np.testing.assert_allclose(b.points[f"J{k}"][ok], a.points[p][ok], atol=1e-9 * size)

@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from ..scene import Scene
+from . import _lines
 from ._pyslvs_grammar import NAME, Joint, parse, text
 
 __all__ = ["dumps", "from_pyslvs", "load", "to_pyslvs"]
@@ -136,21 +137,6 @@ def from_pyslvs(
     return Scene.from_dict(data)
 
 
-def _helpers(sc: Scene) -> set[str]:
-    """Points that only hold a slot's or prismatic pair's line: on their guide alone, used
-    by nothing else (Pyslvs has no such points; its slot runs through the joint)."""
-    count: dict[str, int] = {p: 0 for p in sc.points}
-    for pts in sc.links.values():
-        for p in pts:
-            count[p] += 1
-    used = {sc.input[1]} if sc.input_kind == "angle" else set()
-    if sc.input_kind == "angle":
-        used |= {next(p for p in sc.links[sc.input[0]] if p != sc.input[1])}
-    used |= {pt for pt, _g, _l in sc.slots.values()}
-    lines = {q for _a, _g, line in (*sc.slots.values(), *sc.prismatic.values()) for q in line}
-    return {p for p in lines if count[p] == 1 and p not in used}
-
-
 def _deg(sc: Scene, at: str, line: tuple[str, str], h: float) -> float:
     """The line's direction in degrees, written as short as gives back the same helper
     point (so an imported scene's angle comes back as typed)."""
@@ -171,7 +157,7 @@ def _plan(sc: Scene) -> tuple[list[str], list[Joint], tuple[int, int]]:
     for ln in sc.links:
         if not NAME.match(ln) or (ln == GROUND) != (ln == sc.ground):
             raise ValueError(f"links.{ln}: not a name Pyslvs can hold as a link")
-    helpers = _helpers(sc)
+    helpers = _lines.helpers(sc)
     names = [p for p in sc.points if p not in helpers]
     nums = [_JNAME.match(p) for p in names]
     if all(nums) and sorted(int(m.group(1)) for m in nums if m) == list(range(len(names))):
