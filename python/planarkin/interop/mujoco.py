@@ -109,10 +109,10 @@ def build(sc: Scene, *, kp: float | None = None) -> Model:
     if missing:
         raise ValueError(f"links.{missing[0]}: not joined to the ground by any joint")
     for ln, v in links.items():
-        b = bodies[ln]
+        body = bodies[ln]
         for p in v:
-            b.sites[f"{ln}:{p}"] = _rel(pts[p], b.origin)
-        b.geoms += [(b.sites[f"{ln}:{v[0]}"], b.sites[f"{ln}:{q}"]) for q in v[1:]]
+            body.sites[f"{ln}:{p}"] = _rel(pts[p], body.origin)
+        body.geoms += [(body.sites[f"{ln}:{v[0]}"], body.sites[f"{ln}:{q}"]) for q in v[1:]]
     equality: list[str] = []
     for p in pts:
         on = [ln for ln, v in links.items() if p in v]

@@ -43,7 +43,7 @@ class Replay:
             r = d.efc_pos[: d.nefc].copy()
             if np.abs(r).max(initial=0.0) <= tol * self.size:
                 return True
-            jac = d.efc_J[: d.nefc * m.nv].reshape(d.nefc, m.nv)[:, free]
+            jac = np.ravel(d.efc_J)[: d.nefc * m.nv].reshape(d.nefc, m.nv)[:, free]
             q[free] += np.linalg.lstsq(jac, -r, rcond=None)[0]  # hinges, slides: qpos = dofs
         return False
 

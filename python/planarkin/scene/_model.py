@@ -15,7 +15,7 @@ import numpy as np
 from .. import _kernel
 from .._angles import wrap
 from .._args import as_angles, as_float, as_i64, as_str, as_u64
-from .._svg import picture
+from .._svg import picture, png
 from ..fourbar import LINKS, POINTS, FourBar
 from ._parse import parse
 from ._results import (
@@ -316,6 +316,13 @@ class Scene:
         title = d["name"] or "scene"
         return picture(pose=d["points"], links=links, ground=d["links"][d["ground"]], title=title)
 
+    def _repr_png_(self) -> bytes:
+        """The same picture as PNG."""
+        d = self._data
+        links = [v for k, v in d["links"].items() if k != d["ground"]]
+        title = d["name"] or "scene"
+        return png(pose=d["points"], links=links, ground=d["links"][d["ground"]], title=title)
+
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Scene) and self.to_dict() == other.to_dict()
 
@@ -456,10 +463,16 @@ class Scene:
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
         # the output coordinate is computed when it is first read
         output = None if self._data["output"] is None else partial(self._output_of, core)
-        return SceneSweep.build(
+        sw = SceneSweep.build(
             plan, t, pts, ang, status, nit, det, limit, sst, sdet, pst, vel, acc,
             w, kind, output, self._data["units"],
         )  # fmt: skip
+        # the notebook picture draws the links whose points are reported (not a field:
+        # the picture's, not the result's)
+        d = self._data
+        sw.__dict__["_svg_links"] = tuple(v for k, v in d["links"].items() if k != d["ground"])
+        sw.__dict__["_svg_ground"] = d["links"][d["ground"]]
+        return sw
 
     def _output_of(
         self, core: Any, names: tuple[str, ...], coords: np.ndarray
