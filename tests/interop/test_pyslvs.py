@@ -193,3 +193,18 @@ def test_pyslvs_yaml_forms_of_input(tmp_path) -> None:  # noqa: ANN001
     assert sc.input == ("link_1", "J0")
     with pytest.raises(ValueError, match=r"^x.pyslvs: no input pair"):
         pyslvs.loads("mechanism: " + SLIDER, "x.pyslvs")
+
+
+def test_colours_and_link_orders_pyslvs_may_write() -> None:
+    # RGB colours, hyphenated colour names, no colour; L[...] orders that no single link
+    # order matches (J3 lists c before ground): the scene round-trips, the text up to them
+    e = (
+        "M[J[R, color[(255, 0, 0)], P[0.0, 0.0], L[ground, a]], "
+        "J[R, color[Dark-Orange], P[1.0, 0.0], L[a, b]], J[R, P[3.0, 1.0], L[b, c]], "
+        "J[R, P[4, 0], L[c, ground]]]  # a four-bar"
+    )
+    sc = pk.Scene.from_pyslvs(e, inputs=[(0, 1)])
+    assert sc.links == {"ground": ("J0", "J3"), "a": ("J0", "J1"), "b": ("J1", "J2"),
+                        "c": ("J2", "J3")}  # fmt: skip
+    assert pk.Scene.from_pyslvs(sc.to_pyslvs(), inputs=[(0, 1)]) == sc
+    assert "J[R, color[Green], P[4.0, 0.0], L[ground, c]]" in sc.to_pyslvs()
