@@ -86,3 +86,23 @@ def test_export_cli_writes_a_model_mujoco_loads(tmp_path) -> None:  # noqa: ANN0
     mujoco = pytest.importorskip("mujoco", reason="the mujoco extra is not installed")
     m = mujoco.MjModel.from_xml_path(str(path))
     assert (m.nq, m.neq, m.nu) == (7, 3, 1)
+
+
+@pytest.mark.parametrize("name", pk.scenes.names())
+def test_every_built_in_scene_replays(name: str) -> None:
+    """Slots and prismatic pairs too (blocks connect-ed and weld-ed, slides in the tree),
+    linear inputs: within 1e-9 of the size but at a linear input's stroke ends, which are
+    dead points (a position there is good to the square root of the residual)."""
+    sc, sw, rp = _replay(name)
+    got = rp.replay(sw)
+    ok = sw.success.copy()
+    if sw.input == "displacement":
+        ok[[0, -1]] = False
+    for site, path in got.items():
+        point = site.split(":", 1)[1]
+        err = np.abs(path[ok] - sw.points[point][ok]).max() / rp.size
+        assert err <= 1e-9, (site, err)
+    if sw.input == "displacement":
+        ends = max(np.abs(p[[0, -1]] - sw.points[s.split(":", 1)[1]][[0, -1]]).max()
+                   for s, p in got.items())  # fmt: skip
+        assert ends <= 1e-6 * rp.size
