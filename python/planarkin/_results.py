@@ -7,12 +7,12 @@ and each subject adds its own names."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
 from ._status import Status
-from ._svg import picture
+from ._svg import picture, png
 
 
 @dataclass(frozen=True)
@@ -191,15 +191,23 @@ class SweepResult(StatusResult):
     _svg_links: ClassVar[tuple[tuple[str, ...], ...]] = ()
     _svg_ground: ClassVar[tuple[str, ...]] = ()
 
-    def _repr_svg_(self) -> str | None:
-        """A notebook's picture (a few KB of SVG): every reported point's path, and the
-        first solved pose; None when nothing is solved."""
+    def _picture(self) -> dict[str, Any] | None:
         ok = np.flatnonzero(self.success)
         if not len(ok):
             return None
         pts = self.points
         pose = {n: v[ok[0]] for n, v in pts.items()}
         title = f"{type(self).__name__}: {len(ok)} of {len(self)} solved"
-        return picture(
-            pose=pose, links=self._svg_links, ground=self._svg_ground, paths=pts, title=title
-        )
+        return {"pose": pose, "links": self._svg_links, "ground": self._svg_ground,
+                "paths": pts, "title": title}  # fmt: skip
+
+    def _repr_svg_(self) -> str | None:
+        """A notebook's picture (a few KB of SVG): every reported point's path, and the
+        first solved pose with its links; None when nothing is solved."""
+        kw = self._picture()
+        return None if kw is None else picture(**kw)
+
+    def _repr_png_(self) -> bytes | None:
+        """The same picture as PNG (for notebook front ends and exports without SVG)."""
+        kw = self._picture()
+        return None if kw is None else png(**kw)

@@ -273,6 +273,13 @@ class FourBar:
         except ValueError:
             return None
 
+    def _repr_png_(self) -> bytes | None:
+        """The same picture as PNG (None when it cannot assemble)."""
+        try:
+            return self.to_scene()._repr_png_()
+        except ValueError:
+            return None
+
     def to_scene(
         self,
         theta2: float | None = None,

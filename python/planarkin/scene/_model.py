@@ -8,14 +8,14 @@ import math
 from collections.abc import Iterable, Mapping
 from functools import partial
 from pathlib import Path
-from typing import Any, NamedTuple, NoReturn
+from typing import Any, ClassVar, NamedTuple, NoReturn
 
 import numpy as np
 
 from .. import _kernel
 from .._angles import wrap
 from .._args import as_angles, as_float, as_i64, as_str, as_u64
-from .._svg import picture
+from .._svg import picture, png
 from ..fourbar import LINKS, POINTS, FourBar
 from ._parse import parse
 from ._results import (
@@ -101,6 +101,10 @@ class Scene:
 
     __slots__ = ("_core", "_data", "_max_step", "_moved", "_plans", "_theta")
 
+    #: Other tools' formats, set by ``planarkin.interop`` (the scene subject imports none):
+    #: format name -> (reader, writer) behind ``from_pyslvs`` and ``to_pyslvs``.
+    formats: ClassVar[dict[str, tuple[Any, Any]]] = {}
+
     def __init__(self, data: Mapping[str, Any]) -> None:
         # the core reads the data (every check and message is the file format's, there)
         core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, moved = (
@@ -138,6 +142,18 @@ class Scene:
     def from_dict(cls, data: Mapping[str, Any]) -> Scene:
         """A scene from a mapping with the file format's keys."""
         return cls(data)
+
+    @classmethod
+    def from_pyslvs(
+        cls, expr: str, inputs: Iterable[tuple[int, int]] | None = None, *, name: str | None = None
+    ) -> Scene:
+        """A scene from a Pyslvs expression ``M[J[...], ...]`` and its one input pair
+        ``[(base, driver)]``: joint k is point ``J<k>`` (``planarkin.interop.pyslvs``)."""
+        return cls.formats["pyslvs"][0](expr, inputs, name=name)
+
+    def to_pyslvs(self) -> str:
+        """The scene as a Pyslvs expression ``M[...]`` (``planarkin.interop.pyslvs``)."""
+        return self.formats["pyslvs"][1](self)
 
     @classmethod
     def load(cls, path: str | Path) -> Scene:
@@ -300,6 +316,13 @@ class Scene:
         title = d["name"] or "scene"
         return picture(pose=d["points"], links=links, ground=d["links"][d["ground"]], title=title)
 
+    def _repr_png_(self) -> bytes:
+        """The same picture as PNG."""
+        d = self._data
+        links = [v for k, v in d["links"].items() if k != d["ground"]]
+        title = d["name"] or "scene"
+        return png(pose=d["points"], links=links, ground=d["links"][d["ground"]], title=title)
+
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Scene) and self.to_dict() == other.to_dict()
 
@@ -440,10 +463,16 @@ class Scene:
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
         # the output coordinate is computed when it is first read
         output = None if self._data["output"] is None else partial(self._output_of, core)
-        return SceneSweep.build(
+        sw = SceneSweep.build(
             plan, t, pts, ang, status, nit, det, limit, sst, sdet, pst, vel, acc,
             w, kind, output, self._data["units"],
         )  # fmt: skip
+        # the notebook picture draws the links whose points are reported (not a field:
+        # the picture's, not the result's)
+        d = self._data
+        sw.__dict__["_svg_links"] = tuple(v for k, v in d["links"].items() if k != d["ground"])
+        sw.__dict__["_svg_ground"] = d["links"][d["ground"]]
+        return sw
 
     def _output_of(
         self, core: Any, names: tuple[str, ...], coords: np.ndarray

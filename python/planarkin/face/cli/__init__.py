@@ -1,7 +1,8 @@
 """The ``planarkin`` command: ``main()`` builds the parser from the command modules (one
-per subcommand: analyze, animate, circuits, scenes, synthesize, tradeoff, web; analyze's
+per subcommand: analyze, animate, circuits, export, scenes, synthesize, tradeoff, web; analyze's
 two variants in analyze_fourbar and analyze_scene) and turns what goes wrong into one line
-on stderr: a bad option or input (exit 2), a file that cannot be written (1), Ctrl-C
+on stderr: a bad option or input (exit 2), a file that cannot be written or a missing
+optional extra (1), Ctrl-C
 (130)."""
 
 from __future__ import annotations
@@ -11,13 +12,13 @@ import sys
 
 from ... import __version__
 from ..fonts import use as use_fonts
-from . import analyze, animate, circuits, scenes, synthesize, tradeoff, web
+from . import analyze, animate, circuits, export, scenes, synthesize, tradeoff, web
 from ._common import Parser
 
 __all__ = ["build_parser", "main"]
 
 #: The subcommands, in the order ``--help`` lists them.
-COMMANDS = (analyze, animate, scenes, circuits, synthesize, tradeoff, web)
+COMMANDS = (analyze, animate, scenes, export, circuits, synthesize, tradeoff, web)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -48,6 +49,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"planarkin: error: {e}", file=sys.stderr)
         return 2
     except OSError as e:
+        print(f"planarkin: error: {e}", file=sys.stderr)
+        return 1
+    except ImportError as e:  # an optional extra that is not installed: its pip command
         print(f"planarkin: error: {e}", file=sys.stderr)
         return 1
     except MemoryError as e:

@@ -17,6 +17,7 @@ import numpy as np
 
 from ..._args import MODES, PREDICTORS
 from ...fourbar import FourBar
+from ...interop import pyslvs
 from ...scene import Scene
 from ...scene import builtin as scenes
 from ...scene.report import input_axis
@@ -258,12 +259,12 @@ def fourbar_setup(args: argparse.Namespace) -> tuple[FourBar, np.ndarray]:
 
 
 def load_scene(spec: str) -> Scene:
-    """A scene file (.json/.toml) or a built-in name."""
+    """A scene file (.json/.toml, or a Pyslvs project .pyslvs) or a built-in name."""
     p = Path(spec)
-    if p.suffix in (".json", ".toml"):
+    if p.suffix in (".json", ".toml", ".pyslvs"):
         if not p.exists():
             raise ValueError(f"scene file {spec!r} does not exist")
-        return Scene.load(p)
+        return pyslvs.load(p) if p.suffix == ".pyslvs" else Scene.load(p)
     if spec in scenes.names():
         return scenes.load(spec)
     raise ValueError(

@@ -1,0 +1,108 @@
+"""MuJoCo models of scenes, checked in MuJoCo itself: the loops closed by MuJoCo's own
+equality constraints (Gauss-Newton on its residuals and Jacobians) put every point of the
+four-bar, a slider-crank, Jansen's leg and the double butterfly where the scene's sweep
+does, to 1e-6 of the scene's size, over the sweep's turn; the position servo driven with
+mj_step follows within 1e-6 too, away from dead points."""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import planarkin as pk
+import pytest
+from planarkin.face.cli import main
+from planarkin.interop import mujoco as mjcf
+
+SCENES = ["fourbar", "slider-crank", "jansen", "double-butterfly-1", "double-butterfly-2"]
+
+
+def test_mjcf_structure_without_mujoco() -> None:
+    """The tree and its closures, read with xml.etree (no MuJoCo needed)."""
+    sc = pk.scenes.load("jansen")
+    root = ET.fromstring(mjcf.build(sc).xml)
+    joints = root.findall(".//body/joint")
+    assert all(j.get("type") == "hinge" and j.get("axis") == "0 0 1" for j in joints)
+    connects = root.findall("./equality/connect")
+    # 8 links, 10 pin pairs (Z and M and C join three links each): 7 in the tree
+    assert len(joints) == 7 and len(connects) == 3
+    assert root.find("./actuator/position").get("joint") == "hinge:O:crank"
+    sites = {s.get("name") for s in root.iter("site")}
+    assert sites == {f"{ln}:{p}" for ln, v in sc.links.items() for p in v}
+
+
+def test_slider_crank_closes_with_a_block() -> None:
+    root = ET.fromstring(mjcf.build(pk.scenes.load("slider-crank")).xml)
+    block = root.find(".//body[@name='block:piston']")
+    assert block is not None and block.find("joint").get("type") == "slide"
+    assert block.find("joint").get("axis") == "1.0 0.0 0"
+    c = root.find("./equality/connect")
+    assert (c.get("body1"), c.get("body2")) == ("block:piston", "rod")
+
+
+def _replay(name: str):  # noqa: ANN202
+    pytest.importorskip("mujoco", reason="the mujoco extra is not installed")
+    from planarkin.interop.mujoco_replay import Replay
+
+    sc = pk.scenes.load(name)
+    return sc, sc.sweep(outputs=list(sc.points)), Replay(sc)
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_replay_in_mujoco_matches_the_sweep(name: str) -> None:
+    sc, sw, rp = _replay(name)
+    got = rp.replay(sw)
+    solved = sw.success
+    assert solved.sum() >= 80
+    err = 0.0
+    for site, path in got.items():
+        point = site.split(":", 1)[1]
+        assert not np.isnan(path[solved]).any(), site
+        err = max(err, float(np.abs(path[solved] - sw.points[point][solved]).max()))
+    assert err <= 1e-6 * rp.size, err / rp.size
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_servo_dynamics_follow_the_scene(name: str) -> None:
+    """mj_step with the position actuator: each point where the scene puts it for the input
+    the joint actually reached (MuJoCo's soft constraints and the servo's lag), away from
+    the dead point that ends a double butterfly's run."""
+    sc, sw, rp = _replay(name)
+    run = int(np.argmin(sw.success)) if not sw.success.all() else len(sw.theta)
+    offsets = sw.theta[:run] - rp.start
+    reached, pos = rp.simulate(offsets, steps=200)
+    ref = sc.sweep(reached + rp.start, outputs=list(sc.points))
+    keep = slice(0, run if run == len(sw.theta) else run - 3)
+    assert ref.success[keep].all()
+    for i, site in enumerate(rp.sites):
+        point = site.split(":", 1)[1]
+        err = np.abs(pos[keep, i] - ref.points[point][keep]).max() / rp.size
+        assert err <= 1e-4 if name.startswith("double") else err <= 1e-6, (site, err)
+
+
+def test_export_cli_writes_a_model_mujoco_loads(tmp_path) -> None:  # noqa: ANN001
+    path = tmp_path / "leg.xml"
+    assert main(["export", "jansen", "--to", str(path)]) == 0
+    mujoco = pytest.importorskip("mujoco", reason="the mujoco extra is not installed")
+    m = mujoco.MjModel.from_xml_path(str(path))
+    assert (m.nq, m.neq, m.nu) == (7, 3, 1)
+
+
+@pytest.mark.parametrize("name", pk.scenes.names())
+def test_every_built_in_scene_replays(name: str) -> None:
+    """Slots and prismatic pairs too (blocks connect-ed and weld-ed, slides in the tree),
+    linear inputs: within 1e-9 of the size but at a linear input's stroke ends, which are
+    dead points (a position there is good to the square root of the residual)."""
+    sc, sw, rp = _replay(name)
+    got = rp.replay(sw)
+    ok = sw.success.copy()
+    if sw.input == "displacement":
+        ok[[0, -1]] = False
+    for site, path in got.items():
+        point = site.split(":", 1)[1]
+        err = np.abs(path[ok] - sw.points[point][ok]).max() / rp.size
+        assert err <= 1e-9, (site, err)
+    if sw.input == "displacement":
+        ends = max(np.abs(p[[0, -1]] - sw.points[s.split(":", 1)[1]][[0, -1]]).max()
+                   for s, p in got.items())  # fmt: skip
+        assert ends <= 1e-6 * rp.size
