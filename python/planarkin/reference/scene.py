@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -22,6 +22,8 @@ from ._rules import check_options, positive_finite
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
+
+    from ..scene._model import Scene
 
 __all__ = ["scene_assemble_check", "scene_mobility", "scene_sweep"]
 
@@ -43,7 +45,8 @@ class _System:
     both ground and input by construction and gives no equation there.
     """
 
-    def __init__(self, scene: Mapping) -> None:
+    def __init__(self, scene: Mapping | Scene) -> None:
+        scene = as_mapping(scene)
         if not isinstance(scene, Mapping):
             raise ValueError(f"scene must be a mapping, got {type(scene).__name__}")
         for key in _REQUIRED:
@@ -313,9 +316,17 @@ class _System:
         return pts[0], next(p for p in pts if p != pts[0])
 
 
-def scene_mobility(scene: Mapping) -> int:
+def as_mapping(scene: object) -> Any:
+    """A scene as the file format's mapping: a :class:`planarkin.Scene` (anything with
+    ``to_dict()``) read through it, anything else as given (checked by the caller)."""
+    to_dict = getattr(scene, "to_dict", None)
+    return to_dict() if callable(to_dict) and not isinstance(scene, Mapping) else scene
+
+
+def scene_mobility(scene: Mapping | Scene) -> int:
     """Gruebler's count 3 (links - 1) - 2 sum over points (links at the point - 1), less
     one per slot and two per prismatic pair."""
+    scene = as_mapping(scene)
     links = scene["links"]
     count: dict[str, int] = {}
     for pts in links.values():
@@ -362,7 +373,7 @@ def _march(sys_, hist, t_to, tol, max_iter, max_step):
 
 
 def scene_sweep(
-    scene: Mapping,
+    scene: Mapping | Scene,
     theta: ArrayLike | None = None,
     *,
     tol: float = 1e-12,
@@ -374,7 +385,7 @@ def scene_sweep(
     (no plan: ``plan``, ``limit``, the per-step and per-point status arrays are None;
     ``det`` is the Hadamard ratio of this reference's own Jacobian, NaN where unsolved).
 
-    ``scene`` is a scene dict (``points``, ``links``, ``ground``, ``input`` {link, pivot},
+    ``scene`` is a :class:`planarkin.Scene` or a scene dict (``points``, ``links``, ``ground``, ``input`` {link, pivot},
     optional ``output``). The input link turns about its pivot by theta minus the drawn
     input angle (the direction from the pivot to the input's first other listed point);
     every other non-ground link is a rigid body whose pose is unknown, and all the joint
@@ -395,6 +406,7 @@ def scene_sweep(
     0.5 from its prediction); the next angle marches again from the last converged pose
     and its angle. Default ``theta``: the drawn angle + 0, 1, ..., 360 degrees.
     """
+    scene = as_mapping(scene)
     sys_ = _System(scene)
     if theta is None and sys_.linear is not None:
         raise ValueError("theta: a linear input's displacements must be given")
@@ -458,7 +470,7 @@ def scene_sweep(
     )  # fmt: skip
 
 
-def scene_assemble_check(scene: Mapping) -> float:
+def scene_assemble_check(scene: Mapping | Scene) -> float:
     """How far the drawing is from an assembled pose of its own links, relative to size.
 
     Solves the scene at its drawn input angle from the drawn pose (as ``scene_sweep``

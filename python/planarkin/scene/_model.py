@@ -145,7 +145,18 @@ class Scene:
         p = Path(path)
         if p.suffix not in (".json", ".toml"):
             raise ValueError(f"path must end in .json or .toml, got {str(path)!r}")
-        data = parse(p.read_text(encoding="utf-8"), p.suffix, str(p))
+        raw = p.read_bytes()
+        try:
+            text = raw.decode("utf-8")
+        except UnicodeDecodeError as e:
+            bom = raw[:2] in (b"\xff\xfe", b"\xfe\xff")
+            what = (
+                "UTF-16 text" if bom else f"not UTF-8 text (byte {e.start} is {raw[e.start]:#04x})"
+            )
+            raise ValueError(
+                f"{p}: {what}; a scene file is UTF-8 JSON or TOML (save it as UTF-8)"
+            ) from None
+        data = parse(text, p.suffix, str(p))
         if isinstance(data, dict) and data.get("name") is None:
             data["name"] = p.stem
         try:
@@ -386,7 +397,8 @@ class Scene:
         the drawn angle through one full turn); for a linear input (a slot or prismatic
         pair) it holds displacements s from the drawn pose (scene units; default 361
         values in increasing order across the interval reachable from the drawn pose, see
-        :meth:`stroke`). ``sw.input_kind`` says which.
+        :meth:`stroke`). ``sw.input_kind`` says which. A scalar ``theta`` gives a sweep of
+        one row.
 
         Every value gets a status; a point that cannot be solved is NaN with its status,
         and points that do not depend on it are still solved. Dyads are closed forms on
@@ -421,6 +433,8 @@ class Scene:
             t = self._default_theta()
         else:
             t = as_angles("theta", theta)
+            if t.ndim == 0:  # a scalar broadcasts: a sweep of one row
+                t = t.reshape(1)
             if t.ndim != 1:
                 raise ValueError(f"theta must be a 1-D array of input angles, got shape {t.shape}")
         tol, max_iter = as_float("tol", tol), as_i64("max_iter", max_iter)
