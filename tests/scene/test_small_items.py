@@ -13,9 +13,9 @@ import pytest
 from planarkin import reference
 
 
-def slider_crank_x(r: float, l: float, e: float, t: float) -> float:
+def slider_crank_x(r: float, rod: float, e: float, t: float) -> float:
     """The offset slider-crank's piston position along its line (closed form)."""
-    return r * math.cos(t) + math.sqrt(l * l - (r * math.sin(t) - e) ** 2)
+    return r * math.cos(t) + math.sqrt(rod * rod - (r * math.sin(t) - e) ** 2)
 
 
 def fourbar_b(t: float) -> np.ndarray:

@@ -385,9 +385,10 @@ def scene_sweep(
     (no plan: ``plan``, ``limit``, the per-step and per-point status arrays are None;
     ``det`` is the Hadamard ratio of this reference's own Jacobian, NaN where unsolved).
 
-    ``scene`` is a :class:`planarkin.Scene` or a scene dict (``points``, ``links``, ``ground``, ``input`` {link, pivot},
-    optional ``output``). The input link turns about its pivot by theta minus the drawn
-    input angle (the direction from the pivot to the input's first other listed point);
+    ``scene`` is a :class:`planarkin.Scene` or a scene dict (``points``, ``links``,
+    ``ground``, ``input`` {link, pivot}, optional ``output``). The input link turns about
+    its pivot by theta minus the drawn input angle (the direction from the pivot to the
+    input's first other listed point);
     every other non-ground link is a rigid body whose pose is unknown, and all the joint
     equations are solved together by Newton-Raphson (``np.linalg.solve``). Residuals and
     translations are divided by the scene's size (its longest link); a solve converges
