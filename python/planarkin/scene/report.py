@@ -73,9 +73,13 @@ class InputAxis:
         """``n`` inputs of a sweep: one turn from the drawn angle in ``step_deg`` steps."""
         return scene.input_angle + np.arange(n) * math.radians(step_deg)
 
-    def rate(self, rpm: float) -> float:
-        """The input's rate (omega, rad/s) when it is driven at ``rpm``."""
-        return rpm * math.tau / 60
+    #: the command-line option that sets the input's rate, and its default
+    rate_option = "--rpm"
+    rate_default = 100.0
+
+    def rate(self, given: float) -> float:
+        """The input's rate (omega, rad/s) when it is driven at ``given`` rpm."""
+        return given * math.tau / 60
 
     def head(self, scene: Scene, at: float) -> dict[str, Any]:
         """The circuits report's entries naming the input ``at``: the same three keys for
@@ -104,7 +108,7 @@ class InputAxis:
 
     def speed(self, omega: float, unit: str) -> dict[str, Any]:
         """A sweep summary's input speed: omega and rpm, or a linear speed."""
-        return {"omega_rad_s": omega, "rpm": rpm(omega), "speed": None}
+        return {"omega_rad_s": omega, "rpm": rpm(omega), "speed": None, "speed_value": None}
 
 
 class LinearAxis(InputAxis):
@@ -133,9 +137,12 @@ class LinearAxis(InputAxis):
         lo, hi = scene.stroke()
         return np.linspace(lo, hi, n)
 
-    def rate(self, rpm: float) -> float:
-        # driven at 1 length unit per second (rpm is for cranks)
-        return 1.0
+    rate_option = "--speed"
+    rate_default = 1.0
+
+    def rate(self, given: float) -> float:
+        """The input's rate: ``given`` length units per second, as it is."""
+        return float(given)
 
     def head(self, scene: Scene, at: float) -> dict[str, Any]:
         # the shared keys, then this kind's former ones (units, theta)
@@ -160,7 +167,8 @@ class LinearAxis(InputAxis):
         return {"drawn_input_deg": None, "stroke": [float(sw.theta[0]), float(sw.theta[-1])]}
 
     def speed(self, omega: float, unit: str) -> dict[str, Any]:
-        return {"omega_rad_s": None, "rpm": None, "speed": f"{omega:g} {unit}/s"}
+        return {"omega_rad_s": None, "rpm": None, "speed": f"{omega:g} {unit}/s",
+                "speed_value": omega}  # fmt: skip
 
 
 def input_axis(kind: str, units: str | None = None) -> InputAxis:

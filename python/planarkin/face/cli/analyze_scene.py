@@ -23,6 +23,7 @@ from ._common import (
     refuse_fourbar_options,
     scene_angles,
     scene_predictor,
+    scene_rate,
     table,
     warm_median,
     write_csv,
@@ -109,10 +110,9 @@ def run(args: argparse.Namespace) -> int:
     t_start = time.perf_counter()
     sc = load_scene(args.scene)
     theta = scene_angles(sc, args.step)
-    finite("--rpm", args.rpm)
     finite("--dpi", args.dpi, positive=True)
-    # a linear input is driven at 1 length unit per second (--rpm is for cranks)
-    rate = report.input_axis(sc.input_kind, sc.units).rate(args.rpm)
+    # --rpm for an input that turns, --speed for a linear one: the other is an error
+    rate = scene_rate(args, sc)
     figures = {} if args.no_figures else FIGURES
     sweep = functools.partial(
         sc.sweep, theta, tol=args.tol, max_iter=args.max_iter, rate=rate,
