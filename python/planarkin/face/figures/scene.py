@@ -203,9 +203,9 @@ def conditioning(scene: Scene, sweep: SceneSweep) -> Figure:
 
 
 def tracers(scene: Scene, sweep: SceneSweep) -> Figure | None:
-    """x and y of each tracer point against the input (angle or displacement), its speed when the sweep has
-    velocities and the size of its acceleration when it has accelerations; None when the
-    scene has no tracer point (no blank figure)."""
+    """x and y of each tracer point against the input (angle or displacement), its speed
+    when the sweep has velocities and the size of its acceleration when it has
+    accelerations; None when the scene has no tracer point (no blank figure)."""
     names = tracer_names(scene, sweep)
     if not names:
         return None
