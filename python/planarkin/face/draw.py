@@ -446,7 +446,7 @@ def _cylinders(
         need = [pts.get(k) for k in (cy.closed, cy.pin, *cy.line)]
         if any(v is None or not np.isfinite(v).all() for v in need):
             continue
-        closed, pin, a, b = need
+        closed, pin, a, b = (np.asarray(v, dtype=np.float64) for v in need)
         d = b - a
         n = float(np.hypot(*d))
         if not n > 0:

@@ -326,14 +326,14 @@ def as_mapping(scene: object) -> Any:
 def scene_mobility(scene: Mapping | Scene) -> int:
     """Gruebler's count 3 (links - 1) - 2 sum over points (links at the point - 1), less
     one per slot and two per prismatic pair."""
-    scene = as_mapping(scene)
-    links = scene["links"]
+    d = as_mapping(scene)
+    links = d["links"]
     count: dict[str, int] = {}
     for pts in links.values():
         for p in set(pts):
             count[p] = count.get(p, 0) + 1
     pins = 3 * (len(links) - 1) - 2 * sum(k - 1 for k in count.values())
-    return pins - len(scene.get("slots") or {}) - 2 * len(scene.get("prismatic") or {})
+    return pins - len(d.get("slots") or {}) - 2 * len(d.get("prismatic") or {})
 
 
 #: A substep whose solution lies farther than this (rotation in radians, translation over
@@ -407,8 +407,8 @@ def scene_sweep(
     0.5 from its prediction); the next angle marches again from the last converged pose
     and its angle. Default ``theta``: the drawn angle + 0, 1, ..., 360 degrees.
     """
-    scene = as_mapping(scene)
-    sys_ = _System(scene)
+    data = as_mapping(scene)
+    sys_ = _System(data)
     if theta is None and sys_.linear is not None:
         raise ValueError("theta: a linear input's displacements must be given")
     if theta is None:
@@ -467,7 +467,7 @@ def scene_sweep(
         det=det, limit=None, step_status=None, step_det=None, point_status_array=None,
         point_names=tuple(names), link_names=tuple(links),
         input_kind="angle" if sys_.linear is None else "displacement",
-        units=scene.get("units"),
+        units=data.get("units"),
     )  # fmt: skip
 
 

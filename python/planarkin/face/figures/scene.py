@@ -96,7 +96,9 @@ def _fit_rates(ax: Axes, values: list[np.ndarray]) -> None:
     """Fits a rate panel's y axis to the bulk of ``values`` when a few rows near a dead
     point (rates unbounded there) would flatten every other row to the axis, and says
     so on the panel."""
-    v = np.concatenate([np.asarray(x, dtype=np.float64).ravel() for x in values] or [[]])
+    if not values:
+        return
+    v = np.concatenate([np.asarray(x, dtype=np.float64).ravel() for x in values])
     v = v[np.isfinite(v)]
     if len(v) < 10:
         return
