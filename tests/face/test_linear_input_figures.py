@@ -17,14 +17,14 @@ import numpy as np
 import planarkin as pk
 import pytest
 from _support import run_cli
-from matplotlib.path import Path as MplPath
 from matplotlib.patches import Polygon
+from matplotlib.path import Path as MplPath
 from planarkin.face import animate
 from planarkin.face.figures import scene as scene_fig
 
 # the boom (hydraulic-boom.json): pivot O, barrel pivot C1, the rod's pin E on the boom
 # 800 mm from O, the tip T 2000 mm from O; C1, C2 and E in line (the cylinder's axis)
-O, C1 = np.array([0.0, 0.0]), np.array([600.0, -400.0])
+C1 = np.array([600.0, -400.0])  # O is the origin
 E0 = np.array([692.820323027551, 399.99999999999994])
 A_, B_ = float(np.hypot(*C1)), 800.0  # |O C1|, |O E|
 L0 = float(np.hypot(*(E0 - C1)))  # the cylinder's pin-to-pin length as drawn
