@@ -29,6 +29,7 @@ from ._results import (
     Trace,
 )
 from ._toml import dumps as toml_dumps
+from .output import needs
 
 #: Defaults, written once in the core (``planarkin_core::scene::format``): the largest
 #: continuation step of a group (3 degrees), the homotopy's seed (results are reproducible)
@@ -333,7 +334,10 @@ class Scene:
         if hit is None:
             if key is not None and not all(isinstance(o, str) for o in key):
                 raise ValueError(f"outputs must be a list of point or link names, got {outputs!r}")
-            core = self._core.plan(None if key is None else list(key))
+            # the declared output is always reported (its link's angle, a slot's point,
+            # line and rod): the plan of what was asked and of what it needs
+            asked = None if key is None else list(dict.fromkeys([*key, *needs(self)]))
+            core = self._core.plan(asked)
             names = list(self._data["points"])
             lnames = list(self._data["links"])
             steps = tuple(

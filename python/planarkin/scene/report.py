@@ -14,6 +14,7 @@ import numpy as np
 from .._angles import rpm, wrap_deg, wrapped
 from .._results import true_runs
 from .._status import Status
+from . import output as declared_output
 from ._model import Scene
 from ._results import Circuit, SceneSweep
 
@@ -23,6 +24,7 @@ __all__ = [
     "circuits_summary",
     "columns",
     "input_axis",
+    "output_summary",
     "reachable",
     "rows",
     "summary",
@@ -180,6 +182,37 @@ def _none(x: float) -> float | None:
     return x if math.isfinite(x) else None
 
 
+def _declared(
+    scene: Scene, sw: SceneSweep
+) -> tuple[declared_output.Declared, np.ndarray, np.ndarray | None] | None:
+    """The declared output of ``scene`` along ``sw``: (what it is, its coordinate at every
+    row, a slot's transmission angle or None); None without an output, or where the sweep
+    does not report its points."""
+    dec = declared_output.declared(scene)
+    if dec is None or not all(p in sw.points for p in dec.points()):
+        return None
+    pts = sw.points
+    return dec, declared_output.coordinate(dec, pts), declared_output.transmission(dec, pts)
+
+
+def output_summary(scene: Scene, sw: SceneSweep) -> dict[str, Any] | None:
+    """The declared output of a sweep as data (:func:`planarkin.scene.output.summary`):
+    its extremes and the inputs where they occur (shown as the input axis shows them),
+    swing or stroke, a crank's quick-return time ratio, a slot's least transmission
+    angle; None when the scene declares no output."""
+    got = _declared(scene, sw)
+    if got is None:
+        return None
+    dec, y, mu = got
+    axis = input_axis(scene.input_kind, scene.units)
+    y = np.where(sw.success, y, np.nan)
+    mu = None if mu is None else np.where(sw.success, mu, np.nan)
+    return declared_output.summary(
+        dec, np.asarray(sw.theta), y, mu, angle_input=scene.input_kind == "angle",
+        shown=axis.value, unit=scene.units or "length",
+    )  # fmt: skip
+
+
 def summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
     """A sweep of ``scene`` as data: the scene, its plan, what converged, conditioning,
     where the motion stops and the dead points met (input values as the axis shows them;
@@ -233,14 +266,16 @@ def summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
         "conditioning_max": float(absdet.max()) if ok.any() else None,
         "motion_stops_deg": edges,
         "dead_points_deg": dead,
+        "output": output_summary(scene, sw),
         "wall_time_s": wall,
     }
 
 
-def columns(sw: SceneSweep, units: str | None) -> list[str]:
+def columns(sw: SceneSweep, units: str | None, scene: Scene | None = None) -> list[str]:
     """The CSV header of a sweep, units in brackets: the input (an angle, or a linear
     input's displacement), statuses, each point's position (and velocity, acceleration
-    when computed), each link's angle (and angular velocity, acceleration)."""
+    when computed), each link's angle (and angular velocity, acceleration); with the
+    ``scene``, its declared output last (its coordinate, a slot's transmission angle)."""
     u = units or "length"
     cols = [
         input_axis(sw.input_kind, units).column,
@@ -261,11 +296,22 @@ def columns(sw: SceneSweep, units: str | None) -> list[str]:
             cols += [f"{n}_omega [rad/s]"]
         if sw.angular_accelerations is not None:
             cols += [f"{n}_alpha [rad/s^2]"]
+    got = None if scene is None else _declared(scene, sw)
+    if got is not None:
+        cols += list(declared_output.columns(got[0], u))
     return cols
 
 
-def rows(sw: SceneSweep) -> Iterator[list[object]]:
-    """The CSV rows of a sweep, one per input value, in :func:`columns` order."""
+def rows(sw: SceneSweep, scene: Scene | None = None) -> Iterator[list[object]]:
+    """The CSV rows of a sweep, one per input value, in :func:`columns` order (the same
+    ``scene``: its declared output last, an angle in degrees in (-180, 180])."""
+    got = None if scene is None else _declared(scene, sw)
+    extra: list[np.ndarray] = []
+    if got is not None:
+        dec, y, mu = got
+        extra.append(wrap_deg(y) if dec.kind == "angle" else y)
+        if mu is not None:
+            extra.append(np.degrees(mu))
     per_point = [a for a in (sw.coords, sw.velocity_array, sw.acceleration_array) if a is not None]
     per_link = [
         a for a in (sw.angular_velocity_array, sw.angular_acceleration_array) if a is not None
@@ -283,6 +329,7 @@ def rows(sw: SceneSweep) -> Iterator[list[object]]:
         for j in range(len(sw.link_names)):
             row.append(float(link_deg[i, j]))
             row += [float(a[i, j]) for a in per_link]
+        row += [float(e[i]) for e in extra]
         yield row
 
 
