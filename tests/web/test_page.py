@@ -537,3 +537,10 @@ def test_a_bad_toml_file_says_so_in_one_line(page, tmp_path):
         time.sleep(0.05)
     msg = page.message()
     assert msg.startswith("twice.toml is not TOML: ") and "name" in msg and "\n" not in msg
+
+
+def test_a_slots_direction_point_is_no_pivot(page):
+    """Whitworth's X only gives the ram's line its direction: no ground pivot is drawn
+    there (issue 32, item 10); O2 and O4 carry the crank and the lever."""
+    state = page.open("?scene=whitworth")
+    assert state["pivots"] == ["O2", "O4"] and "X" in state["drawn"]
