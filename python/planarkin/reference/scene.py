@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -23,8 +23,6 @@ from ._rules import check_options, positive_finite
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from ..scene._model import Scene
-
 __all__ = ["scene_assemble_check", "scene_mobility", "scene_sweep"]
 
 #: A Jacobian whose reciprocal condition number (smallest over largest singular value,
@@ -32,6 +30,13 @@ __all__ = ["scene_assemble_check", "scene_mobility", "scene_sweep"]
 RCOND_THRESHOLD = 1e-10
 
 _REQUIRED = ("points", "links", "ground", "input")
+
+
+class Scene(Protocol):
+    """A :class:`planarkin.Scene`, as the reference sees it (it imports nothing of the
+    kernel's): something that writes itself in the file format."""
+
+    def to_dict(self) -> dict[str, Any]: ...
 
 
 class _System:
