@@ -133,7 +133,11 @@ def test_animation_frames_say_the_displacement(boom):
     sc, _ = boom
     sw = sc.sweep(outputs="all")
     anim = animate.scene(sc, sw, frames=5, dpi=30)
-    theta, points, _, _ = animate.motion(sc, sw)
+    theta, points, _, back = animate.motion(sc, sw)
+    # out across the stroke and back, as a cylinder goes: never a jump end to end
+    top = int(np.argmax(theta))
+    assert back and np.all(np.diff(theta[: top + 1]) > 0) and np.all(np.diff(theta[top:]) < 0)
+    assert np.abs(np.diff(theta)).max() <= 1.01 * np.ptp(sw.theta) / (len(sw) - 1)
     frames = animate.scene_frames(points, 5)
     ax = anim._fig.axes[0]
     for i in frames:

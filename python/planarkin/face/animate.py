@@ -183,6 +183,7 @@ def scene(
     name = clean(scene.name, "scene")
     unit = scene.units or "length"
     linear = scene.input_kind == "displacement"
+    how = "out and back across its stroke" if linear else "rocking between its dead points"
     return animation(
         st,
         points,
@@ -191,7 +192,7 @@ def scene(
         scene_frames(points, frames),
         ground={p: drawn[p] for p in st.links[st.ground]},
         ground_size=ground_size(scene),
-        title=f"{name}, rocking between its dead points" if rocks else name,
+        title=f"{name}, {how}" if rocks else name,
         symbol="s" if linear else "θ",
         shown=(lambda v: f"{v:9.4g} {unit}") if linear else None,
         tracers=[p for p in tracer_names(scene, sweep) if p in points],
@@ -216,9 +217,16 @@ def motion(
     """The motion an animation plays: the sweep's solved poses in order when the input
     turns fully on the drawn circuit (every angle solved); else the drawn circuit traced
     through its dead points (``Scene.trace``), so the input rocks between them and the
-    linkage moves continuously. Returns (input angles, name -> (M, 2) points, statuses,
-    whether it rocks)."""
+    linkage moves continuously. A linear input (a cylinder) goes out across its solved
+    stroke and back, as a cylinder does (never a jump from one end to the other). Returns
+    (input values, name -> (M, 2) points, statuses, whether it rocks or goes back)."""
     ok = sweep.success
+    if sweep.input_kind == "displacement" and ok.sum() > 2:
+        out = np.flatnonzero(ok)
+        out = out[np.argsort(sweep.theta[out], kind="stable")]
+        keep = np.concatenate([out, out[-2:0:-1]])
+        pts = {k: v[keep] for k, v in sweep.points.items()}
+        return sweep.theta[keep], pts, sweep.status[keep], True
     if ok.all() or not ok.any():
         keep = np.flatnonzero(ok)
         pts = {k: v[keep] for k, v in sweep.points.items()}

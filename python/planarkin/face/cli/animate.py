@@ -107,6 +107,8 @@ def _run_scene(args: argparse.Namespace) -> int:
     n = len(animate.scene_frames(points, args.frames))
     gif, page = _save(anim, args, f"planarkin: {sc.name or args.scene}", n)
     how = ", rocking between its dead points (the input cannot turn fully)" if rocks else ""
+    if rocks and sc.input_kind == "displacement":
+        how = ", out and back across its stroke"
     what = "input angles" if sc.input_kind == "angle" else "input displacements"
     print(f"planarkin animate: {sc.name or args.scene}, {int(sw.success.sum())} of {len(sw)} "
           f"{what} solved{how}")  # fmt: skip
