@@ -12,7 +12,17 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["Declared", "declared", "extremes", "needs", "time_ratio", "transmission"]
+__all__ = [
+    "Declared",
+    "columns",
+    "coordinate",
+    "declared",
+    "extremes",
+    "needs",
+    "summary",
+    "time_ratio",
+    "transmission",
+]
 
 
 @dataclass(frozen=True)
