@@ -170,3 +170,33 @@ def test_circuits_figure_plots_the_declared_output():
     # or the other circuit's: the rod on the crank pin's far side, B = A_x - sqrt(...)
     other = want - 2 * np.sqrt(160**2 - (40 * np.sin(np.radians(x[ok])) - 20) ** 2)
     assert np.allclose(y[ok], want, atol=1e-6) or np.allclose(y[ok], other, atol=1e-6)
+
+
+def test_a_rocking_crank_reports_the_swing_across_its_reach():
+    """A non-Grashof four-bar (6, 4, 3, 4) drawn at theta2 = 0: its crank rocks between
+    +-86.4 deg, so its default sweep (0..360 deg) is solved at both ends and out of reach
+    in the middle. The rocker's swing is the closed form's over the solved inputs, the two
+    solved spans joined through 0 (not across the unreachable middle)."""
+    sc = pk.FourBar(6, 4, 3, 4).to_scene(theta2=0.0)
+    sw = sc.sweep()
+    ok = sw.success
+    assert ok[0] and ok[-1] and not ok.all()
+    lim = math.acos(3 / 48)  # |O4 A| = r3 + r4 = 7: the dead points
+    t_solved = np.angle(np.exp(1j * sw.theta[ok]))
+    assert np.abs(t_solved).max() <= lim
+    lo, hi = t_solved.min(), t_solved.max()
+
+    def rocker(t):
+        a = np.stack([4 * np.cos(t), 4 * np.sin(t)], axis=-1)
+        d = np.array([6.0, 0.0]) - a
+        dist = np.hypot(d[..., 0], d[..., 1])
+        x = (dist**2 + 9 - 16) / (2 * dist)  # along A -> O4 from A, |AB| = 3
+        h = np.sqrt(9 - x**2)
+        nrm = np.stack([-d[..., 1], d[..., 0]], axis=-1) / dist[..., None]
+        b = a + d * (x / dist)[..., None] + h[..., None] * nrm  # the drawn side (B above)
+        return np.unwrap(np.arctan2(b[..., 1], b[..., 0] - 6.0))
+
+    y = np.degrees(rocker(np.linspace(lo, hi, 200_001)))
+    o = report.output_summary(sc, sw)
+    assert o["swing_deg"] == pytest.approx(y.max() - y.min(), abs=1e-6)
+    assert o["time_ratio"] is None  # the crank does not turn

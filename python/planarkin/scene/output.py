@@ -180,14 +180,30 @@ def extremes(
             k = np.arange(i - 2, i + 3)
             # the rows across the seam are a period on: continue t there
             x = t[k % n].astype(float) + period * np.floor_divide(k, n)
-            out.append(_vertex(x, y[k % n]))
+            out.append(_refined(x, y[k % n]))
         elif 2 <= i < n - 2:
-            out.append(_vertex(t[i - 2 : i + 3], y[i - 2 : i + 3]))
+            out.append(_refined(t[i - 2 : i + 3], y[i - 2 : i + 3]))
         elif 0 < i < n - 1:
-            out.append(_vertex(t[i - 1 : i + 2], y[i - 1 : i + 2]))
+            out.append(_refined(t[i - 1 : i + 2], y[i - 1 : i + 2]))
         else:
             out.append((float(t[i]), float(y[i])))
     return out[0], out[1]
+
+
+def _refined(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+    """The sampled extreme in the middle of ``x``, refined (:func:`_vertex`) only where it
+    is one: samples evenly spaced round it (no unsolved rows between) and the middle one
+    beyond both neighbours. An extreme at the edge of a solved span (the motion stops
+    there, at a dead point) is the sample itself."""
+    m = len(x) // 2
+    step = np.diff(x)
+    even = bool(np.all(step > 0)) and float(step.max()) <= 1.01 * float(step.min())
+    peak = (y[m] - y[m - 1]) * (y[m] - y[m + 1]) > 0
+    if even and peak:
+        return _vertex(x, y)
+    if peak and len(x) == 5:
+        return _refined(x[1:4], y[1:4])
+    return float(x[m]), float(y[m])
 
 
 def time_ratio(t: np.ndarray, y: np.ndarray) -> tuple[float, float, float] | None:

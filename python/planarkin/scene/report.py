@@ -203,12 +203,25 @@ def output_summary(scene: Scene, sw: SceneSweep) -> dict[str, Any] | None:
     got = _declared(scene, sw)
     if got is None:
         return None
-    dec, y, mu = got
+    dec, _, _ = got
     axis = input_axis(scene.input_kind, scene.units)
-    y = np.where(sw.success, y, np.nan)
-    mu = None if mu is None else np.where(sw.success, mu, np.nan)
+    t = np.asarray(sw.theta, dtype=np.float64)
+    ok = np.asarray(sw.success)
+    rows = np.arange(len(t))
+    turn = len(t) > 2 and math.isclose(float(t[-1] - t[0]), math.tau, rel_tol=0, abs_tol=1e-9)
+    if scene.input_kind == "angle" and turn and not ok.all() and ok[0] and ok[-1]:
+        # a turn whose middle is out of reach: the solved rows after the gap lead on to
+        # those before it (the last row is the first again), so follow them in that order
+        gap = np.flatnonzero(~ok)
+        rows = np.concatenate([np.arange(gap[-1] + 1, len(t)), np.arange(1, gap[0])])
+        t = np.where(rows < gap[0], t[rows] + math.tau, t[rows])
+        ok = ok[rows]
+    pts = {k: v[rows] for k, v in sw.points.items()}
+    pts = {k: np.where(ok[:, None], v, np.nan) for k, v in pts.items()}
+    y = declared_output.coordinate(dec, pts)
+    mu = declared_output.transmission(dec, pts)
     return declared_output.summary(
-        dec, np.asarray(sw.theta), y, mu, angle_input=scene.input_kind == "angle",
+        dec, t, y, mu, angle_input=scene.input_kind == "angle",
         shown=axis.value, unit=scene.units or "length",
     )  # fmt: skip
 
