@@ -113,3 +113,40 @@ def test_export_a_built_in_scene_to_start_from(tmp_path, capsys, monkeypatch):
     assert cli.main(["scenes", "--export", "jansen", "--to", "j.toml", "--force"]) == 0
     assert cli.main(["scenes", "--export", "nosuch"]) == 2
     assert "unknown built-in scene 'nosuch'" in capsys.readouterr().err
+
+
+def test_progress_under_a_zero_column_terminal_keeps_a_fixed_width(monkeypatch):
+    """A pseudo-terminal that says it has 0 columns: the bar falls back to a fixed width
+    (tqdm draws nothing at 0) (issue 32, item 10)."""
+    import fcntl
+    import os
+    import pty
+    import select
+    import struct
+    import sys
+    import termios
+
+    master, slave = pty.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 0, 0, 0))
+    assert os.get_terminal_size(slave).columns == 0
+    tty = os.fdopen(slave, "w")
+    try:
+        monkeypatch.setattr(sys, "stderr", tty)
+        monkeypatch.setenv(progress.ENV, "1")
+        with progress.bar(10, "zero", unit="step") as b:
+            b.update(4)
+            b.refresh()
+            tty.flush()
+            got = b""
+            while select.select([master], [], [], 0.5)[0]:
+                got += os.read(master, 65536)
+                if b"4/10" in got:
+                    break
+        text = got.decode("utf-8", "replace")
+        assert "planarkin zero" in text and "4/10" in text, text
+        # the fixed width: the bar's line fills it (tqdm pads to ncols)
+        line = text.replace("\r", "\n").strip("\n").split("\n")[-1]
+        assert len(line) == progress.FALLBACK_COLUMNS, repr(line)
+    finally:
+        tty.close()
+        os.close(master)

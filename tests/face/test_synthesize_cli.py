@@ -244,3 +244,29 @@ def test_readme_command_regenerates_the_shipped_example():
     for k, v in rep["options"].items():
         if k not in ("workers", "quiet", "json", "out"):
             assert getattr(args, k) == v, k
+
+
+@pytest.mark.slow  # 4 s: two real starts, then marked as cut at the time limit
+def test_cli_report_counts_the_starts_the_line_counts(tmp_path, monkeypatch):
+    """report.json's finished_starts is the line's "N of M ran to the end": a start cut at
+    the time limit is counted in stopped_starts, never as finished (issue 32, item 10)."""
+    from dataclasses import replace
+
+    from planarkin.synthesis import driver
+    from planarkin.synthesis.results import TIME_LIMIT
+
+    real = driver.synthesize
+
+    def cut(*a, **kw):
+        res = real(*a, **kw)
+        return replace(res, runs=[replace(r, stopped=TIME_LIMIT) for r in res.runs],
+                       stopped=TIME_LIMIT)  # fmt: skip
+
+    monkeypatch.setattr(driver, "synthesize", cut)
+    out = tmp_path / "cut"
+    code, stdout, _ = run_cli("synthesize", "ackermann", "--out", str(out), *QUICK,
+                              "--time-limit", "600")  # fmt: skip
+    assert code == 0, stdout
+    assert "0 of 2 starts ran to the end, 2 stopped at the limit" in stdout
+    rep = json.loads((out / "report.json").read_text())
+    assert (rep["starts"], rep["finished_starts"], rep["stopped_starts"]) == (2, 0, 2)

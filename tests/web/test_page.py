@@ -470,3 +470,77 @@ def test_a_linear_output_is_the_cores_as_pythons(page, name):
     want = float(sc.sweep([theta]).output[0])
     assert reply["output"] == pytest.approx(want, rel=0, abs=TOL)
     assert f"output: {want:.2f}" in page.el("info").text
+
+
+HAND_TOML = """# a slider-crank typed by hand: comments, a literal string, dotted keys, an inline
+# table, a sub-table header, an array over several lines, an underscore in a number
+name = 'slider-crank, by hand'
+units = "mm"
+ground = "ground"
+input = { link = "crank", pivot = "O2" }
+output.slot = "piston"
+
+[points]
+O2 = [0, 0]
+X = [1_000, 0.0]
+A = [34.64101615137755, 19.999999999999996]
+B = [
+  193.386094815253,  # x
+  0.0,
+]
+
+[links]
+ground = ["O2", "X"]
+crank = ["O2", "A"]
+rod = ["A", "B"]
+
+[slots.piston]
+point = "B"
+guide = "ground"
+line = ["O2", "X"]
+"""
+
+
+def _open_file(page, path, name):
+    page.open()
+    page.el("file").send_keys(str(path))
+    for _ in range(100):
+        if page.state()["scene"] == name:
+            break
+        time.sleep(0.05)
+
+
+@pytest.mark.parametrize("how", ["saved", "by-hand"])
+def test_a_toml_scene_file_opens_as_the_command_line_reads_it(page, tmp_path, how):
+    """The page's file input takes TOML as the CLI does (issue 32, item 10): the state is
+    Python's for the same file (read by tomllib)."""
+    path = tmp_path / f"{how}.toml"
+    if how == "saved":
+        pk.scenes.load("whitworth").save(path)
+    else:
+        path.write_text(HAND_TOML, encoding="utf-8")
+    sc = pk.Scene.load(path)
+    _open_file(page, path, path.name)
+    assert page.message() == ""
+    _assert_scene_state(page.state(), sc, sc.input_angle)
+
+
+def test_a_bad_toml_file_says_so_in_one_line(page, tmp_path):
+    path = tmp_path / "twice.toml"
+    path.write_text('name = "a"\nname = "b"\n', encoding="utf-8")
+    with pytest.raises(ValueError):
+        pk.Scene.load(path)  # Python refuses it too
+    _open_file(page, path, path.name)
+    for _ in range(100):
+        if page.message():
+            break
+        time.sleep(0.05)
+    msg = page.message()
+    assert msg.startswith("twice.toml is not TOML: ") and "name" in msg and "\n" not in msg
+
+
+def test_a_slots_direction_point_is_no_pivot(page):
+    """Whitworth's X only gives the ram's line its direction: no ground pivot is drawn
+    there (issue 32, item 10); O2 and O4 carry the crank and the lever."""
+    state = page.open("?scene=whitworth")
+    assert state["pivots"] == ["O2", "O4"] and "X" in state["drawn"]

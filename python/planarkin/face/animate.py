@@ -51,6 +51,7 @@ def animation(
     ground_size: float,
     title: str,
     symbol: str = "θ",
+    shown: Callable[[float], str] | None = None,
     notes: Sequence[str] | None = None,
     tracers: Sequence[str] = (),
     fps: float = 12,
@@ -60,8 +61,10 @@ def animation(
     """The linkage ``st`` moving through ``points`` (name -> (N, 2)) at the indices
     ``frames``: the ground (points ``ground``) drawn once, each tracer's whole path faint
     and its path so far in colour, the pose redrawn each frame (the input link red, the
-    rest blue), and a label "``symbol`` = input angle" with ``notes[i]`` and the status
-    where it is not CONVERGED."""
+    rest blue), and a label "``symbol`` = input" with ``notes[i]`` and the status where it
+    is not CONVERGED; ``shown(value)`` writes the input (default: an angle in degrees,
+    wrapped to (-180, 180])."""
+    write = shown or (lambda v: f"{wrapped(v):6.1f}°")
     fig = Figure(figsize=figsize, dpi=dpi, layout="constrained")
     ax = fig.subplots()
     for p in tracers:
@@ -89,7 +92,7 @@ def animation(
         code = Status(int(status[i]))
         state = "" if code == Status.CONVERGED else "  " + code.name.lower().replace("_", " ")
         note = f"  {notes[i]}" if notes is not None else ""
-        label.set_text(f"{symbol} = {wrapped(theta[i]):6.1f}°{note}{state}")
+        label.set_text(f"{symbol} = {write(float(theta[i]))}{note}{state}")
         return [*drawn, *traces.values(), label]
 
     return FuncAnimation(fig, draw_frame, frames=list(frames), interval=1000.0 / fps, blit=False)
@@ -162,8 +165,11 @@ def fourbar(
 def scene(
     scene: Scene, sweep: SceneSweep, *, frames: int = 72, fps: float = 12, dpi: float = 80
 ) -> FuncAnimation:
-    """The scene moving through the solved input angles of the sweep (at most ``frames``,
-    evenly spaced), its tracer points' paths traced. A linkage whose input cannot turn
+    """The scene moving through the solved input values of the sweep (at most ``frames``,
+    evenly spaced), its tracer points' paths traced, each frame labelled with its input
+    (an angle in degrees, or a linear input's displacement in the scene's unit). Links
+    whose points the sweep did not report are left out: sweep ``outputs="all"`` to draw
+    every link (the command does). A linkage whose input cannot turn
     fully on the drawn circuit rocks between its dead points instead (:func:`motion`), as
     a four-bar's crank rocks between its toggles: never a jump across what it cannot
     reach."""
@@ -175,6 +181,9 @@ def scene(
     st = draw.Structure.of(scene)
     drawn = scene.points
     name = clean(scene.name, "scene")
+    unit = scene.units or "length"
+    linear = scene.input_kind == "displacement"
+    how = "out and back across its stroke" if linear else "rocking between its dead points"
     return animation(
         st,
         points,
@@ -183,7 +192,9 @@ def scene(
         scene_frames(points, frames),
         ground={p: drawn[p] for p in st.links[st.ground]},
         ground_size=ground_size(scene),
-        title=f"{name}, rocking between its dead points" if rocks else name,
+        title=f"{name}, {how}" if rocks else name,
+        symbol="s" if linear else "θ",
+        shown=(lambda v: f"{v:9.4g} {unit}") if linear else None,
         tracers=[p for p in tracer_names(scene, sweep) if p in points],
         fps=fps,
         dpi=dpi,
@@ -206,9 +217,16 @@ def motion(
     """The motion an animation plays: the sweep's solved poses in order when the input
     turns fully on the drawn circuit (every angle solved); else the drawn circuit traced
     through its dead points (``Scene.trace``), so the input rocks between them and the
-    linkage moves continuously. Returns (input angles, name -> (M, 2) points, statuses,
-    whether it rocks)."""
+    linkage moves continuously. A linear input (a cylinder) goes out across its solved
+    stroke and back, as a cylinder does (never a jump from one end to the other). Returns
+    (input values, name -> (M, 2) points, statuses, whether it rocks or goes back)."""
     ok = sweep.success
+    if sweep.input_kind == "displacement" and ok.sum() > 2:
+        out = np.flatnonzero(ok)
+        out = out[np.argsort(sweep.theta[out], kind="stable")]
+        keep = np.concatenate([out, out[-2:0:-1]])
+        pts = {k: v[keep] for k, v in sweep.points.items()}
+        return sweep.theta[keep], pts, sweep.status[keep], True
     if ok.all() or not ok.any():
         keep = np.flatnonzero(ok)
         pts = {k: v[keep] for k, v in sweep.points.items()}

@@ -72,5 +72,7 @@ def clean(text: str | None, default: str = "") -> str:
 
 def use() -> None:
     """Makes the figures fall back, glyph by glyph, on every installed :data:`FALLBACKS`
-    font (the command calls it once; a notebook's own settings are its own)."""
+    font (the command calls it once; a notebook's own settings are its own), and keeps an
+    SVG figure's text as text (editable and searchable in a paper), not paths."""
     rcParams["font.family"] = list(families())
+    rcParams["svg.fonttype"] = "none"

@@ -9,10 +9,13 @@ from typing import Any
 
 from tqdm import tqdm
 
-__all__ = ["ENV", "bar", "shown"]
+__all__ = ["ENV", "FALLBACK_COLUMNS", "bar", "shown"]
 
 #: The environment variable that forces the bars on (1) or off (0) whatever stderr is.
 ENV = "PLANARKIN_PROGRESS"
+#: A bar's width where the terminal does not say its own (a pseudo-terminal of 0 columns,
+#: stderr not a terminal): tqdm would draw nothing at 0.
+FALLBACK_COLUMNS = 80
 
 
 def shown(quiet: bool = False) -> bool:
@@ -26,9 +29,19 @@ def shown(quiet: bool = False) -> bool:
     return sys.stderr.isatty()
 
 
+def _columns() -> int:
+    """stderr's width in columns; 0 where it has none (not a terminal, or one that says 0)."""
+    try:
+        return os.get_terminal_size(sys.stderr.fileno()).columns
+    except (OSError, ValueError, AttributeError):
+        return 0
+
+
 def bar(total: int, what: str, *, quiet: bool = False, unit: str = "step") -> tqdm[Any]:
     """A bar of ``total`` units labelled "planarkin ``what``"; it disappears when done, so
-    the command's own output stays as it is."""
+    the command's own output stays as it is. It follows the terminal's width, or is
+    :data:`FALLBACK_COLUMNS` wide where the terminal has none."""
+    sized = _columns() > 0
     return tqdm(
         total=total,
         desc=f"planarkin {what}",
@@ -36,5 +49,6 @@ def bar(total: int, what: str, *, quiet: bool = False, unit: str = "step") -> tq
         disable=not shown(quiet),
         file=sys.stderr,
         leave=False,
-        dynamic_ncols=True,
+        dynamic_ncols=sized,
+        ncols=None if sized else FALLBACK_COLUMNS,
     )

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -32,6 +32,13 @@ RCOND_THRESHOLD = 1e-10
 _REQUIRED = ("points", "links", "ground", "input")
 
 
+class Scene(Protocol):
+    """A :class:`planarkin.Scene`, as the reference sees it (it imports nothing of the
+    kernel's): something that writes itself in the file format."""
+
+    def to_dict(self) -> dict[str, Any]: ...
+
+
 class _System:
     """The scene's joint equations over the free links' poses.
 
@@ -43,7 +50,8 @@ class _System:
     both ground and input by construction and gives no equation there.
     """
 
-    def __init__(self, scene: Mapping) -> None:
+    def __init__(self, scene: Mapping | Scene) -> None:
+        scene = as_mapping(scene)
         if not isinstance(scene, Mapping):
             raise ValueError(f"scene must be a mapping, got {type(scene).__name__}")
         for key in _REQUIRED:
@@ -313,16 +321,24 @@ class _System:
         return pts[0], next(p for p in pts if p != pts[0])
 
 
-def scene_mobility(scene: Mapping) -> int:
+def as_mapping(scene: object) -> Any:
+    """A scene as the file format's mapping: a :class:`planarkin.Scene` (anything with
+    ``to_dict()``) read through it, anything else as given (checked by the caller)."""
+    to_dict = getattr(scene, "to_dict", None)
+    return to_dict() if callable(to_dict) and not isinstance(scene, Mapping) else scene
+
+
+def scene_mobility(scene: Mapping | Scene) -> int:
     """Gruebler's count 3 (links - 1) - 2 sum over points (links at the point - 1), less
     one per slot and two per prismatic pair."""
-    links = scene["links"]
+    d = as_mapping(scene)
+    links = d["links"]
     count: dict[str, int] = {}
     for pts in links.values():
         for p in set(pts):
             count[p] = count.get(p, 0) + 1
     pins = 3 * (len(links) - 1) - 2 * sum(k - 1 for k in count.values())
-    return pins - len(scene.get("slots") or {}) - 2 * len(scene.get("prismatic") or {})
+    return pins - len(d.get("slots") or {}) - 2 * len(d.get("prismatic") or {})
 
 
 #: A substep whose solution lies farther than this (rotation in radians, translation over
@@ -362,7 +378,7 @@ def _march(sys_, hist, t_to, tol, max_iter, max_step):
 
 
 def scene_sweep(
-    scene: Mapping,
+    scene: Mapping | Scene,
     theta: ArrayLike | None = None,
     *,
     tol: float = 1e-12,
@@ -374,9 +390,10 @@ def scene_sweep(
     (no plan: ``plan``, ``limit``, the per-step and per-point status arrays are None;
     ``det`` is the Hadamard ratio of this reference's own Jacobian, NaN where unsolved).
 
-    ``scene`` is a scene dict (``points``, ``links``, ``ground``, ``input`` {link, pivot},
-    optional ``output``). The input link turns about its pivot by theta minus the drawn
-    input angle (the direction from the pivot to the input's first other listed point);
+    ``scene`` is a :class:`planarkin.Scene` or a scene dict (``points``, ``links``,
+    ``ground``, ``input`` {link, pivot}, optional ``output``). The input link turns about
+    its pivot by theta minus the drawn input angle (the direction from the pivot to the
+    input's first other listed point);
     every other non-ground link is a rigid body whose pose is unknown, and all the joint
     equations are solved together by Newton-Raphson (``np.linalg.solve``). Residuals and
     translations are divided by the scene's size (its longest link); a solve converges
@@ -395,7 +412,8 @@ def scene_sweep(
     0.5 from its prediction); the next angle marches again from the last converged pose
     and its angle. Default ``theta``: the drawn angle + 0, 1, ..., 360 degrees.
     """
-    sys_ = _System(scene)
+    data = as_mapping(scene)
+    sys_ = _System(data)
     if theta is None and sys_.linear is not None:
         raise ValueError("theta: a linear input's displacements must be given")
     if theta is None:
@@ -454,11 +472,11 @@ def scene_sweep(
         det=det, limit=None, step_status=None, step_det=None, point_status_array=None,
         point_names=tuple(names), link_names=tuple(links),
         input_kind="angle" if sys_.linear is None else "displacement",
-        units=scene.get("units"),
+        units=data.get("units"),
     )  # fmt: skip
 
 
-def scene_assemble_check(scene: Mapping) -> float:
+def scene_assemble_check(scene: Mapping | Scene) -> float:
     """How far the drawing is from an assembled pose of its own links, relative to size.
 
     Solves the scene at its drawn input angle from the drawn pose (as ``scene_sweep``

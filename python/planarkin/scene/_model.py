@@ -29,6 +29,7 @@ from ._results import (
     Trace,
 )
 from ._toml import dumps as toml_dumps
+from .output import needs
 
 #: Defaults, written once in the core (``planarkin_core::scene::format``): the largest
 #: continuation step of a group (3 degrees), the homotopy's seed (results are reproducible)
@@ -161,7 +162,18 @@ class Scene:
         p = Path(path)
         if p.suffix not in (".json", ".toml"):
             raise ValueError(f"path must end in .json or .toml, got {str(path)!r}")
-        data = parse(p.read_text(encoding="utf-8"), p.suffix, str(p))
+        raw = p.read_bytes()
+        try:
+            text = raw.decode("utf-8")
+        except UnicodeDecodeError as e:
+            bom = raw[:2] in (b"\xff\xfe", b"\xfe\xff")
+            what = (
+                "UTF-16 text" if bom else f"not UTF-8 text (byte {e.start} is {raw[e.start]:#04x})"
+            )
+            raise ValueError(
+                f"{p}: {what}; a scene file is UTF-8 JSON or TOML (save it as UTF-8)"
+            ) from None
+        data = parse(text, p.suffix, str(p))
         if isinstance(data, dict) and data.get("name") is None:
             data["name"] = p.stem
         try:
@@ -345,7 +357,10 @@ class Scene:
         if hit is None:
             if key is not None and not all(isinstance(o, str) for o in key):
                 raise ValueError(f"outputs must be a list of point or link names, got {outputs!r}")
-            core = self._core.plan(None if key is None else list(key))
+            # the declared output is always reported (its link's angle, a slot's point,
+            # line and rod): the plan of what was asked and of what it needs
+            asked = None if key is None else list(dict.fromkeys([*key, *needs(self)]))
+            core = self._core.plan(asked)
             names = list(self._data["points"])
             lnames = list(self._data["links"])
             steps = tuple(
@@ -409,7 +424,8 @@ class Scene:
         the drawn angle through one full turn); for a linear input (a slot or prismatic
         pair) it holds displacements s from the drawn pose (scene units; default 361
         values in increasing order across the interval reachable from the drawn pose, see
-        :meth:`stroke`). ``sw.input_kind`` says which.
+        :meth:`stroke`). ``sw.input_kind`` says which. A scalar ``theta`` gives a sweep of
+        one row.
 
         Every value gets a status; a point that cannot be solved is NaN with its status,
         and points that do not depend on it are still solved. Dyads are closed forms on
@@ -444,6 +460,8 @@ class Scene:
             t = self._default_theta()
         else:
             t = as_angles("theta", theta)
+            if t.ndim == 0:  # a scalar broadcasts: a sweep of one row
+                t = t.reshape(1)
             if t.ndim != 1:
                 raise ValueError(f"theta must be a 1-D array of input angles, got shape {t.shape}")
         tol, max_iter = as_float("tol", tol), as_i64("max_iter", max_iter)

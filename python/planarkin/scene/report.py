@@ -14,6 +14,7 @@ import numpy as np
 from .._angles import rpm, wrap_deg, wrapped
 from .._results import true_runs
 from .._status import Status
+from . import output as declared_output
 from ._model import Scene
 from ._results import Circuit, SceneSweep
 
@@ -23,6 +24,7 @@ __all__ = [
     "circuits_summary",
     "columns",
     "input_axis",
+    "output_summary",
     "reachable",
     "rows",
     "summary",
@@ -73,9 +75,13 @@ class InputAxis:
         """``n`` inputs of a sweep: one turn from the drawn angle in ``step_deg`` steps."""
         return scene.input_angle + np.arange(n) * math.radians(step_deg)
 
-    def rate(self, rpm: float) -> float:
-        """The input's rate (omega, rad/s) when it is driven at ``rpm``."""
-        return rpm * math.tau / 60
+    #: the command-line option that sets the input's rate, and its default
+    rate_option = "--rpm"
+    rate_default = 100.0
+
+    def rate(self, given: float) -> float:
+        """The input's rate (omega, rad/s) when it is driven at ``given`` rpm."""
+        return given * math.tau / 60
 
     def head(self, scene: Scene, at: float) -> dict[str, Any]:
         """The circuits report's entries naming the input ``at``: the same three keys for
@@ -104,7 +110,7 @@ class InputAxis:
 
     def speed(self, omega: float, unit: str) -> dict[str, Any]:
         """A sweep summary's input speed: omega and rpm, or a linear speed."""
-        return {"omega_rad_s": omega, "rpm": rpm(omega), "speed": None}
+        return {"omega_rad_s": omega, "rpm": rpm(omega), "speed": None, "speed_value": None}
 
 
 class LinearAxis(InputAxis):
@@ -133,9 +139,12 @@ class LinearAxis(InputAxis):
         lo, hi = scene.stroke()
         return np.linspace(lo, hi, n)
 
-    def rate(self, rpm: float) -> float:
-        # driven at 1 length unit per second (rpm is for cranks)
-        return 1.0
+    rate_option = "--speed"
+    rate_default = 1.0
+
+    def rate(self, given: float) -> float:
+        """The input's rate: ``given`` length units per second, as it is."""
+        return float(given)
 
     def head(self, scene: Scene, at: float) -> dict[str, Any]:
         # the shared keys, then this kind's former ones (units, theta)
@@ -160,7 +169,8 @@ class LinearAxis(InputAxis):
         return {"drawn_input_deg": None, "stroke": [float(sw.theta[0]), float(sw.theta[-1])]}
 
     def speed(self, omega: float, unit: str) -> dict[str, Any]:
-        return {"omega_rad_s": None, "rpm": None, "speed": f"{omega:g} {unit}/s"}
+        return {"omega_rad_s": None, "rpm": None, "speed": f"{omega:g} {unit}/s",
+                "speed_value": omega}  # fmt: skip
 
 
 def input_axis(kind: str, units: str | None = None) -> InputAxis:
@@ -170,6 +180,50 @@ def input_axis(kind: str, units: str | None = None) -> InputAxis:
 
 def _none(x: float) -> float | None:
     return x if math.isfinite(x) else None
+
+
+def _declared(
+    scene: Scene, sw: SceneSweep
+) -> tuple[declared_output.Declared, np.ndarray, np.ndarray | None] | None:
+    """The declared output of ``scene`` along ``sw``: (what it is, its coordinate at every
+    row, a slot's transmission angle or None); None without an output, or where the sweep
+    does not report its points."""
+    dec = declared_output.declared(scene)
+    if dec is None or not all(p in sw.points for p in dec.points()):
+        return None
+    pts = sw.points
+    return dec, declared_output.coordinate(dec, pts), declared_output.transmission(dec, pts)
+
+
+def output_summary(scene: Scene, sw: SceneSweep) -> dict[str, Any] | None:
+    """The declared output of a sweep as data (:func:`planarkin.scene.output.summary`):
+    its extremes and the inputs where they occur (shown as the input axis shows them),
+    swing or stroke, a crank's quick-return time ratio, a slot's least transmission
+    angle; None when the scene declares no output."""
+    got = _declared(scene, sw)
+    if got is None:
+        return None
+    dec, _, _ = got
+    axis = input_axis(scene.input_kind, scene.units)
+    t = np.asarray(sw.theta, dtype=np.float64)
+    ok = np.asarray(sw.success)
+    rows = np.arange(len(t))
+    turn = len(t) > 2 and math.isclose(float(t[-1] - t[0]), math.tau, rel_tol=0, abs_tol=1e-9)
+    if scene.input_kind == "angle" and turn and not ok.all() and ok[0] and ok[-1]:
+        # a turn whose middle is out of reach: the solved rows after the gap lead on to
+        # those before it (the last row is the first again), so follow them in that order
+        gap = np.flatnonzero(~ok)
+        rows = np.concatenate([np.arange(gap[-1] + 1, len(t)), np.arange(1, gap[0])])
+        t = np.where(rows < gap[0], t[rows] + math.tau, t[rows])
+        ok = ok[rows]
+    pts = {k: v[rows] for k, v in sw.points.items()}
+    pts = {k: np.where(ok[:, None], v, np.nan) for k, v in pts.items()}
+    y = declared_output.coordinate(dec, pts)
+    mu = declared_output.transmission(dec, pts)
+    return declared_output.summary(
+        dec, t, y, mu, angle_input=scene.input_kind == "angle",
+        shown=axis.value, unit=scene.units or "length",
+    )  # fmt: skip
 
 
 def summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
@@ -225,14 +279,16 @@ def summary(scene: Scene, sw: SceneSweep, wall: dict[str, float]) -> dict:
         "conditioning_max": float(absdet.max()) if ok.any() else None,
         "motion_stops_deg": edges,
         "dead_points_deg": dead,
+        "output": output_summary(scene, sw),
         "wall_time_s": wall,
     }
 
 
-def columns(sw: SceneSweep, units: str | None) -> list[str]:
+def columns(sw: SceneSweep, units: str | None, scene: Scene | None = None) -> list[str]:
     """The CSV header of a sweep, units in brackets: the input (an angle, or a linear
     input's displacement), statuses, each point's position (and velocity, acceleration
-    when computed), each link's angle (and angular velocity, acceleration)."""
+    when computed), each link's angle (and angular velocity, acceleration); with the
+    ``scene``, its declared output last (its coordinate, a slot's transmission angle)."""
     u = units or "length"
     cols = [
         input_axis(sw.input_kind, units).column,
@@ -253,11 +309,22 @@ def columns(sw: SceneSweep, units: str | None) -> list[str]:
             cols += [f"{n}_omega [rad/s]"]
         if sw.angular_accelerations is not None:
             cols += [f"{n}_alpha [rad/s^2]"]
+    got = None if scene is None else _declared(scene, sw)
+    if got is not None:
+        cols += list(declared_output.columns(got[0], u))
     return cols
 
 
-def rows(sw: SceneSweep) -> Iterator[list[object]]:
-    """The CSV rows of a sweep, one per input value, in :func:`columns` order."""
+def rows(sw: SceneSweep, scene: Scene | None = None) -> Iterator[list[object]]:
+    """The CSV rows of a sweep, one per input value, in :func:`columns` order (the same
+    ``scene``: its declared output last, an angle in degrees in (-180, 180])."""
+    got = None if scene is None else _declared(scene, sw)
+    extra: list[np.ndarray] = []
+    if got is not None:
+        dec, y, mu = got
+        extra.append(wrap_deg(y) if dec.kind == "angle" else y)
+        if mu is not None:
+            extra.append(np.degrees(mu))
     per_point = [a for a in (sw.coords, sw.velocity_array, sw.acceleration_array) if a is not None]
     per_link = [
         a for a in (sw.angular_velocity_array, sw.angular_acceleration_array) if a is not None
@@ -275,6 +342,7 @@ def rows(sw: SceneSweep) -> Iterator[list[object]]:
         for j in range(len(sw.link_names)):
             row.append(float(link_deg[i, j]))
             row += [float(a[i, j]) for a in per_link]
+        row += [float(e[i]) for e in extra]
         yield row
 
 

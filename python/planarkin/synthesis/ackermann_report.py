@@ -223,7 +223,9 @@ def report(
         "problem": "ackermann",
         "command": command,
         "stopped": stop or None,
-        "finished_starts": len(res.runs),
+        # the line's words as numbers: starts run to their end, cut at the time limit
+        "finished_starts": sum(1 for r in res.runs if not r.stopped),
+        "stopped_starts": sum(1 for r in res.runs if r.stopped),
         "track_over_wheelbase": ak.TRACK,
         "inner_deg": ak.INNER_DEG,
         "outer_deg": ak.OUTER_DEG,

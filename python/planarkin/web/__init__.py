@@ -21,6 +21,7 @@ FILES = (
     "js/fourbar.js",
     "js/scene.js",
     "js/ui.js",
+    "js/toml.js",
     "js/input.js",
     "app.js",
     "wasm.js",

@@ -1,8 +1,9 @@
 // planarkin web: the page draws and handles input; planarkin's Rust core, compiled to
 // WebAssembly (planarkin.wasm, here as wasm.js), computes everything it shows.
 //
-// URL parameters: scene=NAME (a built-in scene) or fourbar=r1,r2,r3,r4 (the four-bar by
-// its lengths, the default); theta=DEGREES (the input angle; for a scene driven by a slot
+// URL parameters (docs/site/web.rst): scene=NAME (a built-in scene) or fourbar=r1,r2,r3,r4
+// (the four-bar by its lengths, the default); file=URL (a JSON or TOML scene file, served
+// pages only); theta=DEGREES (the input angle; for a scene driven by a slot
 // or prismatic pair, the displacement from the drawn pose in scene units); mode=open|crossed,
 // p, delta=DEGREES (four-bar); auto=1 (auto-rotate, or for a linear input auto-advance
 // between the stroke's ends). What the page computed is in the text of #state as JSON:
@@ -11,8 +12,9 @@
 //
 // The page's scripts (index.html loads them in order, classic scripts so that file:// works)
 // share window.PK_PAGE: js/core.js (the module, the state), js/view.js, js/draw.js,
-// js/fourbar.js, js/scene.js, js/ui.js (a frame, the readout, #state), js/input.js (the
-// controls); this one starts the page and sets the hooks of window.pk.
+// js/fourbar.js, js/scene.js, js/ui.js (a frame, the readout, #state), js/toml.js (TOML
+// scene files), js/input.js (the controls); this one starts the page and sets the hooks
+// of window.pk.
 "use strict";
 
 (function (P) {

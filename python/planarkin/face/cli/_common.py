@@ -33,6 +33,10 @@ SUMMARY_JSON = "summary.json"
 #: Most input angles a command sweeps: every one becomes a CSV row and plotted points.
 MAX_POINTS = 10_000_000
 
+#: The input speeds when none is given: a crank's (rev/min, ``--rpm``) and a linear
+#: input's (length units per second, ``--speed``).
+DEFAULT_RPM = 100.0
+DEFAULT_SPEED = 1.0
 #: The seeds' linkage: ground r1, crank r2, coupler r3, rocker r4.
 DEFAULT_LINKS = (6.0, 2.0, 5.0, 5.0)
 #: Coupler point: distance from the crank pin A, angle from the line A-B (degrees).
@@ -104,9 +108,16 @@ def linkage_options(*, rpm: bool) -> Parser:
         g.add_argument(
             "--rpm",
             type=float,
-            default=100.0,
-            help="constant input speed, rev/min; omega2 = rpm * 2 pi / 60 rad/s, "
-            "alpha2 = 0 (default: %(default)s)",
+            help="constant speed of an input that turns, rev/min; omega2 = rpm * 2 pi / 60 "
+            f"rad/s, alpha2 = 0 (default: {DEFAULT_RPM:g}); an error for a linear input",
+        )
+        g.add_argument(
+            "--speed",
+            type=float,
+            metavar="V",
+            help="constant speed of a SCENE's linear input (a slot or prismatic pair, e.g. a "
+            "cylinder's extension), in the scene's length units per second (default: "
+            f"{DEFAULT_SPEED:g}); an error for an input that turns",
         )
     p_, d_ = DEFAULT_COUPLER
     g.add_argument(
@@ -242,6 +253,24 @@ def scene_angles(scene: Scene, step_deg: float) -> np.ndarray:
     return input_axis(scene.input_kind, scene.units).sweep(scene, n, step_deg)
 
 
+def scene_rate(args: argparse.Namespace, scene: Scene) -> float:
+    """The constant rate a SCENE's input is driven at: ``--rpm`` (rev/min, as omega in
+    rad/s) for an input that turns, ``--speed`` (length units per second) for a linear
+    one; the other option is an error naming the input, never silently ignored."""
+    axis = input_axis(scene.input_kind, scene.units)
+    linear = scene.input_kind == "displacement"
+    wrong, right = ("--rpm", "--speed") if linear else ("--speed", "--rpm")
+    if getattr(args, wrong.lstrip("-"), None) is not None:
+        kind, name = scene.input
+        what = f"is linear ({kind} {name!r}, in {axis.unit})" if linear else f"turns ({kind!r})"
+        raise ValueError(f"{wrong} does not apply to scene {scene.name or '(unnamed)'!r}: its "
+                         f"input {what}; give its speed with {right}")  # fmt: skip
+    given = getattr(args, right.lstrip("-"), None)
+    value = axis.rate_default if given is None else given
+    finite(right, value)
+    return axis.rate(value)
+
+
 def fourbar_setup(args: argparse.Namespace) -> tuple[FourBar, np.ndarray]:
     """The four-bar and its crank angles: fills in the four-bar options' defaults, then
     checks the options every four-bar command shares (ValueError naming the option)."""
@@ -250,7 +279,12 @@ def fourbar_setup(args: argparse.Namespace) -> tuple[FourBar, np.ndarray]:
             setattr(args, dest, default)
     fb = FourBar(*args.links)
     theta2 = crank_angles(args.step)
-    if getattr(args, "rpm", None) is not None:
+    if getattr(args, "speed", None) is not None:
+        raise ValueError("--speed is for a SCENE's linear input; the four-bar's crank turns "
+                         "at --rpm")  # fmt: skip
+    if hasattr(args, "rpm"):
+        if args.rpm is None:
+            args.rpm = DEFAULT_RPM
         finite("--rpm", args.rpm)
     finite("--coupler P", args.coupler[0])
     finite("--coupler DELTA", args.coupler[1])

@@ -40,7 +40,8 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         + "files written (SCENE): the CSV and JSON as above, and\n"
         + "".join(f"  {k:34}{v}\n" for k, v in analyze_scene.FIGURES.items())
         + "\nAngles are in degrees, in (-180, 180]; omega in rad/s, alpha in rad/s^2; lengths "
-        "in the unit of --links (or the scene's 'units'); the input turns at --rpm.",
+        "in the unit of --links (or the scene's 'units'); the input turns at --rpm (a "
+        "SCENE's linear input moves at --speed, its displacements in the scene's unit).",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     scene_argument(a, "analyze", "--newton-at")

@@ -23,6 +23,7 @@ from ._common import (
     refuse_fourbar_options,
     scene_angles,
     scene_predictor,
+    scene_rate,
     table,
     warm_median,
     write_csv,
@@ -100,7 +101,39 @@ def scene_table(s: dict) -> str:
     if s["motion_stops_deg"]:
         stops = ", ".join(f"{e['deg']:.1f}" for e in s["motion_stops_deg"])
         rows.append((f"motion stops near ({unit})", stops))
+    rows += _output_rows(s.get("output"), unit)
     return table(rows)
+
+
+def _output_rows(o: dict | None, unit: str) -> list[tuple[str, object]]:
+    """The table's rows on the declared output: its swing or stroke between its extremes
+    (with the inputs where they occur), a crank's quick-return ratio, a slot's least
+    transmission angle."""
+    if o is None:
+        return []
+    what = f"output {o['name']!r}"
+    if o["turns_fully"]:
+        return [(what, "turns fully (no extremes)")]
+    if o["min"] is None:
+        return [(what, "not solved")]
+    u = o["unit"]
+    lo, hi = o["min"], o["max"]
+    ends = (f"{lo['value']:.4f} {u} at {lo['input']:.4f} {unit} .. "
+            f"{hi['value']:.4f} {u} at {hi['input']:.4f} {unit}")  # fmt: skip
+    if o["kind"] == "angle":
+        rows: list[tuple[str, object]] = [(f"{what} swing", f"{o['swing_deg']:.4f} deg: {ends}")]
+    else:
+        rows = [(f"{what} stroke", f"{o['stroke']:.6g} {u}: {ends}")]
+    if o["time_ratio"] is not None:
+        t = o["time_ratio_input_deg"]
+        words = (f"{o['time_ratio']:.4f} (the output rises over {t['rising']:.2f} deg of "
+                 f"input, falls over {t['falling']:.2f} deg)")  # fmt: skip
+        rows.append(("quick-return time ratio", words))
+    if o["transmission_angle_min_deg"] is not None:
+        rows.append(("transmission angle, least", f"{o['transmission_angle_min_deg']:.3f} deg "
+                     f"at {o['transmission_angle_min_input']:.4f} {unit} (rod against the "
+                     "slot's normal; 90 is ideal)"))  # fmt: skip
+    return rows
 
 
 def run(args: argparse.Namespace) -> int:
@@ -109,10 +142,9 @@ def run(args: argparse.Namespace) -> int:
     t_start = time.perf_counter()
     sc = load_scene(args.scene)
     theta = scene_angles(sc, args.step)
-    finite("--rpm", args.rpm)
     finite("--dpi", args.dpi, positive=True)
-    # a linear input is driven at 1 length unit per second (--rpm is for cranks)
-    rate = report.input_axis(sc.input_kind, sc.units).rate(args.rpm)
+    # --rpm for an input that turns, --speed for a linear one: the other is an error
+    rate = scene_rate(args, sc)
     figures = {} if args.no_figures else FIGURES
     sweep = functools.partial(
         sc.sweep, theta, tol=args.tol, max_iter=args.max_iter, rate=rate,
@@ -126,7 +158,7 @@ def run(args: argparse.Namespace) -> int:
         b.update()
         out: Path = args.out
         out.mkdir(parents=True, exist_ok=True)
-        write_csv(out / RESULTS_CSV, report.columns(sw, sc.units), report.rows(sw))
+        write_csv(out / RESULTS_CSV, report.columns(sw, sc.units, sc), report.rows(sw, sc))
         b.update()
         files = [RESULTS_CSV, SUMMARY_JSON]
         skipped = []

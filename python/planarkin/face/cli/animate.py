@@ -126,13 +126,18 @@ def _run_scene(args: argparse.Namespace) -> int:
     _check(args)
     finite("--dpi", args.dpi, positive=True)
     theta = scene_angles(sc, args.step)
-    sw = sc.sweep(theta, tol=args.tol, max_iter=args.max_iter, predictor=scene_predictor(args))
+    # every link drawn: the whole scene swept (a cylinder's barrel and rod too)
+    sw = sc.sweep(theta, outputs="all", tol=args.tol, max_iter=args.max_iter,
+                  predictor=scene_predictor(args))  # fmt: skip
     anim = animate.scene(sc, sw, frames=args.frames, fps=args.fps, dpi=args.dpi)
     _, points, _, rocks = animate.motion(sc, sw)
     n = len(animate.scene_frames(points, args.frames))
     wrote = _save(anim, args, f"planarkin: {sc.name or args.scene}", n)
     how = ", rocking between its dead points (the input cannot turn fully)" if rocks else ""
+    if rocks and sc.input_kind == "displacement":
+        how = ", out and back across its stroke"
+    what = "input angles" if sc.input_kind == "angle" else "input displacements"
     print(f"planarkin animate: {sc.name or args.scene}, {int(sw.success.sum())} of {len(sw)} "
-          f"input angles solved{how}")  # fmt: skip
+          f"{what} solved{how}")  # fmt: skip
     print(f"  wrote {wrote}")
     return 0

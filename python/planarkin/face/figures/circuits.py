@@ -1,7 +1,8 @@
 """The circuits figure (``planarkin circuits``): one small panel per circuit (the input
-angle against the output angle along it, the other circuits faint behind, turning points
-marked), and the linkage drawn in each of its assemblies at one input angle; at an input
-the linkage cannot reach, the inputs it can reach instead."""
+against the declared output along it, an angle or a slider's displacement; the other
+circuits faint behind, turning points marked), and the linkage drawn in each of its
+assemblies at one input angle; at an input the linkage cannot reach, the inputs it can
+reach instead."""
 
 from __future__ import annotations
 
@@ -12,13 +13,14 @@ from matplotlib import colormaps
 from matplotlib.figure import Figure
 
 from ...scene import Circuit, Scene
+from ...scene import output as declared_output
 from .. import draw
 from ..degrees import on_wrapped_axis, wrapped
 from ..fonts import clean
 from ..titles import fit_titles
 from .scene import ground_size
 
-__all__ = ["circuits", "output_angle", "shown_turn"]
+__all__ = ["circuits", "output_angle", "output_curve", "shown_turn"]
 
 #: Panels per row.
 COLUMNS = 3
@@ -38,6 +40,23 @@ def output_angle(scene: Scene, points: dict[str, np.ndarray]) -> tuple[str, np.n
     tip = next(p for p in scene.links[link] if p != pivot)
     d = np.asarray(points[tip]) - np.asarray(points[pivot])
     return link, np.unwrap(np.arctan2(d[..., 1], d[..., 0]))
+
+
+def output_curve(scene: Scene, points: dict[str, np.ndarray]) -> tuple[str, np.ndarray]:
+    """What a circuit panel plots against the input: the scene's declared output (an
+    angle in degrees, continuous, or a slot's or prismatic pair's displacement from the
+    drawn pose in the scene's unit), else the far link's angle (:func:`output_angle`).
+    Returns (the axis label, the values)."""
+    dec = declared_output.declared(scene)
+    if dec is not None and all(p in points for p in dec.points()):
+        y = declared_output.coordinate(dec, points)
+        if dec.kind == "angle":
+            return f"angle of {clean(dec.name, '?')} [deg]", np.degrees(y)
+        unit = scene.units or "length"
+        kind = next(iter(scene.output or ("output",)))
+        return f"{kind} {clean(dec.name, '?')} s [{unit}]", y
+    link, out = output_angle(scene, points)
+    return f"angle of {clean(link, '?')} [deg]", np.degrees(out)
 
 
 def shown_turn(theta: np.ndarray, at: float) -> np.ndarray:
@@ -83,17 +102,17 @@ def circuits(
     fig = Figure(figsize=(3.6 * ncol + 0.6, 3.1 * (crow + arow) + 0.6), layout="constrained")
     grid = fig.add_gridspec(crow + arow, ncol)
     cmap = colormaps["tab10"]
-    link = "output"
+    ylabel = "output"
     curves = []
     for c in found:
-        link, out = output_angle(scene, c.trace.points)
+        ylabel, out = output_curve(scene, c.trace.points)
         if linear:  # displacements: no turns to wrap
-            curves.append((np.asarray(c.trace.theta), np.degrees(out), c))
+            curves.append((np.asarray(c.trace.theta), out, c))
         elif c.full_turn and c.trace.closed:  # one curve over (-180, 180]
-            x, y = on_wrapped_axis(c.trace.theta, np.degrees(out))
+            x, y = on_wrapped_axis(c.trace.theta, out)
             curves.append((x, y, c))
         else:  # a continuous range, in the turn that holds theta
-            curves.append((shown_turn(c.trace.theta, theta), np.degrees(out), c))
+            curves.append((shown_turn(c.trace.theta, theta), out, c))
     first = None
     for k, (x, y, c) in enumerate(curves):
         ax = fig.add_subplot(grid[k // ncol, k % ncol], sharex=first, sharey=first)
@@ -110,7 +129,7 @@ def circuits(
         ax.set_title(f"circuit {k + 1}: {kind}", fontsize="medium")
         ax.grid(True, alpha=0.3)
         if k % ncol == 0:
-            ax.set_ylabel(f"angle of {clean(link, '?')} [deg]")
+            ax.set_ylabel(ylabel)
         if linear:
             ax.set_xlabel(f"input s [{unit}] from the drawn pose")
         else:

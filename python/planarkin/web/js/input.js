@@ -147,7 +147,9 @@
     window.addEventListener("resize", () => { resize(); draw(); exposeState(); });
   }
 
-  // a scene file's text (opened from disk, or ?file=URL when served)
+  const isJson = (text) => { try { JSON.parse(text); return true; } catch (e) { return false; } };
+
+  // a scene file's text, JSON or TOML (opened from disk, or ?file=URL when served)
   function openText(text, fname) {
     const sel = $("which");
     if (![...sel.options].some((o) => o.value === "file")) {
@@ -158,11 +160,14 @@
     S.kind = "scene";
     S.overlay = null;
     let data;
+    let raw = text;
     try {
-      data = JSON.parse(text);
+      data = P.parseSceneText(text, fname);
+      // TOML goes to the module as the JSON of what it holds, JSON as its own text
+      if (/\.toml$/i.test(fname) || !isJson(text)) raw = null;
     } catch (e) {
       S.sceneData = { points: {}, links: {} }; S.info = null; S.pose = null; S.path = null; S.name = fname;
-      setMessage(`${fname} is not JSON: ${e.message}`);
+      setMessage(e.message);
       refreshText(); draw(); exposeState();
       return;
     }
@@ -171,7 +176,7 @@
       Object.values(data.points).every((v) => Array.isArray(v) && v.length === 2) &&
       data.links && typeof data.links === "object" && !Array.isArray(data.links);
     // the module checks everything (and names what is wrong); the page only draws
-    const ok = loadScene(data, text, fname);
+    const ok = loadScene(data, raw, fname);
     if (!drawable) S.sceneData = { points: {}, links: {} };
     if (ok) S.theta = S.info.input_angle;
     const msg = $("message").textContent;

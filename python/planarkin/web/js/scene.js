@@ -143,6 +143,11 @@
       for (const pr of info.prismatic) for (const j of [...pr.line, ...info.links[pr.link].points]) perPoint[j]++;
     }
     const tracer = (j) => perPoint[j] === 1 && !groundPts.includes(names[j]);
+    // a ground pivot carries a moving link (or a slot's pin); a ground point that only
+    // gives a line its direction is no pivot
+    const moving = new Set(links.filter(([ln]) => ln !== ground).flatMap(([, pl]) => pl));
+    if (info) for (const sl of info.slots) moving.add(names[sl.point]);
+    const pivot = (n) => moving.has(n);
     const colorOf = {};
     let c = 0;
     for (const [ln] of links) colorOf[ln] = ln === ground ? "#555555" : COLORS[c++ % COLORS.length];
@@ -179,7 +184,7 @@
       }
     }
     // slots' rails under the links
-    const drawn = { slots: [], prismatic: [] };
+    const drawn = { slots: [], prismatic: [], pivots: [] };
     if (info && S.view) for (const sl of info.slots) {
       const d = drawSlot(sl, pts, np, linkColor(sl.guide));
       if (d) drawn.slots.push(d);
@@ -187,7 +192,11 @@
     for (const [ln, pl] of links) {
       const xy = pl.filter((n) => n in idx).map((n) => pts[idx[n]]).filter(([x, y]) => isFinite(x) && isFinite(y));
       if (ln === ground) {
-        for (const q of xy) groundMark(...q);
+        for (const n of pl) {
+          if (!(n in idx) || !pivot(n) || !finiteXY(pts[idx[n]])) continue;
+          groundMark(...pts[idx[n]]);
+          drawn.pivots.push(n);
+        }
         continue;
       }
       const color = colorOf[ln];
@@ -221,7 +230,7 @@
     names.forEach((n, j) => {
       const [x, y] = pts[j];
       if (!isFinite(x)) return;
-      if (perPoint[j] === 1 && groundPts.includes(n) && j !== S.drag) {
+      if (groundPts.includes(n) && !pivot(n) && j !== S.drag) {
         // a point of the ground only (say, a slot's direction): a small dot
         ctx.fillStyle = "#555"; ctx.beginPath(); ctx.arc(sx(x), sy(y), 2.5, 0, 2 * Math.PI); ctx.fill();
       } else {

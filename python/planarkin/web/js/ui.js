@@ -93,6 +93,7 @@
         stroke: S.info ? S.info.stroke : null,
         slots: S.joints.slots,
         prismatic: S.joints.prismatic,
+        pivots: S.joints.pivots || [],
       };
     }
     // where each point is on the canvas (CSS pixels from its top left), for tests
