@@ -92,7 +92,7 @@ def test_export_cli_writes_a_model_mujoco_loads(tmp_path) -> None:  # noqa: ANN0
 def test_every_built_in_scene_replays(name: str) -> None:
     """Slots and prismatic pairs too (blocks connect-ed and weld-ed, slides in the tree),
     linear inputs: within 1e-9 of the size but at a linear input's stroke ends, which are
-    dead points (a position there is good to the square root of the residual)."""
+    dead points (SINGULAR in the sweep)."""
     sc, sw, rp = _replay(name)
     got = rp.replay(sw)
     ok = sw.success.copy()
@@ -103,6 +103,5 @@ def test_every_built_in_scene_replays(name: str) -> None:
         err = np.abs(path[ok] - sw.points[point][ok]).max() / rp.size
         assert err <= 1e-9, (site, err)
     if sw.input == "displacement":
-        ends = max(np.abs(p[[0, -1]] - sw.points[s.split(":", 1)[1]][[0, -1]]).max()
-                   for s, p in got.items())  # fmt: skip
-        assert ends <= 1e-6 * rp.size
+        # the stroke's ends are dead points: the sweep leaves them SINGULAR (no pose)
+        assert (sw.status[[0, -1]] == pk.Status.SINGULAR).all()

@@ -40,7 +40,7 @@ def test_bad_input_and_missing_extra(monkeypatch) -> None:  # noqa: ANN001
     from planarkin.interop import plotly as pp
 
     sc = pk.scenes.load("fourbar")
-    with pytest.raises(ValueError, match=r"^sweep: point 'O4' is not reported"):
+    with pytest.raises(ValueError, match=r"^sweep: point 'P' is not reported"):
         pp.figure(sc, sc.sweep(outputs=["A"]))
     with pytest.raises(ValueError, match=r"^frames must be a positive integer, got 0$"):
         pp.figure(sc, frames=0)
