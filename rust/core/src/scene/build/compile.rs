@@ -475,6 +475,12 @@ fn prune(sc: &Scene, ops: Vec<Op>, want_points: &[usize], want_links: &[usize]) 
     let mut producer: Vec<Option<usize>> = vec![None; np];
     let mut steps: Vec<StepInfo> = Vec::new();
     let mut step_op = Vec::new();
+    // a link with two points known before a step (the ground, the input link, a slot's
+    // guide) has a known angle: not one of the step's unknowns
+    let mut known = vec![false; np];
+    for &p in &sc.links[sc.ground].points {
+        known[p] = true;
+    }
     for (i, op) in kept.iter().enumerate() {
         let opens = match op {
             Op::Input { .. } => None,
@@ -486,7 +492,8 @@ fn prune(sc: &Scene, ops: Vec<Op>, want_points: &[usize], want_links: &[usize]) 
             Op::Rpr(r) => Some((StepKind::Rpr, r.links.to_vec())),
         };
         let s = match opens {
-            Some((kind, unknowns)) => {
+            Some((kind, mut unknowns)) => {
+                unknowns.retain(|&l| l >= sc.links.len() || sc.links[l].points.iter().filter(|&&p| known[p]).count() < 2);
                 steps.push(StepInfo { kind, points: vec![], unknowns });
                 step_op.push(i);
                 Some(steps.len() - 1)
@@ -495,6 +502,7 @@ fn prune(sc: &Scene, ops: Vec<Op>, want_points: &[usize], want_links: &[usize]) 
             None => op.inputs().iter().map(|&p| producer[p]).max().flatten(),
         };
         for p in op.outputs() {
+            known[p] = true;
             producer[p] = s;
             if let Some(s) = s {
                 steps[s].points.push(p);

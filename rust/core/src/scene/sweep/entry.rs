@@ -97,6 +97,7 @@ impl Plan {
         }
         let (dx, dy) = dirs.split_at(n * nl);
         crate::simd::directions_into(dx, dy, out.angles);
+        non_finite_rows(theta, &mut out);
         self.classify_limits(theta, &mut out, interrupt)
     }
 
@@ -119,6 +120,7 @@ impl Plan {
             ));
         }
         columns::sweep(self, theta, opts, &mut out, poll)?;
+        non_finite_rows(theta, &mut out);
         // a closed form that does not close says NOT_ASSEMBLABLE of its own step; whether
         // the linkage has no assembly at all is the classification's to say
         let (limit, none) = (Status::Limit.code(), Status::NotAssemblable.code());
@@ -223,5 +225,23 @@ impl Plan {
             out.limit[k] = s.limit_angle();
         }
         Ok(())
+    }
+}
+
+/// A NaN or infinite input value is NON_FINITE wherever it leaves something unsolved (a
+/// linear input's closed forms would call it NOT_ASSEMBLABLE).
+fn non_finite_rows(theta: &[f64], out: &mut SceneSweepOut<'_>) {
+    let (ok, bad) = (Status::Converged.code(), Status::NonFinite.code());
+    let (np, ns) = (out.point_status.len() / theta.len().max(1), out.step_status.len() / theta.len().max(1));
+    for k in (0..theta.len()).filter(|&k| !theta[k].is_finite()) {
+        out.limit[k] = f64::NAN;
+        for code in std::iter::once(&mut out.status[k])
+            .chain(&mut out.step_status[k * ns..(k + 1) * ns])
+            .chain(&mut out.point_status[k * np..(k + 1) * np])
+        {
+            if *code != ok {
+                *code = bad;
+            }
+        }
     }
 }
