@@ -236,8 +236,8 @@ pub fn parse(data: &Value) -> Result<Parsed, Error> {
             None => return fail("outputs", format!("must be a list of point or link names, got {}", v.repr())),
         },
     };
-    let mut text = [None, None, None];
-    for (k, t) in ["name", "description", "units"].into_iter().zip(&mut text) {
+    let mut text = [None, None];
+    for (k, t) in ["name", "description"].into_iter().zip(&mut text) {
         match given(d, k) {
             None => {}
             Some(Value::Str(s)) => *t = Some(s.clone()),
@@ -245,6 +245,11 @@ pub fn parse(data: &Value) -> Result<Parsed, Error> {
         }
     }
     let lengths = lengths(d)?;
+    let (units, unit_table) = super::loads::units(given(d, "units"))?;
+    let (slot_names, prism_names): (Vec<String>, Vec<String>) =
+        (slots.iter().map(|s| s.0.clone()).collect(), prismatic.iter().map(|p| p.0.clone()).collect());
+    let names = super::loads::Names { points: &points, links: &lk, slots: &slot_names, prismatic: &prism_names };
+    let loads = super::loads::loads(given(d, "loads"), &names)?;
     let (spec_input, linear_input) = match &input {
         Drive::Angle { link, pivot } => ((link.clone(), pivot.clone()), None),
         Drive::Linear { kind, name } => ((String::new(), String::new()), Some((*kind, name.clone()))),
@@ -263,6 +268,6 @@ pub fn parse(data: &Value) -> Result<Parsed, Error> {
         prismatic: prismatic.into_iter().map(|(n, j)| (n, PrismaticSpec::from(j))).collect(),
         linear_input,
     };
-    let [name, description, units] = text;
-    Ok(Parsed { spec, name, description, units, input, output, outputs, lengths })
+    let [name, description] = text;
+    Ok(Parsed { spec, name, description, units, unit_table, input, output, outputs, lengths, loads })
 }

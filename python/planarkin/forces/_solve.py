@@ -1,0 +1,315 @@
+"""Statics and inverse dynamics along a sweep, vectorised over its rows: the loads (and
+d'Alembert's inertia forces) gathered per link, one batched dense Newton-Euler solve for
+every reaction and the input effort, the same effort by virtual work through the sweep's
+velocity map, the energies and the checks. A kernel of the forces subject."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from .._status import SINGULAR_THRESHOLD, Status
+from ._results import Forces
+from ._structure import Structure
+from ._units import inertia_factor
+
+__all__ = ["solve"]
+
+_TAU = 2 * np.pi
+
+
+def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
+    return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
+
+
+def _perp(w: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """w x r for a planar angular rate w (n,) and vectors r (n, 2)."""
+    return np.stack((-w * r[:, 1], w * r[:, 0]), axis=-1)
+
+
+def _profile(entry: Mapping[str, Any], key: str, theta: np.ndarray, angle: bool) -> np.ndarray:
+    """A load's value at every input value: constant, or its table over the input
+    (linear in between; over a turn, periodically, for an angle input; held at the ends
+    for a displacement)."""
+    v = np.asarray(entry[key], dtype=np.float64)
+    xs = entry.get("input")
+    n = len(theta)
+    if xs is None:
+        return np.broadcast_to(v, (n, *v.shape)).copy()
+    xs = np.asarray(xs, dtype=np.float64)
+    period = _TAU if angle else None
+    if v.ndim == 1:
+        return np.interp(theta, xs, v, period=period)
+    return np.stack([np.interp(theta, xs, v[:, i], period=period) for i in range(2)], axis=-1)
+
+
+class _Tally:
+    """Loads on links (force and moment about each link's reference point), their
+    generalised force through the unit-rate velocity map, and their power."""
+
+    def __init__(self, st: Structure, P: np.ndarray, V1: np.ndarray, V: np.ndarray) -> None:
+        n = P.shape[0]
+        self.st, self.P, self.V1, self.V = st, P, V1, V
+        self.F = np.zeros((n, st.nm + 1, 2))
+        self.M = np.zeros((n, st.nm + 1))
+        self.gen = np.zeros(n)  # sum of generalised forces (virtual power at unit rate)
+        self.gabs = np.zeros(n)  # sum of their magnitudes (the check's scale)
+        self.power = np.zeros(n)  # power of the applied loads (actual rate)
+        self.pabs = np.zeros(n)
+
+    def force(self, link: int, pos: np.ndarray, f: np.ndarray, v1: np.ndarray, v: np.ndarray,
+              work: bool = True) -> None:  # fmt: skip
+        self.F[:, link] += f
+        self.M[:, link] += _cross(pos - self.P[:, self.st.ref[link]], f)
+        g = np.einsum("ij,ij->i", f, v1)
+        self.gen += g
+        self.gabs += np.abs(g)
+        if work:
+            p = np.einsum("ij,ij->i", f, v)
+            self.power += p
+            self.pabs += np.abs(p)
+
+    def couple(self, link: int, t: np.ndarray, w1: np.ndarray, w: np.ndarray,
+               work: bool = True) -> None:  # fmt: skip
+        self.M[:, link] += t
+        g = t * w1
+        self.gen += g
+        self.gabs += np.abs(g)
+        if work:
+            p = t * w
+            self.power += p
+            self.pabs += np.abs(p)
+
+
+def solve(
+    st: Structure,
+    data: Mapping[str, Any],
+    sweep: Any,
+    loads: Mapping[str, Any] | None,
+    units: dict[str, str | None],
+    omega: np.ndarray | None,
+    alpha: np.ndarray | None,
+) -> Forces:
+    """Forces along ``sweep`` (every point reported, velocities at a nonzero ``rate``;
+    accelerations too for dynamics). ``omega`` (N,) the input's rate and ``alpha`` its
+    rate of change for dynamics; None for statics."""
+    dynamic = omega is not None
+    theta = np.asarray(sweep.theta)
+    n = len(theta)
+    col = {p: i for i, p in enumerate(sweep.point_names)}
+    idx = np.array([col[p] for p in st.point_names], dtype=np.intp)
+    rate = float(sweep.rate)
+    P = sweep.coords[:, idx]
+    V1 = sweep.velocity_array[:, idx] / rate
+    lcol = {k: i for i, k in enumerate(sweep.link_names)}
+    W1 = np.zeros((n, st.nm + 1))
+    for i, name in enumerate(st.link_names[: st.nm]):
+        W1[:, i] = sweep.angular_velocity_array[:, lcol[name]] / rate
+    w = np.zeros(n) if omega is None else np.broadcast_to(omega, (n,)).astype(np.float64)
+    al = np.zeros(n) if alpha is None else np.broadcast_to(alpha, (n,)).astype(np.float64)
+    if dynamic:
+        A1 = sweep.acceleration_array[:, idx] / rate**2
+        Acc = w[:, None, None] ** 2 * A1 + al[:, None, None] * V1
+        Al1 = np.zeros((n, st.nm + 1))
+        for i, name in enumerate(st.link_names[: st.nm]):
+            Al1[:, i] = sweep.angular_acceleration_array[:, lcol[name]] / rate**2
+        Wa = w[:, None] ** 2 * Al1 + al[:, None] * W1
+    else:
+        Acc = np.zeros_like(P)
+        Wa = np.zeros((n, st.nm + 1))
+    V = w[:, None, None] * V1
+    Wl = w[:, None] * W1
+    angle = st.input_kind == "angle"
+    cu = inertia_factor(units)
+    links: Mapping[str, tuple[str, ...]] = data["links"]
+    lidx = {k: i for i, k in enumerate(st.link_names)}
+    pidx = {p: i for i, p in enumerate(st.point_names)}
+    moving = st.link_names[: st.nm]
+
+    def carrier(p: str) -> int:
+        return next((lidx[k] for k in moving if p in links[k]), st.nm)
+
+    t = _Tally(st, P, V1, V)
+    u, nrm = st.directions(P)
+
+    def along(j: int, pt: int) -> tuple[np.ndarray, np.ndarray]:
+        """Rate of the displacement along line j of point pt relative to its guide: at
+        unit input rate and at the actual rate."""
+        g, a, _ = st.lines[j]
+        r = P[:, pt] - P[:, a]
+        rel1 = V1[:, pt] - V1[:, a] - _perp(W1[:, g], r)
+        s1 = np.einsum("ij,ij->i", u[:, j], rel1)
+        return s1, w * s1
+
+    kin = np.zeros(n)
+    pot = np.zeros(n)
+    dpot = np.zeros(n)  # d(potential)/dt, actual rate
+    dpabs = np.zeros(n)
+    dkin = np.zeros(n)
+    dkabs = np.zeros(n)
+    L = loads or {}
+    for e in L.get("forces", []):
+        if "point" in e:
+            p = pidx[e["point"]]
+            f = _profile(e, "force", theta, angle)
+            t.force(carrier(e["point"]), P[:, p], f, V1[:, p], V[:, p])
+            continue
+        kind = "slot" if "slot" in e else "prismatic"
+        j, pt, lk = (st.slot_of if kind == "slot" else st.prismatic_of)[e[kind]]
+        mag = _profile(e, "force", theta, angle)
+        fu = mag[:, None] * u[:, j]
+        # the actuator pushes the moving part along the line and the guide back
+        s1, s = along(j, pt)
+        t.F[:, lk] += fu
+        t.M[:, lk] += _cross(P[:, pt] - P[:, st.ref[lk]], fu)
+        g = st.lines[j][0]
+        t.F[:, g] -= fu
+        t.M[:, g] -= _cross(P[:, pt] - P[:, st.ref[g]], fu)
+        t.gen += mag * s1
+        t.gabs += np.abs(mag * s1)
+        t.power += mag * s
+        t.pabs += np.abs(mag * s)
+    for e in L.get("torques", []):
+        k = lidx[e["link"]]
+        tq = _profile(e, "torque", theta, angle)
+        t.couple(k, tq, W1[:, k], Wl[:, k])
+    for e in L.get("springs", []):
+        a, b = (pidx[x] for x in e["between"])
+        d = P[:, b] - P[:, a]
+        length = np.hypot(d[:, 0], d[:, 1])
+        ev = d / length[:, None]
+        stretch = length - e["free_length"]
+        tension = e["preload"] + e["k"] * stretch
+        f = tension[:, None] * ev
+        ca, cb = carrier(e["between"][0]), carrier(e["between"][1])
+        t.force(ca, P[:, a], f, V1[:, a], V[:, a], work=False)
+        t.force(cb, P[:, b], -f, V1[:, b], V[:, b], work=False)
+        pot += e["preload"] * stretch + 0.5 * e["k"] * stretch**2
+        rate_d = np.einsum("ij,ij->i", ev, V[:, b] - V[:, a])
+        dpot += tension * rate_d
+        dpabs += np.abs(tension * rate_d)
+    for e in L.get("dampers", []):
+        a, b = (pidx[x] for x in e["between"])
+        d = P[:, b] - P[:, a]
+        ev = d / np.hypot(d[:, 0], d[:, 1])[:, None]
+        tension = e["c"] * np.einsum("ij,ij->i", ev, V[:, b] - V[:, a])
+        f = tension[:, None] * ev
+        t.force(carrier(e["between"][0]), P[:, a], f, V1[:, a], V[:, a])
+        t.force(carrier(e["between"][1]), P[:, b], -f, V1[:, b], V[:, b])
+    gravity = L.get("gravity")
+    for name, m in L.get("masses", {}).items():
+        k = lidx[name]
+        if k == st.nm:
+            continue  # the ground's mass does nothing
+        c = m["center"]
+        if isinstance(c, str):
+            G, v1G, aG = P[:, pidx[c]], V1[:, pidx[c]], Acc[:, pidx[c]]
+        else:
+            pts = links[name]
+            a, b = pidx[pts[0]], pidx[pts[1]]
+            da = np.subtract(data["points"][pts[1]], data["points"][pts[0]])
+            d = P[:, b] - P[:, a]
+            phi = np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(da[1], da[0])
+            c0 = np.subtract(c, data["points"][pts[0]])
+            cs, sn = np.cos(phi), np.sin(phi)
+            r = np.stack((cs * c0[0] - sn * c0[1], sn * c0[0] + cs * c0[1]), axis=-1)
+            G = P[:, a] + r
+            v1G = V1[:, a] + _perp(W1[:, k], r)
+            aG = Acc[:, a] + _perp(Wa[:, k], r) - (Wl[:, k] ** 2)[:, None] * r
+        mass, inertia = cu * m["mass"], cu * m["inertia"]
+        vG = w[:, None] * v1G
+        if gravity is not None:
+            wg = mass * np.asarray(gravity, dtype=np.float64)
+            t.force(k, G, np.broadcast_to(wg, (n, 2)), v1G, vG, work=False)
+            pot -= G @ wg
+            dpot -= vG @ wg
+            dpabs += np.abs(vG @ wg)
+        if dynamic:
+            # d'Alembert: the inertia force and couple as loads (no power: they are the
+            # kinetic energy's rate of change, tallied apart)
+            t.force(k, G, -mass * aG, v1G, vG, work=False)
+            t.couple(k, -inertia * Wa[:, k], W1[:, k], Wl[:, k], work=False)
+            kin += 0.5 * (mass * np.einsum("ij,ij->i", vG, vG) + inertia * Wl[:, k] ** 2)
+            dk = mass * np.einsum("ij,ij->i", aG, vG) + inertia * Wa[:, k] * Wl[:, k]
+            dkin += dk
+            dkabs += np.abs(mass * np.einsum("ij,ij->i", aG, vG)) + np.abs(
+                inertia * Wa[:, k] * Wl[:, k]
+            )
+
+    size = float(np.ptp(np.asarray(list(data["points"].values())), axis=0).max()) or 1.0
+    status = np.asarray(sweep.status).astype(np.int8).copy()
+    det = np.asarray(sweep.det)
+    dead = (status == Status.CONVERGED) & ~(np.abs(det) >= SINGULAR_THRESHOLD)
+    status[dead] = Status.SINGULAR
+    ok = status == Status.CONVERGED
+    k = len(st.columns)
+    x = np.full((n, k), np.nan)
+    Afull = st.matrix(P[ok], size)
+    A = Afull[:, : 3 * st.nm]
+    b = -np.concatenate((t.F[ok, : st.nm], t.M[ok, : st.nm, None] / size), axis=-1)
+    if ok.any():
+        x[ok] = np.linalg.solve(A, b.reshape(len(A), -1, 1))[..., 0]
+    ground = np.full((n, 3), np.nan)
+    ground[ok] = np.einsum("irk,ik->ir", Afull[:, 3 * st.nm :], x[ok])
+    q_ne = x[:, -1]
+    q_vw = np.where(ok, -t.gen, np.nan)
+
+    reactions: dict[tuple[str, str], np.ndarray] = {}
+    normal: dict[str, np.ndarray] = {}
+    moment: dict[str, np.ndarray] = {}
+    for c, (kind, name, link) in enumerate(st.columns):
+        if kind == "pin" and (name, link) not in reactions:
+            reactions[(name, link)] = x[:, c : c + 2]
+        elif kind == "normal":
+            normal[name] = x[:, c]
+        elif kind == "moment":
+            moment[name] = x[:, c]
+
+    checks: dict[str, float] = {}
+    scale_vw = float(np.max((t.gabs + np.abs(q_ne))[ok], initial=0.0))
+    res = np.abs(q_vw - q_ne)[ok]
+    checks["virtual_work"] = float(res.max() / scale_vw) if scale_vw > 0 and res.size else 0.0
+    p_in = q_ne * w
+    if dynamic:
+        resid = (p_in + t.power - dpot - dkin)[ok]
+        scale_e = float(np.max((np.abs(p_in) + t.pabs + dpabs + dkabs)[ok], initial=0.0))
+        checks["energy"] = float(np.abs(resid).max() / scale_e) if scale_e > 0 else 0.0
+    check = max(checks.values()) if checks else 0.0
+
+    ma = None
+    out = data.get("output")
+    if out is not None:
+        if "link" in out:
+            rate1 = W1[:, lidx[out["link"]]]
+        else:
+            kind = "slot" if "slot" in out else "prismatic"
+            j, pt, _ = (st.slot_of if kind == "slot" else st.prismatic_of)[out[kind]]
+            rate1 = along(j, pt)[0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ma = np.where(ok, 1.0 / rate1, np.nan)
+
+    nan = np.where(ok, 0.0, np.nan)
+    return Forces(
+        kind="dynamics" if dynamic else "statics",
+        theta=theta,
+        input_kind="angle" if angle else "displacement",
+        status=status,
+        input=q_ne,
+        input_virtual_work=q_vw,
+        reactions=reactions,
+        normal=normal,
+        moment=moment,
+        mechanical_advantage=ma,
+        shaking_force=ground[:, :2],
+        shaking_moment=ground[:, 2] * size,
+        kinetic_energy=kin + nan,
+        potential_energy=pot + nan,
+        input_power=p_in,
+        check=check,
+        checks=checks,
+        units=units,
+        omega=w if dynamic else None,
+        alpha=al if dynamic else None,
+    )

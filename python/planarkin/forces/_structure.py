@@ -1,0 +1,226 @@
+"""The Newton-Euler system of a scene, once per scene: which unknowns (each revolute pin's
+force per (joint, link) pair, each slot's normal force, each prismatic pair's normal force
+and moment, the input effort), which links they act on, with which sign, at which point and
+along which direction. A kernel of the forces subject: it reads the scene's plain data."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+__all__ = ["Structure"]
+
+#: Direction kinds of a force entry: the x or y axis, a line's unit normal, along a line.
+EX, EY, NORMAL, ALONG = 0, 1, 2, 3
+
+
+@dataclass(frozen=True)
+class Structure:
+    """The unknowns and where they act. Links are indexed with the moving links first (scene
+    order), then ground (index ``nm``); points in the scene's order."""
+
+    point_names: tuple[str, ...]
+    #: Moving links (scene order), then ground last.
+    link_names: tuple[str, ...]
+    #: Number of moving links (3 equations each).
+    nm: int
+    #: Reference point index of each link (its first point): moments are taken about it.
+    ref: np.ndarray
+    #: Each unknown column: (kind, name, link) -- kind "pin" (name = joint point, link =
+    #: the link it acts on; two columns, x then y), "normal" (slot or prismatic pair),
+    #: "moment" (prismatic pair), "input".
+    columns: tuple[tuple[str, str, str], ...]
+    #: Force entries: link index, column, sign, point index, direction kind, line index.
+    f_link: np.ndarray
+    f_col: np.ndarray
+    f_sign: np.ndarray
+    f_pt: np.ndarray
+    f_kind: np.ndarray
+    f_line: np.ndarray
+    #: Couple entries: link index, column, sign.
+    c_link: np.ndarray
+    c_col: np.ndarray
+    c_sign: np.ndarray
+    #: Lines of slots and prismatic pairs: (guide link index, point a, point b).
+    lines: tuple[tuple[int, int, int], ...]
+    #: Slot name -> (line index, point index, carrier link index); prismatic name ->
+    #: (line index, reference point index, link index).
+    slot_of: Mapping[str, tuple[int, int, int]]
+    prismatic_of: Mapping[str, tuple[int, int, int]]
+    #: The input column (the last) and the input's kind: "angle", "slot", "prismatic".
+    input_kind: str
+    input_name: str
+    #: For a linear input: its (line, point, carrier link); for an angle: (-1, pivot, link).
+    input_at: tuple[int, int, int]
+
+    @classmethod
+    def of(cls, data: Mapping[str, Any]) -> Structure:
+        """From a scene's data (``Scene._data``: points, links, ground, input, slots,
+        prismatic); ValueError when the scene is statically indeterminate."""
+        pnames = tuple(data["points"])
+        pidx = {p: i for i, p in enumerate(pnames)}
+        links: dict[str, tuple[str, ...]] = data["links"]
+        ground = data["ground"]
+        moving = [n for n in links if n != ground]
+        lnames = (*moving, ground)
+        lidx = {n: i for i, n in enumerate(lnames)}
+        ref = np.array([pidx[links[n][0]] for n in lnames], dtype=np.intp)
+        cols: list[tuple[str, str, str]] = []
+        fe: list[tuple[int, int, float, int, int, int]] = []
+        ce: list[tuple[int, int, float]] = []
+        for p in pnames:
+            on = [n for n in links if p in links[n]]
+            for other in on[1:]:
+                for k in (EX, EY):
+                    c = len(cols)
+                    cols.append(("pin", p, other))
+                    fe.append((lidx[other], c, 1.0, pidx[p], k, -1))
+                    fe.append((lidx[on[0]], c, -1.0, pidx[p], k, -1))
+        lines: list[tuple[int, int, int]] = []
+        slot_of: dict[str, tuple[int, int, int]] = {}
+        for name, (q, guide, (a, b)) in data["slots"].items():
+            carrier = next(n for n in links if q in links[n] and n != guide)
+            j = len(lines)
+            lines.append((lidx[guide], pidx[a], pidx[b]))
+            slot_of[name] = (j, pidx[q], lidx[carrier])
+            c = len(cols)
+            cols.append(("normal", name, carrier))
+            fe.append((lidx[carrier], c, 1.0, pidx[q], NORMAL, j))
+            fe.append((lidx[guide], c, -1.0, pidx[q], NORMAL, j))
+        prism_of: dict[str, tuple[int, int, int]] = {}
+        for name, (link, guide, (a, b)) in data["prismatic"].items():
+            j = len(lines)
+            lines.append((lidx[guide], pidx[a], pidx[b]))
+            r = pidx[links[link][0]]
+            prism_of[name] = (j, r, lidx[link])
+            c = len(cols)
+            cols.append(("normal", name, link))
+            fe.append((lidx[link], c, 1.0, r, NORMAL, j))
+            fe.append((lidx[guide], c, -1.0, r, NORMAL, j))
+            cols.append(("moment", name, link))
+            ce.append((lidx[link], c + 1, 1.0))
+            ce.append((lidx[guide], c + 1, -1.0))
+        inp = data["input"]
+        c = len(cols)
+        if "link" in inp:
+            kind, iname = "angle", inp["link"]
+            cols.append(("input", iname, iname))
+            ce.append((lidx[iname], c, 1.0))
+            ce.append((lidx[ground], c, -1.0))
+            at = (-1, pidx[inp["pivot"]], lidx[iname])
+        else:
+            kind = "slot" if "slot" in inp else "prismatic"
+            iname = inp[kind]
+            j, pt, carrier = (slot_of if kind == "slot" else prism_of)[iname]
+            guide = lines[j][0]
+            cols.append(("input", iname, lnames[carrier]))
+            fe.append((carrier, c, 1.0, pt, ALONG, j))
+            fe.append((guide, c, -1.0, pt, ALONG, j))
+            at = (j, pt, carrier)
+        f = np.array(fe, dtype=np.float64).reshape(-1, 6)
+        cpl = np.array(ce, dtype=np.float64).reshape(-1, 3)
+        st = cls(
+            point_names=pnames,
+            link_names=lnames,
+            nm=len(moving),
+            ref=ref,
+            columns=tuple(cols),
+            f_link=f[:, 0].astype(np.intp),
+            f_col=f[:, 1].astype(np.intp),
+            f_sign=f[:, 2],
+            f_pt=f[:, 3].astype(np.intp),
+            f_kind=f[:, 4].astype(np.intp),
+            f_line=f[:, 5].astype(np.intp),
+            c_link=cpl[:, 0].astype(np.intp),
+            c_col=cpl[:, 1].astype(np.intp),
+            c_sign=cpl[:, 2],
+            lines=tuple(lines),
+            slot_of=slot_of,
+            prismatic_of=prism_of,
+            input_kind=kind,
+            input_name=iname,
+            input_at=at,
+        )
+        drawn = np.array([data["points"][p] for p in pnames], dtype=np.float64)[None]
+        st._refuse_redundant(drawn)
+        return st
+
+    def directions(self, P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(n, lines, 2) unit directions u of the lines (from their first point to their
+        second) and their unit normals n (u turned +90 degrees), at poses ``P``."""
+        if not self.lines:
+            z = np.zeros((P.shape[0], 0, 2))
+            return z, z
+        ab = np.array([(a, b) for _, a, b in self.lines], dtype=np.intp)
+        d = P[:, ab[:, 1]] - P[:, ab[:, 0]]
+        u = d / np.hypot(d[..., 0], d[..., 1])[..., None]
+        return u, np.stack((-u[..., 1], u[..., 0]), axis=-1)
+
+    def matrix(self, P: np.ndarray, scale: float) -> np.ndarray:
+        """(n, 3 (nm + 1), columns): each link's force (x, y) and moment about its reference
+        point (divided by ``scale``, a length, for conditioning) from unit unknowns, ground's
+        three rows last. ``P`` (n, points, 2) the poses."""
+        n, k = P.shape[0], len(self.columns)
+        rows = 3 * (self.nm + 1)
+        u, nrm = self.directions(P)
+        E = len(self.f_col)
+        D = np.zeros((n, E, 2))
+        D[:, self.f_kind == EX, 0] = 1.0
+        D[:, self.f_kind == EY, 1] = 1.0
+        for kind, arr in ((NORMAL, nrm), (ALONG, u)):
+            m = self.f_kind == kind
+            if m.any():
+                D[:, m] = arr[:, self.f_line[m]]
+        R = P[:, self.f_pt] - P[:, self.ref[self.f_link]]
+        mom = (R[..., 0] * D[..., 1] - R[..., 1] * D[..., 0]) / scale
+        s = self.f_sign
+        vals = np.concatenate(
+            (
+                s * D[..., 0],
+                s * D[..., 1],
+                s * mom,
+                np.broadcast_to(self.c_sign / scale, (n, len(self.c_col))),
+            ),
+            axis=1,
+        )
+        r3 = 3 * self.f_link
+        idx = np.concatenate(
+            ((r3) * k + self.f_col, (r3 + 1) * k + self.f_col, (r3 + 2) * k + self.f_col,
+             (3 * self.c_link + 2) * k + self.c_col)
+        )  # fmt: skip
+        A = np.zeros((n, rows * k))
+        A[:, idx] = vals
+        return A.reshape(n, rows, k)
+
+    def _name(self, j: int) -> str:
+        kind, name, link = self.columns[j]
+        if kind == "pin":
+            return f"the pin at joint {name!r} (link {link!r})"
+        if kind == "normal":
+            return f"the guide of {name!r}"
+        return f"the rotation of prismatic pair {name!r}"
+
+    def _refuse_redundant(self, P: np.ndarray) -> None:
+        """ValueError naming the first constraint whose reaction the equations of motion
+        cannot find (its column depends on earlier ones at the drawn pose)."""
+        size = float(np.ptp(P[0], axis=0).max()) or 1.0
+        A = self.matrix(P, size)[0, : 3 * self.nm, :-1]
+        k = A.shape[1]
+        if k + 1 < 3 * self.nm:
+            raise ValueError(
+                f"scene: {3 * self.nm - k - 1} more degrees of freedom than one: forces need a "
+                "one-degree-of-freedom scene"
+            )
+        rank = 0
+        for j in range(k):
+            r = np.linalg.matrix_rank(A[:, : j + 1], tol=1e-9 * max(1.0, np.abs(A).max()))
+            if r == rank:
+                raise ValueError(
+                    f"scene: statically indeterminate: {self._name(j)} is redundant (its "
+                    "reaction is not fixed by the equations of motion); remove it or free a "
+                    "joint"
+                )
+            rank = r
