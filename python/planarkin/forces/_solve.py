@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from .._status import SINGULAR_THRESHOLD, Status
+from .._status import Status
 from ._results import Forces
 from ._structure import Structure
 from ._units import inertia_factor
@@ -18,6 +18,11 @@ from ._units import inertia_factor
 __all__ = ["solve"]
 
 _TAU = 2 * np.pi
+#: A point whose scale-free conditioning (the sweep's ``det``) is below this is taken to be
+#: at a dead point: an effort there is amplified by more than 1e5 over the loads' scale,
+#: and its value says only how near the sampled point lies to the dead point (a linear
+#: input's default stroke ends at 1e-6, where the kinematics still converge).
+DEAD_POINT = 1e-5
 
 
 def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
@@ -241,7 +246,7 @@ def solve(
     size = float(np.ptp(np.asarray(list(data["points"].values())), axis=0).max()) or 1.0
     status = np.asarray(sweep.status).astype(np.int8).copy()
     det = np.asarray(sweep.det)
-    dead = (status == Status.CONVERGED) & ~(np.abs(det) >= SINGULAR_THRESHOLD)
+    dead = (status == Status.CONVERGED) & ~(np.abs(det) >= DEAD_POINT)
     status[dead] = Status.SINGULAR
     ok = status == Status.CONVERGED
     k = len(st.columns)
