@@ -19,8 +19,8 @@ from planarkin import Status
 from planarkin._kernel import SCENE_KEYS
 from planarkin.reference import scene as ref
 from scenemakers.geometry import DEG, motion
-from scenemakers.loaded import LOADED
 from scenemakers.linkages import chebyshev_lambda, fourbar, jansen, klann, peaucellier, watt2
+from scenemakers.loaded import LOADED
 from scenemakers.searched import double_butterfly_scene, stephenson3
 from scenemakers.sliders import SLIDERS
 

@@ -11,7 +11,6 @@ import math
 import numpy as np
 import planarkin as pk
 import pytest
-
 from test_statics import FOURBAR, pendulum
 
 G = 9.81
@@ -40,7 +39,10 @@ def energy(sw: pk.SceneSweep) -> np.ndarray:
     e = np.zeros(len(sw.theta))
     for link, m in MASSES.items():
         v = sw.velocities[m["center"]]
-        e += 0.5 * m["mass"] * (v**2).sum(axis=1) + 0.5 * m["inertia"] * sw.angular_velocities[link] ** 2
+        e += (
+            0.5 * m["mass"] * (v**2).sum(axis=1)
+            + 0.5 * m["inertia"] * sw.angular_velocities[link] ** 2
+        )
         e += m["mass"] * G * sw.points[m["center"]][:, 1]
     d = np.hypot(*(sw.points["C"] - sw.points["O4"]).T)
     return e + 0.5 * K * (d - L0) ** 2
@@ -92,13 +94,17 @@ def test_pendulum_dynamics_closed_form():
     # the pin: ground on arm = m a_G - m g, a_G = -w^2 r + a k x r
     rg = lg * np.stack((np.cos(t), np.sin(t)), axis=1)
     ag = -(w**2) * rg + a * np.stack((-rg[:, 1], rg[:, 0]), axis=1)
-    np.testing.assert_allclose(r.reactions[("O", "arm")], m * ag - m * np.array([0, -G]), atol=1e-12)
+    np.testing.assert_allclose(
+        r.reactions[("O", "arm")], m * ag - m * np.array([0, -G]), atol=1e-12
+    )
     np.testing.assert_allclose(r.kinetic_energy, 0.5 * (ig + m * lg**2) * w**2, rtol=1e-13)
     # the shaking force is what the arm puts on the ground: minus the pin's force on the arm
     np.testing.assert_allclose(r.shaking_force, -r.reactions[("O", "arm")], atol=1e-12)
 
 
-@pytest.mark.parametrize("name", ["engine", "fourbar-loaded", "jansen-loaded", "hydraulic-boom-loaded"])
+@pytest.mark.parametrize(
+    "name", ["engine", "fourbar-loaded", "jansen-loaded", "hydraulic-boom-loaded"]
+)
 def test_virtual_work_equals_newton_euler_on_the_loaded_builtins(name):
     sc = pk.scenes.load(name)
     sw = sc.sweep(outputs="all", rate=3.0)
@@ -114,14 +120,22 @@ def test_virtual_work_equals_newton_euler_on_the_loaded_builtins(name):
 def _rigid(d: dict, beta: float, shift: np.ndarray) -> dict:
     c, s = math.cos(beta), math.sin(beta)
     rot = np.array([[c, -s], [s, c]])
-    out = {**d, "points": {k: list(rot @ np.asarray(v, float) + shift) for k, v in d["points"].items()}}
+    out = {
+        **d,
+        "points": {k: list(rot @ np.asarray(v, float) + shift) for k, v in d["points"].items()},
+    }
     loads = dict(d["loads"])
     loads["gravity"] = list(rot @ np.asarray(loads["gravity"]))
-    loads["forces"] = [{**f, "force": list(rot @ np.asarray(f["force"]))} for f in loads.get("forces", [])]
+    loads["forces"] = [
+        {**f, "force": list(rot @ np.asarray(f["force"]))} for f in loads.get("forces", [])
+    ]
     masses = {}
     for k, m in loads["masses"].items():
         c_ = m["center"]
-        masses[k] = {**m, "center": c_ if isinstance(c_, str) else list(rot @ np.asarray(c_) + shift)}
+        masses[k] = {
+            **m,
+            "center": c_ if isinstance(c_, str) else list(rot @ np.asarray(c_) + shift),
+        }
     loads["masses"] = masses
     out["loads"] = loads
     return out
@@ -149,12 +163,18 @@ def test_scaling_laws():
     base = pk.scenes.data("fourbar-loaded")
 
     def scaled(d: dict, loads: dict) -> dict:
-        return {**d, "points": {k: [s * v[0], s * v[1]] for k, v in d["points"].items()}, "loads": loads}
+        return {
+            **d,
+            "points": {k: [s * v[0], s * v[1]] for k, v in d["points"].items()},
+            "loads": loads,
+        }
 
     statics = {"forces": base["loads"]["forces"], "torques": []}
     a, b = pk.Scene.from_dict({**base, "loads": statics}), pk.Scene.from_dict(scaled(base, statics))
     ra, rb = a.statics(), b.statics()
-    np.testing.assert_allclose(rb.input, s * ra.input, rtol=0, atol=1e-10 * s * np.abs(ra.input).max())
+    np.testing.assert_allclose(
+        rb.input, s * ra.input, rtol=0, atol=1e-10 * s * np.abs(ra.input).max()
+    )
     for key, f in ra.reactions.items():
         np.testing.assert_allclose(rb.reactions[key], f, atol=1e-10 * np.abs(f).max())
     inertia = {"masses": {k: {**m, "center": [s * m["center"][0], s * m["center"][1]],
@@ -163,13 +183,17 @@ def test_scaling_laws():
     small = {"masses": base["loads"]["masses"]}
     da = pk.Scene.from_dict({**base, "loads": small}).dynamics(omega=7.0)
     db = pk.Scene.from_dict(scaled(base, inertia)).dynamics(omega=7.0)
-    np.testing.assert_allclose(db.input, s * s * da.input, rtol=0, atol=1e-9 * s * s * np.abs(da.input).max())
-    np.testing.assert_allclose(db.shaking_force, s * da.shaking_force, atol=1e-9 * s * np.abs(da.shaking_force).max())
+    np.testing.assert_allclose(
+        db.input, s * s * da.input, rtol=0, atol=1e-9 * s * s * np.abs(da.input).max()
+    )
+    np.testing.assert_allclose(
+        db.shaking_force, s * da.shaking_force, atol=1e-9 * s * np.abs(da.shaking_force).max()
+    )
 
 
 def test_units_make_inertia_consistent():
     # the same pendulum stated in mm (gravity 9810 mm/s^2): torques in N mm, 1000 x those in N m
-    m, lg = 3.0, 0.5
+    m = 3.0
     si = pendulum(gravity=[0.0, -G], masses={"arm": {"mass": m, "center": "G", "inertia": 0.04}})
     d = si.to_dict()
     mm = {**d, "units": {"length": "mm", "force": "N", "mass": "kg"},
@@ -178,7 +202,9 @@ def test_units_make_inertia_consistent():
                     "masses": {"arm": {"mass": m, "center": "G", "inertia": 0.04e6}}}}  # fmt: skip
     a, b = si.dynamics(omega=3.0, alpha=1.0), pk.Scene.from_dict(mm).dynamics(omega=3.0, alpha=1.0)
     np.testing.assert_allclose(b.input, 1e3 * a.input, rtol=1e-12)
-    np.testing.assert_allclose(b.reactions[("O", "arm")], a.reactions[("O", "arm")], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(
+        b.reactions[("O", "arm")], a.reactions[("O", "arm")], rtol=1e-12, atol=1e-12
+    )
 
 
 def test_dynamics_needs_a_rate():

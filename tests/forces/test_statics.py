@@ -174,8 +174,8 @@ def test_spring_loaded_arm_equilibrium():
     at = sc.statics(sc.sweep(np.array([star, star + math.pi]), outputs="all", rate=1.0))
     np.testing.assert_allclose(at.input, 0.0, atol=1e-12 * k * dd)
     # a preload P0 adds P0 dd' / dt to the torque (dd'/dt of the spring's length)
-    pre = pk.Scene.from_dict({**sc.to_dict(), "loads": {
-        "springs": [{"between": ["P", "S"], "k": 0.0, "free_length": 0.0, "preload": 7.0}]}})  # fmt: skip
+    spring = {"between": ["P", "S"], "k": 0.0, "free_length": 0.0, "preload": 7.0}
+    pre = pk.Scene.from_dict({**sc.to_dict(), "loads": {"springs": [spring]}})
     length = np.sqrt(1 + dd**2 - 2 * dd * np.cos(t))
     np.testing.assert_allclose(pre.statics().input, 7.0 * dd * np.sin(t) / length, atol=1e-11)
 

@@ -46,7 +46,9 @@ def engine():
     mr, mp, rod = 0.8, 0.5, 160.0
     cr = a + (b - a) / 3
     c = (mr * cr + mp * b) / (mr + mp)
-    inertia = mr * rod**2 / 12 + mr * float(np.sum((cr - c) ** 2)) + mp * float(np.sum((b - c) ** 2))
+    inertia = (
+        mr * rod**2 / 12 + mr * float(np.sum((cr - c) ** 2)) + mp * float(np.sum((b - c) ** 2))
+    )
     sc.update(
         name="engine (slider-crank with gas force)",
         description=(
@@ -59,13 +61,17 @@ def engine():
         ),
         units=SI_MM,
         loads={
-            "forces": [{"slot": "piston", "force": force,
-                        "input": [round(float(x), 12) for x in t]}],  # fmt: skip
+            "forces": [
+                {"slot": "piston", "force": force, "input": [round(float(x), 12) for x in t]}
+            ],  # fmt: skip
             "gravity": [0.0, -9810.0],
             "masses": {
                 "crank": {"mass": 2.0, "center": "O2", "inertia": 2000.0},
-                "rod": {"mass": mr + mp, "center": [float(c[0]), float(c[1])],
-                        "inertia": round(inertia, 6)},  # fmt: skip
+                "rod": {
+                    "mass": mr + mp,
+                    "center": [float(c[0]), float(c[1])],
+                    "inertia": round(inertia, 6),
+                },  # fmt: skip
             },
         },
     )
@@ -129,8 +135,13 @@ def jansen_loaded():
         ),
         units=SI_CM,
         loads={
-            "forces": [{"point": "foot", "force": [[0.0, round(float(f), 9)] for f in fy],
-                        "input": [round(float(x), 12) for x in ts]}],  # fmt: skip
+            "forces": [
+                {
+                    "point": "foot",
+                    "force": [[0.0, round(float(f), 9)] for f in fy],
+                    "input": [round(float(x), 12) for x in ts],
+                }
+            ],  # fmt: skip
             "gravity": [0.0, -981.0],
             "masses": masses,
         },

@@ -45,7 +45,9 @@ def _per_point(name: str, v: Any, n: int) -> np.ndarray:
     if a.ndim == 0:
         a = np.full(n, float(a))
     if a.shape != (n,):
-        raise ValueError(f"{name} must be a number or one value per sweep point ({n}), got shape {a.shape}")
+        raise ValueError(
+            f"{name} must be a number or one value per sweep point ({n}), got shape {a.shape}"
+        )
     if not np.isfinite(a).all():
         raise ValueError(f"{name} must be finite")
     return a

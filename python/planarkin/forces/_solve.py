@@ -249,13 +249,13 @@ def solve(
     dead = (status == Status.CONVERGED) & ~(np.abs(det) >= DEAD_POINT)
     status[dead] = Status.SINGULAR
     ok = status == Status.CONVERGED
-    k = len(st.columns)
-    x = np.full((n, k), np.nan)
+    ncol = len(st.columns)
+    x = np.full((n, ncol), np.nan)
     Afull = st.matrix(P[ok], size)
     A = Afull[:, : 3 * st.nm]
-    b = -np.concatenate((t.F[ok, : st.nm], t.M[ok, : st.nm, None] / size), axis=-1)
+    rhs = -np.concatenate((t.F[ok, : st.nm], t.M[ok, : st.nm, None] / size), axis=-1)
     if ok.any():
-        x[ok] = np.linalg.solve(A, b.reshape(len(A), -1, 1))[..., 0]
+        x[ok] = np.linalg.solve(A, rhs.reshape(len(A), -1, 1))[..., 0]
     ground = np.full((n, 3), np.nan)
     ground[ok] = np.einsum("irk,ik->ir", Afull[:, 3 * st.nm :], x[ok])
     q_ne = x[:, -1]

@@ -82,13 +82,13 @@ class Structure:
         lines: list[tuple[int, int, int]] = []
         slot_of: dict[str, tuple[int, int, int]] = {}
         for name, (q, guide, (a, b)) in data["slots"].items():
-            carrier = next(n for n in links if q in links[n] and n != guide)
+            holder = next(n for n in links if q in links[n] and n != guide)
             j = len(lines)
             lines.append((lidx[guide], pidx[a], pidx[b]))
-            slot_of[name] = (j, pidx[q], lidx[carrier])
+            slot_of[name] = (j, pidx[q], lidx[holder])
             c = len(cols)
-            cols.append(("normal", name, carrier))
-            fe.append((lidx[carrier], c, 1.0, pidx[q], NORMAL, j))
+            cols.append(("normal", name, holder))
+            fe.append((lidx[holder], c, 1.0, pidx[q], NORMAL, j))
             fe.append((lidx[guide], c, -1.0, pidx[q], NORMAL, j))
         prism_of: dict[str, tuple[int, int, int]] = {}
         for name, (link, guide, (a, b)) in data["prismatic"].items():
@@ -106,11 +106,11 @@ class Structure:
         inp = data["input"]
         c = len(cols)
         if "link" in inp:
-            kind, iname = "angle", inp["link"]
+            kind, iname = "angle", str(inp["link"])
             cols.append(("input", iname, iname))
             ce.append((lidx[iname], c, 1.0))
             ce.append((lidx[ground], c, -1.0))
-            at = (-1, pidx[inp["pivot"]], lidx[iname])
+            at: tuple[int, int, int] = (-1, pidx[inp["pivot"]], lidx[iname])
         else:
             kind = "slot" if "slot" in inp else "prismatic"
             iname = inp[kind]

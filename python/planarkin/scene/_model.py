@@ -549,8 +549,8 @@ class Scene:
             if sweep is None or sweep.rate is None:
                 raise ValueError("omega is required (the input's rate) unless the sweep has a rate")
             omega = sweep.rate
-        scalar = np.ndim(omega) == 0
-        st, sw, chosen = self._force_args(sweep, loads, float(omega) if scalar else None)  # type: ignore[arg-type]
+        w = np.asarray(omega, dtype=np.float64)
+        st, sw, chosen = self._force_args(sweep, loads, float(w) if w.ndim == 0 else None)
         return analyse(st, self._data, sw, chosen, omega=omega, alpha=alpha)
 
     # --- every assembly, circuits, tracing ------------------------------------------------

@@ -3,8 +3,7 @@
 //! scene's names with one-line messages naming the entry. The numbers are the forces
 //! subject's to use; the core only checks and hands them on, normalised ([`Loads::to_value`]).
 
-use super::parse::real;
-use super::value::Value;
+use super::value::{real, Value};
 use crate::error::Error;
 
 fn fail<T>(entry: impl Into<String>, message: impl Into<String>) -> Result<T, Error> {

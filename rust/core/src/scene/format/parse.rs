@@ -1,7 +1,7 @@
 //! The scene file format's rules: which keys, which are required, what each entry holds,
 //! and the message naming the entry when it does not (Python's `repr` of what it got).
 
-use super::value::{Like, Value};
+use super::value::{real, Like, Value};
 use super::{Drive, Parsed, KEYS, MAX_DEPTH, REQUIRED};
 use crate::error::Error;
 use crate::scene::{LengthSpec, LinearKind, PrismaticSpec, SceneSpec, SlotSpec};
@@ -12,29 +12,6 @@ fn fail<T>(entry: impl Into<String>, message: impl Into<String>) -> Result<T, Er
 
 /// The table at `entry` must be a mapping; ordered entries.
 type Entries<'a> = &'a [(Value, Value)];
-
-/// A real number as Python's `float()` reads it for the format (not a bool or a string),
-/// or the message Python gives, naming `name`.
-pub(crate) fn real(name: &str, v: &Value) -> Result<f64, Error> {
-    let bad = || Err(Error::invalid(name.to_owned(), "must be a real number", v.repr()));
-    match v {
-        Value::Float(x) => Ok(*x),
-        Value::Int(i) => Ok(*i as f64),
-        Value::BigInt { digits, bits } => match digits.parse::<f64>() {
-            Ok(x) if x.is_finite() => Ok(x),
-            _ => Err(Error::invalid(
-                name.to_owned(),
-                "must be a real number within the float range",
-                format!("an integer of {bits} bits"),
-            )),
-        },
-        Value::Foreign(f) => match f.like {
-            Like::Real(x) => Ok(x),
-            _ => bad(),
-        },
-        _ => bad(),
-    }
-}
 
 /// Keys exactly `want` (as strings), in any order.
 fn keys_are(m: Entries<'_>, want: &[&str]) -> bool {
