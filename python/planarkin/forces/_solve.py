@@ -243,7 +243,7 @@ def solve(
                 inertia * Wa[:, k] * Wl[:, k]
             )
 
-    size = float(np.ptp(np.asarray(list(data["points"].values())), axis=0).max()) or 1.0
+    size = st.size
     status = np.asarray(sweep.status).astype(np.int8).copy()
     det = np.asarray(sweep.det)
     dead = (status == Status.CONVERGED) & ~(np.abs(det) >= DEAD_POINT)
@@ -251,7 +251,7 @@ def solve(
     ok = status == Status.CONVERGED
     ncol = len(st.columns)
     x = np.full((n, ncol), np.nan)
-    Afull = st.matrix(P[ok], size)
+    Afull = st.matrix(P[ok])
     A = Afull[:, : 3 * st.nm]
     rhs = -np.concatenate((t.F[ok, : st.nm], t.M[ok, : st.nm, None] / size), axis=-1)
     if ok.any():

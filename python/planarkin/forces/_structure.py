@@ -6,7 +6,7 @@ along which direction. A kernel of the forces subject: it reads the scene's plai
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -55,6 +55,17 @@ class Structure:
     input_name: str
     #: For a linear input: its (line, point, carrier link); for an angle: (-1, pivot, link).
     input_at: tuple[int, int, int]
+    #: The drawing's size (moment rows are divided by it, for conditioning).
+    size: float = 1.0
+    #: The matrix's constant entries (flat, rows x columns): unit forces and couples.
+    template: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: Moment entries of the axis-aligned (pin) forces: flat index, point, reference
+    #: point, which coordinate of the arm (0: x, 1: y) and its sign.
+    pin_idx: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
+    pin_pt: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
+    pin_ref: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
+    pin_comp: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
+    pin_sign: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @classmethod
     def of(cls, data: Mapping[str, Any]) -> Structure:
@@ -145,8 +156,33 @@ class Structure:
             input_at=at,
         )
         drawn = np.array([data["points"][p] for p in pnames], dtype=np.float64)[None]
+        st = st._prepared(float(np.ptp(drawn[0], axis=0).max()) or 1.0)
         st._refuse_redundant(drawn)
         return st
+
+    def _prepared(self, size: float) -> Structure:
+        """With the constant part of :meth:`matrix` worked out once."""
+        k = len(self.columns)
+        rows = 3 * (self.nm + 1)
+        tpl = np.zeros(rows * k)
+        axis = self.f_kind <= EY
+        r3 = 3 * self.f_link[axis]
+        c = self.f_col[axis]
+        kind = self.f_kind[axis]
+        sign = self.f_sign[axis]
+        tpl[(r3 + kind) * k + c] = sign
+        tpl[(3 * self.c_link + 2) * k + self.c_col] = self.c_sign / size
+        # moment of a unit x force at arm r: -r_y; of a unit y force: +r_x
+        return replace(
+            self,
+            size=size,
+            template=tpl,
+            pin_idx=(r3 + 2) * k + c,
+            pin_pt=self.f_pt[axis],
+            pin_ref=self.ref[self.f_link[axis]],
+            pin_comp=np.where(kind == EX, 1, 0).astype(np.intp),
+            pin_sign=np.where(kind == EX, -sign, sign) / size,
+        )
 
     def directions(self, P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(n, lines, 2) unit directions u of the lines (from their first point to their
@@ -159,40 +195,29 @@ class Structure:
         u = d / np.hypot(d[..., 0], d[..., 1])[..., None]
         return u, np.stack((-u[..., 1], u[..., 0]), axis=-1)
 
-    def matrix(self, P: np.ndarray, scale: float) -> np.ndarray:
+    def matrix(self, P: np.ndarray) -> np.ndarray:
         """(n, 3 (nm + 1), columns): each link's force (x, y) and moment about its reference
-        point (divided by ``scale``, a length, for conditioning) from unit unknowns, ground's
-        three rows last. ``P`` (n, points, 2) the poses."""
+        point (divided by ``size``, for conditioning) from unit unknowns, ground's three
+        rows last. ``P`` (n, points, 2) the poses."""
         n, k = P.shape[0], len(self.columns)
         rows = 3 * (self.nm + 1)
-        u, nrm = self.directions(P)
-        E = len(self.f_col)
-        D = np.zeros((n, E, 2))
-        D[:, self.f_kind == EX, 0] = 1.0
-        D[:, self.f_kind == EY, 1] = 1.0
-        for kind, arr in ((NORMAL, nrm), (ALONG, u)):
-            m = self.f_kind == kind
-            if m.any():
-                D[:, m] = arr[:, self.f_line[m]]
-        R = P[:, self.f_pt] - P[:, self.ref[self.f_link]]
-        mom = (R[..., 0] * D[..., 1] - R[..., 1] * D[..., 0]) / scale
-        s = self.f_sign
-        vals = np.concatenate(
-            (
-                s * D[..., 0],
-                s * D[..., 1],
-                s * mom,
-                np.broadcast_to(self.c_sign / scale, (n, len(self.c_col))),
-            ),
-            axis=1,
-        )
-        r3 = 3 * self.f_link
-        idx = np.concatenate(
-            ((r3) * k + self.f_col, (r3 + 1) * k + self.f_col, (r3 + 2) * k + self.f_col,
-             (3 * self.c_link + 2) * k + self.c_col)
-        )  # fmt: skip
-        A = np.zeros((n, rows * k))
-        A[:, idx] = vals
+        A = np.empty((n, rows * k))
+        A[:] = self.template
+        R = P[:, self.pin_pt] - P[:, self.pin_ref]
+        A[:, self.pin_idx] = self.pin_sign * np.take_along_axis(
+            R, self.pin_comp[None, :, None], axis=2
+        )[..., 0]
+        line = self.f_kind > EY
+        if line.any():
+            u, nrm = self.directions(P)
+            kind, j = self.f_kind[line], self.f_line[line]
+            D = np.where((kind == NORMAL)[None, :, None], nrm[:, j], u[:, j])
+            L, c, s = self.f_link[line], self.f_col[line], self.f_sign[line]
+            Rl = P[:, self.f_pt[line]] - P[:, self.ref[L]]
+            mom = (Rl[..., 0] * D[..., 1] - Rl[..., 1] * D[..., 0]) / self.size
+            A[:, (3 * L) * k + c] = s * D[..., 0]
+            A[:, (3 * L + 1) * k + c] = s * D[..., 1]
+            A[:, (3 * L + 2) * k + c] = s * mom
         return A.reshape(n, rows, k)
 
     def _name(self, j: int) -> str:
@@ -206,8 +231,7 @@ class Structure:
     def _refuse_redundant(self, P: np.ndarray) -> None:
         """ValueError naming the first constraint whose reaction the equations of motion
         cannot find (its column depends on earlier ones at the drawn pose)."""
-        size = float(np.ptp(P[0], axis=0).max()) or 1.0
-        A = self.matrix(P, size)[0, : 3 * self.nm, :-1]
+        A = self.matrix(P)[0, : 3 * self.nm, :-1]
         k = A.shape[1]
         if k + 1 < 3 * self.nm:
             raise ValueError(
