@@ -5,6 +5,7 @@ velocity map, the energies and the checks. A kernel of the forces subject."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any
 
@@ -204,44 +205,60 @@ def solve(
         t.force(carrier(e["between"][0]), P[:, a], f, V1[:, a], V[:, a])
         t.force(carrier(e["between"][1]), P[:, b], -f, V1[:, b], V[:, b])
     gravity = L.get("gravity")
-    for name, m in L.get("masses", {}).items():
-        k = lidx[name]
-        if k == st.nm:
-            continue  # the ground's mass does nothing
-        c = m["center"]
-        if isinstance(c, str):
-            G, v1G, aG = P[:, pidx[c]], V1[:, pidx[c]], Acc[:, pidx[c]]
-        else:
-            pts = links[name]
-            a, b = pidx[pts[0]], pidx[pts[1]]
-            da = np.subtract(data["points"][pts[1]], data["points"][pts[0]])
-            d = P[:, b] - P[:, a]
-            phi = np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(da[1], da[0])
-            c0 = np.subtract(c, data["points"][pts[0]])
-            cs, sn = np.cos(phi), np.sin(phi)
-            r = np.stack((cs * c0[0] - sn * c0[1], sn * c0[0] + cs * c0[1]), axis=-1)
-            G = P[:, a] + r
-            v1G = V1[:, a] + _perp(W1[:, k], r)
-            aG = Acc[:, a] + _perp(Wa[:, k], r) - (Wl[:, k] ** 2)[:, None] * r
-        mass, inertia = cu * m["mass"], cu * m["inertia"]
-        vG = w[:, None] * v1G
+    masses = [(lidx[k], m) for k, m in L.get("masses", {}).items() if lidx[k] != st.nm]
+    if masses:
+        # every massed link at once: its centre is point a plus the arm c0 (drawn) turned
+        # with the link (a point centre: a is that point and c0 is zero)
+        ks = np.array([k for k, _ in masses], dtype=np.intp)
+        ia, ib, c0, d0 = [], [], [], []
+        for k, m in masses:
+            c, pts = m["center"], links[st.link_names[k]]
+            if isinstance(c, str):
+                ia.append(pidx[c]), ib.append(pidx[pts[1] if pts[0] == c else pts[0]])
+                c0.append((0.0, 0.0)), d0.append(0.0)
+            else:
+                pa, pb = data["points"][pts[0]], data["points"][pts[1]]
+                ia.append(pidx[pts[0]]), ib.append(pidx[pts[1]])
+                c0.append((c[0] - pa[0], c[1] - pa[1]))
+                d0.append(math.atan2(pb[1] - pa[1], pb[0] - pa[0]))
+        ia_, ib_ = np.array(ia, dtype=np.intp), np.array(ib, dtype=np.intp)
+        arm0 = np.array(c0)
+        d = P[:, ib_] - P[:, ia_]
+        phi = np.arctan2(d[..., 1], d[..., 0]) - np.array(d0)
+        cs, sn = np.cos(phi), np.sin(phi)
+        r = np.stack((cs * arm0[:, 0] - sn * arm0[:, 1], sn * arm0[:, 0] + cs * arm0[:, 1]), -1)
+        rp = np.stack((-r[..., 1], r[..., 0]), axis=-1)  # k x r for a unit rate
+        G = P[:, ia_] + r
+        v1G = V1[:, ia_] + W1[:, ks, None] * rp
+        vG = w[:, None, None] * v1G
+        mass = cu * np.array([m["mass"] for _, m in masses])
+        inertia = cu * np.array([m["inertia"] for _, m in masses])
+        f = np.zeros_like(G)
         if gravity is not None:
-            wg = mass * np.asarray(gravity, dtype=np.float64)
-            t.force(k, G, np.broadcast_to(wg, (n, 2)), v1G, vG, work=False)
-            pot -= G @ wg
-            dpot -= vG @ wg
-            dpabs += np.abs(vG @ wg)
+            wg = mass[:, None] * np.asarray(gravity, dtype=np.float64)
+            f += wg
+            pw = np.einsum("nmj,mj->nm", vG, wg)
+            pot -= np.einsum("nmj,mj->n", G, wg)
+            dpot -= pw.sum(axis=1)
+            dpabs += np.abs(pw).sum(axis=1)
+        tq = np.zeros((n, len(ks)))
         if dynamic:
+            aG = Acc[:, ia_] + Wa[:, ks, None] * rp - (Wl[:, ks] ** 2)[..., None] * r
             # d'Alembert: the inertia force and couple as loads (no power: they are the
             # kinetic energy's rate of change, tallied apart)
-            t.force(k, G, -mass * aG, v1G, vG, work=False)
-            t.couple(k, -inertia * Wa[:, k], W1[:, k], Wl[:, k], work=False)
-            kin += 0.5 * (mass * np.einsum("ij,ij->i", vG, vG) + inertia * Wl[:, k] ** 2)
-            dk = mass * np.einsum("ij,ij->i", aG, vG) + inertia * Wa[:, k] * Wl[:, k]
-            dkin += dk
-            dkabs += np.abs(mass * np.einsum("ij,ij->i", aG, vG)) + np.abs(
-                inertia * Wa[:, k] * Wl[:, k]
-            )
+            f -= mass[:, None] * aG
+            tq = -inertia * Wa[:, ks]
+            kin += 0.5 * (mass * np.einsum("nmj,nmj->nm", vG, vG) + inertia * Wl[:, ks] ** 2).sum(1)
+            dk_t = mass * np.einsum("nmj,nmj->nm", aG, vG)
+            dk_r = inertia * Wa[:, ks] * Wl[:, ks]
+            dkin += (dk_t + dk_r).sum(axis=1)
+            dkabs += (np.abs(dk_t) + np.abs(dk_r)).sum(axis=1)
+        # links are distinct: plain fancy-index adds
+        t.F[:, ks] += f
+        t.M[:, ks] += _cross(G - P[:, st.ref[ks]], f) + tq
+        g = np.einsum("nmj,nmj->n", f, v1G) + (tq * W1[:, ks]).sum(axis=1)
+        t.gen += g
+        t.gabs += (np.abs(np.einsum("nmj,nmj->nm", f, v1G)) + np.abs(tq * W1[:, ks])).sum(1)
 
     size = st.size
     status = np.asarray(sweep.status).astype(np.int8).copy()
