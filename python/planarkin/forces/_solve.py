@@ -272,7 +272,15 @@ def solve(
     A = Afull[:, : 3 * st.nm]
     rhs = -np.concatenate((t.F[ok, : st.nm], t.M[ok, : st.nm, None] / size), axis=-1)
     if ok.any():
-        x[ok] = np.linalg.solve(A, rhs.reshape(len(A), -1, 1))[..., 0]
+        x[ok] = st.solve(A, rhs.reshape(len(A), -1))
+        # a block singular to rounding although the sweep's conditioning is not small
+        bad = ok & ~np.isfinite(x).all(axis=1)
+        if bad.any():
+            status[bad] = Status.SINGULAR
+            x[bad] = np.nan
+            keep = ~bad[ok]
+            ok = ok & ~bad
+            Afull = Afull[keep]
     ground = np.full((n, 3), np.nan)
     ground[ok] = np.einsum("irk,ik->ir", Afull[:, 3 * st.nm :], x[ok])
     q_ne = x[:, -1]

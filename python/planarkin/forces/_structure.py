@@ -66,6 +66,10 @@ class Structure:
     pin_ref: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
     pin_comp: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
     pin_sign: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: The moving links' equations in block-triangular order: (rows, columns, earlier
+    #: columns those rows read), solved one block after another (a dyad's two links are
+    #: one block of 6, the input link's one of 3).
+    blocks: tuple[tuple[np.ndarray, np.ndarray, np.ndarray], ...] = ()
 
     @classmethod
     def of(cls, data: Mapping[str, Any]) -> Structure:
@@ -175,6 +179,7 @@ class Structure:
         # moment of a unit x force at arm r: -r_y; of a unit y force: +r_x
         return replace(
             self,
+            blocks=self._blocks(),
             size=size,
             template=tpl,
             pin_idx=(r3 + 2) * k + c,
@@ -220,6 +225,101 @@ class Structure:
             A[:, (3 * L + 2) * k + c] = s * mom
         return A.reshape(n, rows, k)
 
+    def _pattern(self) -> np.ndarray:
+        """(3 nm, columns) bool: where the moving links' equations can read an unknown."""
+        k = len(self.columns)
+        S = np.zeros((3 * (self.nm + 1), k), dtype=bool)
+        for L, c, kind in zip(self.f_link, self.f_col, self.f_kind, strict=True):
+            S[3 * L + 2, c] = True
+            if kind != EY:
+                S[3 * L, c] = True
+            if kind != EX:
+                S[3 * L + 1, c] = True
+        S[3 * self.c_link + 2, self.c_col] = True
+        return S[: 3 * self.nm]
+
+    def _blocks(self) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], ...]:
+        """The block-triangular order of the equations (Dulmage-Mendelsohn: a matching of
+        unknowns to equations, then the strongly connected components of what each
+        unknown's equation reads, those read first); () when the structure has no perfect
+        matching (the redundancy check then names the culprit)."""
+        S = self._pattern()
+        rows, k = S.shape
+        if rows != k:
+            return ()
+        match_row = [-1] * rows  # row -> column
+        for c in range(k):
+            seen = [False] * rows
+
+            def augment(col: int) -> bool:
+                for r in np.flatnonzero(S[:, col]):
+                    if not seen[r]:
+                        seen[r] = True
+                        if match_row[r] < 0 or augment(match_row[r]):
+                            match_row[r] = col
+                            return True
+                return False
+
+            if not augment(c):
+                return ()
+        row_of = [0] * k
+        for r, c in enumerate(match_row):
+            row_of[c] = r
+        reads = [[int(x) for x in np.flatnonzero(S[row_of[c]]) if x != c] for c in range(k)]
+        order: list[list[int]] = []
+        index: dict[int, int] = {}
+        low: dict[int, int] = {}
+        stack: list[int] = []
+        on: set[int] = set()
+
+        def visit(v: int) -> None:  # Tarjan: a component is emitted after what it reads
+            index[v] = low[v] = len(index)
+            stack.append(v)
+            on.add(v)
+            for u in reads[v]:
+                if u not in index:
+                    visit(u)
+                    low[v] = min(low[v], low[u])
+                elif u in on:
+                    low[v] = min(low[v], index[u])
+            if low[v] == index[v]:
+                comp = []
+                while True:
+                    u = stack.pop()
+                    on.discard(u)
+                    comp.append(u)
+                    if u == v:
+                        break
+                order.append(sorted(comp))
+
+        for v in range(k):
+            if v not in index:
+                visit(v)
+        out = []
+        for comp in order:
+            r = np.array([row_of[c] for c in comp], dtype=np.intp)
+            prior = sorted(set(np.flatnonzero(S[r].any(axis=0)).tolist()) - set(comp))
+            out.append((r, np.array(comp, dtype=np.intp), np.array(prior, dtype=np.intp)))
+        return tuple(out)
+
+    def solve(self, A: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        """x with A x = rhs for each of n systems (A (n, 3 nm, columns), the moving links'
+        rows), block by block; NaN where a block is singular."""
+        n = A.shape[0]
+        if not self.blocks:
+            return _solve(A, rhs)
+        x = np.empty((n, A.shape[2]))
+        for r, c, prior in self.blocks:
+            b = rhs[:, r]
+            if len(prior):
+                b = b - np.einsum("nij,nj->ni", A[:, r[:, None], prior[None, :]], x[:, prior])
+            if len(c) == 1:
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    x[:, c] = b / A[:, r[0], c[0]][:, None]
+            else:
+                x[:, c] = _solve(A[:, r[:, None], c[None, :]], b)
+        return x
+
     def _name(self, j: int) -> str:
         kind, name, link = self.columns[j]
         if kind == "pin":
@@ -248,3 +348,17 @@ class Structure:
                     "joint"
                 )
             rank = r
+
+
+def _solve(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Batched dense solve; a singular system's row is NaN (LAPACK refuses the batch)."""
+    try:
+        return np.linalg.solve(A, b[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        out = np.full(b.shape, np.nan)
+        for i in range(len(A)):
+            try:
+                out[i] = np.linalg.solve(A[i], b[i])
+            except np.linalg.LinAlgError:
+                pass
+        return out
