@@ -110,17 +110,16 @@ def solve(
     P = sweep.coords[:, idx]
     V1 = sweep.velocity_array[:, idx] / rate
     lcol = {k: i for i, k in enumerate(sweep.link_names)}
+    lk = np.array([lcol[name] for name in st.link_names[: st.nm]], dtype=np.intp)
     W1 = np.zeros((n, st.nm + 1))
-    for i, name in enumerate(st.link_names[: st.nm]):
-        W1[:, i] = sweep.angular_velocity_array[:, lcol[name]] / rate
+    W1[:, : st.nm] = sweep.angular_velocity_array[:, lk] / rate
     w = np.zeros(n) if omega is None else np.broadcast_to(omega, (n,)).astype(np.float64)
     al = np.zeros(n) if alpha is None else np.broadcast_to(alpha, (n,)).astype(np.float64)
     if dynamic:
         A1 = sweep.acceleration_array[:, idx] / rate**2
         Acc = w[:, None, None] ** 2 * A1 + al[:, None, None] * V1
         Al1 = np.zeros((n, st.nm + 1))
-        for i, name in enumerate(st.link_names[: st.nm]):
-            Al1[:, i] = sweep.angular_acceleration_array[:, lcol[name]] / rate**2
+        Al1[:, : st.nm] = sweep.angular_acceleration_array[:, lk] / rate**2
         Wa = w[:, None] ** 2 * Al1 + al[:, None] * W1
     else:
         Acc = np.zeros_like(P)
@@ -268,7 +267,7 @@ def solve(
     ok = status == Status.CONVERGED
     ncol = len(st.columns)
     x = np.full((n, ncol), np.nan)
-    Afull = st.matrix(P[ok])
+    Afull = st.matrix(P if ok.all() else P[ok])
     A = Afull[:, : 3 * st.nm]
     rhs = -np.concatenate((t.F[ok, : st.nm], t.M[ok, : st.nm, None] / size), axis=-1)
     if ok.any():

@@ -208,10 +208,11 @@ class Structure:
         rows = 3 * (self.nm + 1)
         A = np.empty((n, rows * k))
         A[:] = self.template
-        R = P[:, self.pin_pt] - P[:, self.pin_ref]
-        A[:, self.pin_idx] = self.pin_sign * np.take_along_axis(
-            R, self.pin_comp[None, :, None], axis=2
-        )[..., 0]
+        # the arm's y (x forces) or x (y forces) coordinate: the flat (point, coordinate)
+        flat = P.reshape(n, -1)
+        A[:, self.pin_idx] = self.pin_sign * (
+            flat[:, 2 * self.pin_pt + self.pin_comp] - flat[:, 2 * self.pin_ref + self.pin_comp]
+        )
         line = self.f_kind > EY
         if line.any():
             u, nrm = self.directions(P)
