@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._angles import wrapped
 from .._results import status_counts
 from .._status import Status
 
@@ -118,7 +119,7 @@ class Forces:
         peaks = self.peaks()
         if peaks:
             (j, link), (m, t) = max(peaks.items(), key=lambda kv: np.nan_to_num(kv[1][0]))
-            at = f"{np.degrees(t):.1f} deg" if self.input_kind == "angle" else f"{t:.6g}"
+            at = f"{wrapped(t):.1f} deg" if self.input_kind == "angle" else f"{t:.6g}"
             lines.append(
                 f"largest pin reaction: {m:.6g} {self.units['force'] or ''} at joint {j} "
                 f"(on {link}), input {at}"
