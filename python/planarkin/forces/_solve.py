@@ -162,13 +162,13 @@ def solve(
             t.force(carrier(e["point"]), P[:, p], f, V1[:, p], V[:, p])
             continue
         kind = "slot" if "slot" in e else "prismatic"
-        j, pt, lk = (st.slot_of if kind == "slot" else st.prismatic_of)[e[kind]]
+        j, pt, holder = (st.slot_of if kind == "slot" else st.prismatic_of)[e[kind]]
         mag = _profile(e, "force", theta, angle)
         fu = mag[:, None] * u[:, j]
         # the actuator pushes the moving part along the line and the guide back
         s1, s = along(j, pt)
-        t.F[:, lk] += fu
-        t.M[:, lk] += _cross(P[:, pt] - P[:, st.ref[lk]], fu)
+        t.F[:, holder] += fu
+        t.M[:, holder] += _cross(P[:, pt] - P[:, st.ref[holder]], fu)
         g = st.lines[j][0]
         t.F[:, g] -= fu
         t.M[:, g] -= _cross(P[:, pt] - P[:, st.ref[g]], fu)
@@ -209,15 +209,21 @@ def solve(
         # every massed link at once: its centre is point a plus the arm c0 (drawn) turned
         # with the link (a point centre: a is that point and c0 is zero)
         ks = np.array([k for k, _ in masses], dtype=np.intp)
-        ia, ib, c0, d0 = [], [], [], []
+        ia: list[int] = []
+        ib: list[int] = []
+        c0: list[tuple[float, float]] = []
+        d0: list[float] = []
         for k, m in masses:
             c, pts = m["center"], links[st.link_names[k]]
             if isinstance(c, str):
-                ia.append(pidx[c]), ib.append(pidx[pts[1] if pts[0] == c else pts[0]])
-                c0.append((0.0, 0.0)), d0.append(0.0)
+                ia.append(pidx[c])
+                ib.append(pidx[pts[1] if pts[0] == c else pts[0]])
+                c0.append((0.0, 0.0))
+                d0.append(0.0)
             else:
                 pa, pb = data["points"][pts[0]], data["points"][pts[1]]
-                ia.append(pidx[pts[0]]), ib.append(pidx[pts[1]])
+                ia.append(pidx[pts[0]])
+                ib.append(pidx[pts[1]])
                 c0.append((c[0] - pa[0], c[1] - pa[1]))
                 d0.append(math.atan2(pb[1] - pa[1], pb[0] - pa[0]))
         ia_, ib_ = np.array(ia, dtype=np.intp), np.array(ib, dtype=np.intp)

@@ -249,19 +249,18 @@ class Structure:
         if rows != k:
             return ()
         match_row = [-1] * rows  # row -> column
+
+        def augment(col: int, seen: list[bool]) -> bool:
+            for r in np.flatnonzero(S[:, col]):
+                if not seen[r]:
+                    seen[r] = True
+                    if match_row[r] < 0 or augment(match_row[r], seen):
+                        match_row[r] = col
+                        return True
+            return False
+
         for c in range(k):
-            seen = [False] * rows
-
-            def augment(col: int) -> bool:
-                for r in np.flatnonzero(S[:, col]):
-                    if not seen[r]:
-                        seen[r] = True
-                        if match_row[r] < 0 or augment(match_row[r]):
-                            match_row[r] = col
-                            return True
-                return False
-
-            if not augment(c):
+            if not augment(c, [False] * rows):
                 return ()
         row_of = [0] * k
         for r, c in enumerate(match_row):
@@ -296,11 +295,11 @@ class Structure:
         for v in range(k):
             if v not in index:
                 visit(v)
-        out = []
+        out: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
         for comp in order:
-            r = np.array([row_of[c] for c in comp], dtype=np.intp)
-            prior = sorted(set(np.flatnonzero(S[r].any(axis=0)).tolist()) - set(comp))
-            out.append((r, np.array(comp, dtype=np.intp), np.array(prior, dtype=np.intp)))
+            rs = np.array([row_of[c] for c in comp], dtype=np.intp)
+            prior = sorted(set(np.flatnonzero(S[rs].any(axis=0)).tolist()) - set(comp))
+            out.append((rs, np.array(comp, dtype=np.intp), np.array(prior, dtype=np.intp)))
         return tuple(out)
 
     def solve(self, A: np.ndarray, rhs: np.ndarray) -> np.ndarray:

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..._angles import wrap
 from ...forces import Forces
+from ...forces.report import columns, totals
 from ...scene import Scene
 from ..figures.forces import arrows, effort, polar, reactions
 from ..progress import bar
@@ -33,7 +34,7 @@ from ._common import (
 FORCES_CSV = "forces.csv"
 FORCES_JSON = "forces.json"
 FIGURES = ("input_effort.png", "reactions.png", "pin_polar.png", "forces_drawn.png")
-__all__ = ["FIGURES", "FORCES_CSV", "FORCES_JSON", "add_parser", "columns", "run"]
+__all__ = ["FIGURES", "FORCES_CSV", "FORCES_JSON", "add_parser", "run"]
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -68,30 +69,6 @@ def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     return c
 
 
-def columns(r: Forces) -> tuple[list[str], list[np.ndarray]]:
-    """The CSV's header (units in brackets) and its columns."""
-    f, L = r.units["force"] or "force", r.units["length"] or "length"
-    e = r.effort_unit
-    head = ["theta [deg]" if r.input_kind == "angle" else f"s [{L}]", "status",
-            f"input [{e}]", f"input_virtual_work [{e}]"]  # fmt: skip
-    x = np.degrees(r.theta) if r.input_kind == "angle" else r.theta
-    cols = [x, r.status.astype(int), r.input, r.input_virtual_work]
-    for (joint, link), v in r.reactions.items():
-        head += [f"F_{joint}_{link}_x [{f}]", f"F_{joint}_{link}_y [{f}]"]
-        cols += [v[:, 0], v[:, 1]]
-    for name, v in r.normal.items():
-        head.append(f"N_{name} [{f}]")
-        cols.append(v)
-    for name, v in r.moment.items():
-        head.append(f"M_{name} [{f}*{L}]")
-        cols.append(v)
-    head += [f"shaking_x [{f}]", f"shaking_y [{f}]", f"shaking_moment [{f}*{L}]",
-             f"kinetic_energy [{f}*{L}]", f"potential_energy [{f}*{L}]"]  # fmt: skip
-    cols += [r.shaking_force[:, 0], r.shaking_force[:, 1], r.shaking_moment, r.kinetic_energy,
-             r.potential_energy]  # fmt: skip
-    return head, cols
-
-
 def _value(r: Forces, t: float) -> str:
     if r.input_kind == "angle":
         return f"{math.degrees(wrap(t)):.1f} deg"
@@ -99,26 +76,8 @@ def _value(r: Forces, t: float) -> str:
 
 
 def _summary(sc: Scene, r: Forces, args: argparse.Namespace, wall: float) -> dict:
-    ok = np.isfinite(r.input)
-    i = int(np.nanargmax(np.abs(r.input))) if ok.any() else None
-    return {
-        "scene": sc.name,
-        "kind": r.kind,
-        "units": r.units,
-        "effort_unit": r.effort_unit,
-        "rpm": args.rpm,
-        "speed": args.speed,
-        "points": len(r.theta),
-        "solved": int(r.success.sum()),
-        "peak_input": r.peak_input,
-        "peak_input_at": None if i is None else float(r.theta[i]),
-        "rms_input": r.rms_input,
-        "peak_reactions": [
-            {"joint": j, "link": k, "force": m, "at": t} for (j, k), (m, t) in r.peaks().items()
-        ],
-        "checks": r.checks,
-        "seconds": wall,
-    }
+    return {"scene": sc.name, "rpm": args.rpm, "speed": args.speed, **totals(r),
+            "seconds": wall}  # fmt: skip
 
 
 def run(args: argparse.Namespace) -> int:
