@@ -224,3 +224,27 @@ def test_units_table_round_trips():
     assert sc.unit_system == {"length": "mm", "force": "kN", "mass": "kg"}
     assert pk.Scene.from_dict(sc.to_dict()).to_dict()["units"] == {"length": "mm", "force": "kN"}
     assert pk.Scene.from_dict(dict(FOURBAR, units="mm")).to_dict()["units"] == "mm"
+
+
+def test_cylinder_force_lifting_a_boom():
+    """The hydraulic boom with a payload W at its tip T only: the cylinder (barrel and rod,
+    unloaded) is a two-force member along C1-E, so moments about O give
+    F (E - O) x u = W T_x, u the unit direction C1 -> E; the barrel's and rod's pin forces
+    are F u along the line, and the prismatic pair carries no moment."""
+    d = pk.scenes.data("hydraulic-boom")
+    W = 4905.0
+    d["loads"] = {"forces": [{"point": "T", "force": [0.0, -W]}]}
+    sc = pk.Scene.from_dict(d)
+    r = sc.statics()
+    sw = sc.sweep(r.theta, outputs="all", rate=1.0)
+    ok = r.success
+    assert ok.sum() > 300
+    e, t, c1 = sw.points["E"][ok], sw.points["T"][ok], sw.points["C1"][ok]
+    u = (e - c1) / np.hypot(*(e - c1).T)[:, None]
+    f = W * t[:, 0] / (e[:, 0] * u[:, 1] - e[:, 1] * u[:, 0])
+    np.testing.assert_allclose(r.input[ok], f, rtol=1e-10)
+    np.testing.assert_allclose(r.moment["cylinder"][ok], 0.0, atol=1e-9 * W * 1e3)
+    np.testing.assert_allclose(r.normal["cylinder"][ok], 0.0, atol=1e-9 * W)
+    # the boom pushes the rod at E: -F u (the cylinder in compression pushes back)
+    np.testing.assert_allclose(r.reactions[("E", "rod")][ok], -f[:, None] * u, rtol=1e-9,
+                               atol=1e-9 * W)  # fmt: skip
