@@ -248,3 +248,11 @@ def test_cylinder_force_lifting_a_boom():
     # the boom pushes the rod at E: -F u (the cylinder in compression pushes back)
     np.testing.assert_allclose(r.reactions[("E", "rod")][ok], -f[:, None] * u, rtol=1e-9,
                                atol=1e-9 * W)  # fmt: skip
+
+
+@pytest.mark.parametrize("suffix", [".json", ".toml"])
+def test_loads_round_trip_through_files(tmp_path, suffix):
+    sc = pk.scenes.load("engine")
+    back = pk.Scene.load(sc.save(tmp_path / f"engine{suffix}"))
+    assert back.loads == sc.loads and back.unit_system == sc.unit_system
+    np.testing.assert_array_equal(back.statics().input, sc.statics().input)
