@@ -15,7 +15,7 @@ from .._status import Status
 __all__ = ["Forces"]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Forces:
     """Forces along a sweep, in the scene's units (``units``: length, force, mass).
 
@@ -132,3 +132,9 @@ class Forces:
 
     def __str__(self) -> str:
         return self.summary()
+
+    def __repr__(self) -> str:
+        return (
+            f"<Forces {self.kind}, {len(self.theta)} points, peak input "
+            f"{self.peak_input:.4g} {self.effort_unit}, check {self.check:.1e}>"
+        )

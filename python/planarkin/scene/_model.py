@@ -508,12 +508,8 @@ class Scene:
         complete = set(sweep.point_names) >= set(self._data["points"]) and set(
             sweep.link_names
         ) >= set(self._data["links"]) - {self._data["ground"]}
-        if (
-            not complete
-            or sweep.rate in (None, 0.0)
-            or sweep.acceleration_array is None
-            or (rate is not None and sweep.rate != rate)
-        ):
+        # any nonzero rate serves: velocities are scaled to the rate asked for
+        if not complete or sweep.rate in (None, 0.0) or sweep.acceleration_array is None:
             sweep = self.sweep(sweep.theta, outputs="all", rate=rate or sweep.rate or 1.0)
         return self._forces, sweep, chosen
 
