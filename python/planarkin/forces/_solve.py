@@ -5,7 +5,6 @@ velocity map, the energies and the checks. A kernel of the forces subject."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from typing import Any
 
@@ -58,12 +57,13 @@ class _Tally:
     def __init__(self, st: Structure, P: np.ndarray, V1: np.ndarray, V: np.ndarray) -> None:
         n = P.shape[0]
         self.st, self.P, self.V1, self.V = st, P, V1, V
-        self.F = np.zeros((n, st.nm + 1, 2))
-        self.M = np.zeros((n, st.nm + 1))
-        self.gen = np.zeros(n)  # sum of generalised forces (virtual power at unit rate)
-        self.gabs = np.zeros(n)  # sum of their magnitudes (the check's scale)
-        self.power = np.zeros(n)  # power of the applied loads (actual rate)
-        self.pabs = np.zeros(n)
+        self.F = np.zeros((n, st.nm + 1, 2), dtype=P.dtype)
+        self.M = np.zeros((n, st.nm + 1), dtype=P.dtype)
+        z = np.zeros(n, dtype=P.dtype)  # complex along a complex step (see effort)
+        self.gen = z.copy()  # sum of generalised forces (virtual power at unit rate)
+        self.gabs = z.copy()  # sum of their magnitudes (the check's scale)
+        self.power = z.copy()  # power of the applied loads (actual rate)
+        self.pabs = z.copy()
 
     def force(self, link: int, pos: np.ndarray, f: np.ndarray, v1: np.ndarray, v: np.ndarray,
               work: bool = True) -> None:  # fmt: skip
@@ -101,13 +101,48 @@ def solve(
     """Forces along ``sweep`` (every point reported, velocities at a nonzero ``rate``;
     accelerations too for dynamics). ``omega`` (N,) the input's rate and ``alpha`` its
     rate of change for dynamics; None for statics."""
+    out = _run(st, data, sweep, loads, units, omega, alpha)
+    assert isinstance(out, Forces)
+    return out
+
+
+def effort(
+    st: Structure,
+    data: Mapping[str, Any],
+    sweep: Any,
+    loads: Mapping[str, Any] | None,
+    units: dict[str, str | None],
+    coords: np.ndarray,
+    drawn: np.ndarray,
+) -> np.ndarray:
+    """The statics input effort (N,) at the poses ``coords`` (N, points, 2, scene order)
+    of a drawing ``drawn`` (points, 2): both may be complex, every step being analytic in
+    them (a complex step differentiates it exactly). NaN where ``sweep`` is not solved."""
+    out = _run(st, data, sweep, loads, units, None, None, coords=coords, drawn=drawn)
+    assert isinstance(out, np.ndarray)
+    return out
+
+
+def _run(
+    st: Structure,
+    data: Mapping[str, Any],
+    sweep: Any,
+    loads: Mapping[str, Any] | None,
+    units: dict[str, str | None],
+    omega: np.ndarray | None,
+    alpha: np.ndarray | None,
+    *,
+    coords: np.ndarray | None = None,
+    drawn: np.ndarray | None = None,
+) -> Forces | np.ndarray:
+    """:func:`solve`, or with ``coords`` given :func:`effort`."""
     dynamic = omega is not None
     theta = np.asarray(sweep.theta)
     n = len(theta)
     col = {p: i for i, p in enumerate(sweep.point_names)}
     idx = np.array([col[p] for p in st.point_names], dtype=np.intp)
     rate = float(sweep.rate)
-    P = sweep.coords[:, idx]
+    P = sweep.coords[:, idx] if coords is None else coords
     V1 = sweep.velocity_array[:, idx] / rate
     lcol = {k: i for i, k in enumerate(sweep.link_names)}
     lk = np.array([lcol[name] for name in st.link_names[: st.nm]], dtype=np.intp)
@@ -148,12 +183,8 @@ def solve(
         s1 = np.einsum("ij,ij->i", u[:, j], rel1)
         return s1, w * s1
 
-    kin = np.zeros(n)
-    pot = np.zeros(n)
-    dpot = np.zeros(n)  # d(potential)/dt, actual rate
-    dpabs = np.zeros(n)
-    dkin = np.zeros(n)
-    dkabs = np.zeros(n)
+    z = np.zeros(n, dtype=P.dtype)
+    kin, pot, dpot, dpabs, dkin, dkabs = (z.copy() for _ in range(6))  # dpot: d(pot)/dt
     L = loads or {}
     for e in L.get("forces", []):
         if "point" in e:
@@ -183,7 +214,7 @@ def solve(
     for e in L.get("springs", []):
         a, b = (pidx[x] for x in e["between"])
         d = P[:, b] - P[:, a]
-        length = np.hypot(d[:, 0], d[:, 1])
+        length = np.sqrt(d[:, 0] ** 2 + d[:, 1] ** 2)
         ev = d / length[:, None]
         stretch = length - e["free_length"]
         tension = e["preload"] + e["k"] * stretch
@@ -198,7 +229,7 @@ def solve(
     for e in L.get("dampers", []):
         a, b = (pidx[x] for x in e["between"])
         d = P[:, b] - P[:, a]
-        ev = d / np.hypot(d[:, 0], d[:, 1])[:, None]
+        ev = d / np.sqrt(d[:, 0] ** 2 + d[:, 1] ** 2)[:, None]
         tension = e["c"] * np.einsum("ij,ij->i", ev, V[:, b] - V[:, a])
         f = tension[:, None] * ev
         t.force(carrier(e["between"][0]), P[:, a], f, V1[:, a], V[:, a])
@@ -211,26 +242,31 @@ def solve(
         ks = np.array([k for k, _ in masses], dtype=np.intp)
         ia: list[int] = []
         ib: list[int] = []
-        c0: list[tuple[float, float]] = []
-        d0: list[float] = []
+        ic: list[int] = []  # the drawn point whose coordinates the centre is given from
+        c_at: list[tuple[float, float]] = []
         for k, m in masses:
             c, pts = m["center"], links[st.link_names[k]]
             if isinstance(c, str):
                 ia.append(pidx[c])
                 ib.append(pidx[pts[1] if pts[0] == c else pts[0]])
-                c0.append((0.0, 0.0))
-                d0.append(0.0)
+                ic.append(-1)
+                c_at.append((0.0, 0.0))
             else:
-                pa, pb = data["points"][pts[0]], data["points"][pts[1]]
                 ia.append(pidx[pts[0]])
                 ib.append(pidx[pts[1]])
-                c0.append((c[0] - pa[0], c[1] - pa[1]))
-                d0.append(math.atan2(pb[1] - pa[1], pb[0] - pa[0]))
-        ia_, ib_ = np.array(ia, dtype=np.intp), np.array(ib, dtype=np.intp)
-        arm0 = np.array(c0)
+                ic.append(pidx[pts[0]])
+                c_at.append((float(c[0]), float(c[1])))
+        ia_, ib_, ic_ = (np.array(v, dtype=np.intp) for v in (ia, ib, ic))
+        D = drawn if drawn is not None else np.array([data["points"][p] for p in st.point_names])
+        # the centre's arm from point a as drawn (zero for a point centre), turned with the
+        # link: the turn's cosine and sine from the directions a -> b now and as drawn
+        arm0 = np.where((ic_ >= 0)[:, None], np.array(c_at) - D[ia_], 0.0)
+        e0 = D[ib_] - D[ia_]
+        e0 = e0 / np.sqrt((e0**2).sum(axis=1))[:, None]
         d = P[:, ib_] - P[:, ia_]
-        phi = np.arctan2(d[..., 1], d[..., 0]) - np.array(d0)
-        cs, sn = np.cos(phi), np.sin(phi)
+        d = d / np.sqrt((d**2).sum(axis=2))[..., None]
+        cs = d[..., 0] * e0[:, 0] + d[..., 1] * e0[:, 1]
+        sn = e0[:, 0] * d[..., 1] - e0[:, 1] * d[..., 0]
         r = np.stack((cs * arm0[:, 0] - sn * arm0[:, 1], sn * arm0[:, 0] + cs * arm0[:, 1]), -1)
         rp = np.stack((-r[..., 1], r[..., 0]), axis=-1)  # k x r for a unit rate
         G = P[:, ia_] + r
@@ -246,7 +282,7 @@ def solve(
             pot -= np.einsum("nmj,mj->n", G, wg)
             dpot -= pw.sum(axis=1)
             dpabs += np.abs(pw).sum(axis=1)
-        tq = np.zeros((n, len(ks)))
+        tq = np.zeros((n, len(ks)), dtype=P.dtype)
         if dynamic:
             aG = Acc[:, ia_] + Wa[:, ks, None] * rp - (Wl[:, ks] ** 2)[..., None] * r
             # d'Alembert: the inertia force and couple as loads (no power: they are the
@@ -272,12 +308,15 @@ def solve(
     status[dead] = Status.SINGULAR
     ok = status == Status.CONVERGED
     ncol = len(st.columns)
-    x = np.full((n, ncol), np.nan)
+    x = np.full((n, ncol), np.nan, dtype=P.dtype)
     Afull = st.matrix(P if ok.all() else P[ok])
     A = Afull[:, : 3 * st.nm]
     rhs = -np.concatenate((t.F[ok, : st.nm], t.M[ok, : st.nm, None] / size), axis=-1)
     if ok.any():
         x[ok] = st.solve(A, rhs.reshape(len(A), -1))
+    if coords is not None:
+        return x[:, -1]
+    if ok.any():
         # a block singular to rounding although the sweep's conditioning is not small
         bad = ok & ~np.isfinite(x).all(axis=1)
         if bad.any():

@@ -197,7 +197,7 @@ class Structure:
             return z, z
         ab = np.array([(a, b) for _, a, b in self.lines], dtype=np.intp)
         d = P[:, ab[:, 1]] - P[:, ab[:, 0]]
-        u = d / np.hypot(d[..., 0], d[..., 1])[..., None]
+        u = d / np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2)[..., None]
         return u, np.stack((-u[..., 1], u[..., 0]), axis=-1)
 
     def matrix(self, P: np.ndarray) -> np.ndarray:
@@ -206,7 +206,7 @@ class Structure:
         rows last. ``P`` (n, points, 2) the poses."""
         n, k = P.shape[0], len(self.columns)
         rows = 3 * (self.nm + 1)
-        A = np.empty((n, rows * k))
+        A = np.empty((n, rows * k), dtype=P.dtype)
         A[:] = self.template
         # the arm's y (x forces) or x (y forces) coordinate: the flat (point, coordinate)
         flat = P.reshape(n, -1)
@@ -308,7 +308,7 @@ class Structure:
         n = A.shape[0]
         if not self.blocks:
             return _solve(A, rhs)
-        x = np.empty((n, A.shape[2]))
+        x = np.empty((n, A.shape[2]), dtype=A.dtype)
         for r, c, prior in self.blocks:
             b = rhs[:, r]
             if len(prior):
@@ -355,7 +355,7 @@ def _solve(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     try:
         return np.linalg.solve(A, b[..., None])[..., 0]
     except np.linalg.LinAlgError:
-        out = np.full(b.shape, np.nan)
+        out = np.full(b.shape, np.nan, dtype=np.result_type(A, b))
         for i in range(len(A)):
             try:
                 out[i] = np.linalg.solve(A[i], b[i])
