@@ -10,12 +10,21 @@ from typing import Any
 
 import numpy as np
 
-from ._results import Forces
+from ._gradient import effort_gradient
+from ._results import EffortGradient, Forces
 from ._solve import solve
 from ._structure import Structure
 from ._units import inertia_factor, unit_names
 
-__all__ = ["Forces", "Structure", "analyse", "inertia_factor", "unit_names"]
+__all__ = [
+    "EffortGradient",
+    "Forces",
+    "Structure",
+    "analyse",
+    "effort_gradient",
+    "inertia_factor",
+    "unit_names",
+]
 
 
 def analyse(

@@ -12,7 +12,7 @@ from .._angles import wrapped
 from .._results import status_counts
 from .._status import Status
 
-__all__ = ["Forces"]
+__all__ = ["EffortGradient", "Forces"]
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -138,3 +138,23 @@ class Forces:
             f"<Forces {self.kind}, {len(self.theta)} points, peak input "
             f"{self.peak_input:.4g} {self.effort_unit}, check {self.check:.1e}>"
         )
+
+
+@dataclass(frozen=True, eq=False)
+class EffortGradient:
+    """The peak (largest |input effort| over the sweep's points) or RMS input effort of a
+    statics sweep and its exact derivatives by free drawn coordinates (at fixed absolute
+    input values): an objective or constraint for synthesis. The peak's derivative is the
+    one at the point where it is reached (the peak over the sampled points)."""
+
+    #: The free coordinates, as given: "A.x", "A.y".
+    free: tuple[str, ...]
+    #: "peak" or "rms".
+    measure: str
+    #: The measure's value (effort units).
+    value: float
+    #: (F,) its derivatives by the free coordinates.
+    gradient: np.ndarray
+    #: (N,) the input effort and (N, F) its derivatives at every point (NaN where unsolved).
+    input: np.ndarray
+    input_gradient: np.ndarray

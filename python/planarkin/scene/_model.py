@@ -549,6 +549,35 @@ class Scene:
         st, sw, chosen = self._force_args(sweep, loads, float(w) if w.ndim == 0 else None)
         return analyse(st, self._data, sw, chosen, omega=omega, alpha=alpha)
 
+    def effort_gradient(
+        self,
+        free: Iterable[str],
+        theta: object = None,
+        *,
+        measure: str = "peak",
+        loads: Mapping[str, Any] | None = None,
+    ) -> Any:
+        """The peak (or with ``measure="rms"`` the RMS) statics input effort over the
+        sweep at ``theta`` (default as :meth:`sweep`) under the scene's loads (or ``loads``),
+        and its exact derivatives by the drawn coordinates named in ``free`` ("A.x", "A.y",
+        "A"), input values held absolute: the poses' derivatives (:meth:`gradient`, pin-
+        jointed scenes) carried through the loads and the Newton-Euler solve. Returns
+        :class:`planarkin.forces.EffortGradient`."""
+        from ..forces import effort_gradient, unit_names
+
+        _entry(measure in ("peak", "rms"), "measure", f"must be 'peak' or 'rms', got {measure!r}")
+        st, sw, chosen = self._force_args(None if theta is None else self.sweep(
+            theta, outputs="all", rate=1.0), loads, None)  # fmt: skip
+        g = self.gradient(free, sw.theta)
+        names = list(self.points)
+        cols = [(names.index(f.split(".")[0]), "xy".index(f.split(".")[1])) for f in g.free]
+        # the gradient's sweep solved the same input values: its poses are this sweep's
+        order = [g.sweep.point_names.index(p) for p in sw.point_names]
+        units = unit_names(self._data["units"], self._data["unit_table"])
+        return effort_gradient(
+            st, self._data, sw, chosen, units, g.point_array[:, order], cols, g.free, measure
+        )
+
     # --- every assembly, circuits, tracing ------------------------------------------------
 
     def _assembly(self, pts: np.ndarray, label: str, det: float, step_det: list[float]) -> Assembly:
