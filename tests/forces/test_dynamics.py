@@ -11,7 +11,7 @@ import math
 import numpy as np
 import planarkin as pk
 import pytest
-from test_statics import FOURBAR, pendulum
+from forces_cases import FOURBAR, pendulum
 
 G = 9.81
 K, L0, TR = 30.0, 3.0, -1.5

@@ -10,6 +10,7 @@ import math
 import numpy as np
 import planarkin as pk
 import pytest
+from forces_cases import FOURBAR, pendulum
 
 R, L = 40.0, 160.0  # the built-in slider-crank's crank and rod (mm), centred (e = 0)
 
@@ -75,21 +76,6 @@ def test_offset_slider_crank_closed_form():
     np.testing.assert_allclose(res.input, want, atol=1e-10 * 300.0 * r)
 
 
-FOURBAR = {
-    "name": "hand-worked four-bar",
-    "points": {"O2": [0, 0], "O4": [4, 0], "A": [0, 2], "B": [4, 3], "C": [2, 2.5]},
-    "links": {
-        "ground": ["O2", "O4"],
-        "crank": ["O2", "A"],
-        "coupler": ["A", "B", "C"],
-        "rocker": ["O4", "B"],
-    },
-    "ground": "ground",
-    "input": {"link": "crank", "pivot": "O2"},
-    "output": {"link": "rocker", "pivot": "O4"},
-}
-
-
 def test_fourbar_worked_by_hand():
     """Crank O2-A vertical (A = (0, 2)), coupler A-B-C (B = (4, 3), C = (2, 2.5) its
     midpoint), rocker O4-B vertical (O4 = (4, 0)). Loads: P = 10 to the right at B, a weight
@@ -121,18 +107,6 @@ def test_fourbar_worked_by_hand():
     np.testing.assert_allclose(r.mechanical_advantage, [1.5], **tol)
     # the ground receives the loads through O2 and O4: (P, -W) in all
     np.testing.assert_allclose(r.shaking_force[0], [P, -W], **tol)
-
-
-def pendulum(**loads) -> pk.Scene:
-    return pk.Scene.from_dict(
-        {
-            "points": {"O": [0.0, 0.0], "X": [1.0, 0.0], "P": [0.8, 0.6], "G": [0.4, 0.3]},
-            "links": {"ground": ["O", "X"], "arm": ["O", "P", "G"]},
-            "ground": "ground",
-            "input": {"link": "arm", "pivot": "O"},
-            "loads": loads,
-        }
-    )
 
 
 def test_pendulum_under_gravity():
