@@ -746,7 +746,19 @@ class Scene:
         follow that assembly's circuit."""
         arr = self._pose(assembly, "assembly")
         d = self.to_dict()
+        old = {n: np.asarray(v, dtype=np.float64) for n, v in d["points"].items()}
         d["points"] = {n: [float(x), float(y)] for n, (x, y) in zip(d["points"], arr, strict=True)}
+        for link, m in d.get("loads", {}).get("masses", {}).items():
+            if not isinstance(m["center"], str):
+                # a centre given in the drawing moves with its link
+                a, b = self._data["links"][link][:2]
+                u0, u1 = old[b] - old[a], np.subtract(d["points"][b], d["points"][a])
+                c, s_ = np.dot(u0, u1), u0[0] * u1[1] - u0[1] * u1[0]
+                r = np.hypot(c, s_)
+                c, s_ = c / r, s_ / r
+                v = np.asarray(m["center"], dtype=np.float64) - old[a]
+                turned = np.array([c * v[0] - s_ * v[1], s_ * v[0] + c * v[1]])
+                m["center"] = (np.array(d["points"][a]) + turned).tolist()
         return Scene(d)
 
     def as_fourbar(self) -> FourBarView:
