@@ -239,6 +239,9 @@ TARGETS = (
                    f"scene_group_{name}", None, "value", "<=", 0.3, " ms", 1e-3, ratio=None),
         )
     ),
+    Target("Jansen's leg with loads: every reaction and the input torque (dynamics, 361 "
+           "angles) within {target} its kinematic sweep (velocities and accelerations)",
+           "forces_dynamics", "forces_sweep", "ratio", "<=", 3, "x", ratio="{:.1f}x"),
     Target("slider-crank (piston, 361 angles) {target} faster than pylinkage + numba (RRPDyad)",
            "slider_pk", "slider_pylinkage", "speedup", ">=", 3, "x"),
     Target("slider-crank faster than the NumPy closed form written as a user would",

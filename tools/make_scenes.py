@@ -20,6 +20,7 @@ from planarkin._kernel import SCENE_KEYS
 from planarkin.reference import scene as ref
 from scenemakers.geometry import DEG, motion
 from scenemakers.linkages import chebyshev_lambda, fourbar, jansen, klann, peaucellier, watt2
+from scenemakers.loaded import LOADED
 from scenemakers.searched import double_butterfly_scene, stephenson3
 from scenemakers.sliders import SLIDERS
 
@@ -88,9 +89,30 @@ def write(name, scene):
     (HERE / f"{name}.json").write_text(text)
 
 
+def check_loaded(name, scene):
+    """Prints and asserts: the kernel loads it, its sweep converges where its base's does,
+    and its statics and dynamics (at 1 turn or stroke per second) close their checks."""
+    import planarkin as pk
+
+    sc = pk.Scene.from_dict(scene)
+    sw = sc.sweep(outputs="all", rate=1.0)
+    st = sc.statics(sw)
+    dy = sc.dynamics(sw, omega=2 * math.pi if sc.input_kind == "angle" else 1.0)
+    print(f"{name:24s} statics check {st.check:.1e}  dynamics check {dy.check:.1e}  "
+          f"peak input {st.peak_input:.4g} / {dy.peak_input:.4g}")  # fmt: skip
+    assert st.check < 1e-10 and dy.check < 1e-10, name
+
+
 def main(only=()):
     """Writes every built-in scene, or only those named (``python tools/make_scenes.py
-    whitworth scotch-yoke``; ``sliders`` names the slider scenes)."""
+    whitworth scotch-yoke``; ``sliders`` names the slider scenes, ``loaded`` those with
+    loads)."""
+    if only == ("loaded",):
+        for name, make in LOADED.items():
+            sc = make()
+            check_loaded(name, sc)
+            write(name, sc)
+        return
     if only:
         names = set(SLIDERS) if "sliders" in only else set(only)
         for name in sorted(names):
@@ -118,6 +140,11 @@ def main(only=()):
     for name, make in SLIDERS.items():
         sc = make()
         check_slider(name, sc)
+        write(name, sc)
+        made[name] = sc
+    for name, make in LOADED.items():
+        sc = make()
+        check_loaded(name, sc)
         write(name, sc)
         made[name] = sc
     print(f"wrote {len(made)} scenes to {HERE}")

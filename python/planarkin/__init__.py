@@ -11,7 +11,7 @@ synthesis of double butterflies, a NumPy reference of it all, figures and a comm
 (361, 2)
 """
 
-from . import interop, reference
+from . import forces, interop, reference
 from ._angles import DEFAULT_THETA2
 from ._kernel import BUILD_PROFILE
 from ._kernel import __version__ as __version__
@@ -48,6 +48,7 @@ __all__ = [
     "Sweep",
     "SweepSummary",
     "closed_form_batch",
+    "forces",
     "interop",
     "reference",
     "scenes",

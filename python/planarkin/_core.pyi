@@ -1,6 +1,6 @@
 """Type stubs of the extension module (checked with mypy.stubtest in CI)."""
 
-from typing import TypeAlias, final
+from typing import Any, TypeAlias, final
 
 import numpy as np
 import numpy.typing as npt
@@ -184,7 +184,7 @@ def load_scene(
     list[tuple[str, _Joint]],
     list[tuple[str, _Joint]],
     list[tuple[str, str, float]] | None,
-    list[float] | None,
+    tuple[list[float] | None, dict[str, str] | None, dict[str, Any] | None],
 ]: ...
 
 @final

@@ -358,7 +358,16 @@ def test_python_dash_m_runs_the_same_command():
 def test_subcommands_and_tradeoff_registration():
     parser = cli.build_parser()
     (sub,) = [a for a in parser._actions if a.dest == "command"]
-    commands = {"analyze", "animate", "circuits", "export", "scenes", "synthesize", "tradeoff"}
+    commands = {
+        "analyze",
+        "animate",
+        "circuits",
+        "export",
+        "forces",
+        "scenes",
+        "synthesize",
+        "tradeoff",
+    }
     commands.add("web")
     assert set(sub.choices) == commands
     assert sub.choices["tradeoff"].get_default("func") is tradeoff_cli.run

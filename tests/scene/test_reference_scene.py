@@ -69,9 +69,14 @@ EXPECTED = {
     "peaucellier",
     "stephenson3",
     "watt2",
+    # with loads (issue 34)
+    "fourbar-loaded",
+    "jansen-loaded",
     # with slots and prismatic pairs
     "elliptic-trammel",
+    "engine",
     "hydraulic-boom",
+    "hydraulic-boom-loaded",
     "inverted-slider-crank",
     "scotch-yoke",
     "slider-crank",

@@ -3,6 +3,7 @@ assemblies, circuits and traces; ``as_fourbar`` recognises a four-bar scene."""
 
 from __future__ import annotations
 
+import copy
 import json
 import math
 from collections.abc import Iterable, Mapping
@@ -100,7 +101,7 @@ class Scene:
     (361, 2)
     """
 
-    __slots__ = ("_core", "_data", "_max_step", "_moved", "_plans", "_theta")
+    __slots__ = ("_core", "_data", "_forces", "_max_step", "_moved", "_plans", "_theta")
 
     #: Other tools' formats, set by ``planarkin.interop`` (the scene subject imports none):
     #: format name -> (reader, writer) behind ``from_pyslvs`` and ``to_pyslvs``.
@@ -108,9 +109,10 @@ class Scene:
 
     def __init__(self, data: Mapping[str, Any]) -> None:
         # the core reads the data (every check and message is the file format's, there)
-        core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, moved = (
+        core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, extra = (
             _kernel.load_scene(data)
         )
+        moved, unit_table, loads = extra
         pts = dict(points)
         self._core = core
         self._max_step = core.max_step  # the default, read once (every sweep takes it)
@@ -131,9 +133,12 @@ class Scene:
             "slots": dict(slots),
             "prismatic": dict(prism),
             "lengths": None if lengths is None else tuple(lengths),
+            "unit_table": unit_table,
+            "loads": loads,
         }
         self._plans: dict[tuple[str, ...] | None, tuple[Plan, Any]] = {}
         self._theta: np.ndarray | None = None
+        self._forces: Any = None
         if outputs is not None:
             self.plan(outputs)  # names checked now, not at the first sweep
 
@@ -188,6 +193,8 @@ class Scene:
         for k in ("name", "description", "units"):
             if d[k] is not None:
                 out[k] = d[k]
+        if d["unit_table"] is not None:
+            out["units"] = dict(d["unit_table"])
         out["points"] = {n: [x, y] for n, (x, y) in d["points"].items()}
         out["links"] = {n: list(v) for n, v in d["links"].items()}
         out["ground"] = d["ground"]
@@ -204,6 +211,11 @@ class Scene:
                 }
         if d["lengths"] is not None:
             out["lengths"] = [[a, b, v] for a, b, v in d["lengths"]]
+        if d["loads"] is not None:
+            # the normalised loads, less what is empty
+            out["loads"] = {
+                k: copy.deepcopy(v) for k, v in d["loads"].items() if v not in (None, [], {})
+            }
         return out
 
     def save(self, path: str | Path) -> Path:
@@ -230,6 +242,19 @@ class Scene:
     @property
     def units(self) -> str | None:
         return self._data["units"]
+
+    @property
+    def unit_system(self) -> dict[str, str | None]:
+        """The scene's units: length (None where not named), force (default N), mass
+        (default kg); ``units`` as a string names the length unit."""
+        from ..forces import unit_names
+
+        return unit_names(self._data["units"], self._data["unit_table"])
+
+    @property
+    def loads(self) -> dict[str, Any] | None:
+        """The scene's loads, normalised (every key present), or None."""
+        return copy.deepcopy(self._data["loads"])
 
     @property
     def points(self) -> dict[str, tuple[float, float]]:
@@ -510,6 +535,96 @@ class Scene:
         v = coords[:, names.index(tip)] - coords[:, names.index(pivot)]
         return np.arctan2(v[:, 1], v[:, 0])
 
+    # --- forces -----------------------------------------------------------------------
+
+    def _force_args(self, sweep: SceneSweep | None, loads: Mapping[str, Any] | None,
+                    rate: float | None) -> tuple[Any, SceneSweep, Any]:  # fmt: skip
+        """The forces subject's structure of this scene (made once), a sweep reporting
+        every point with velocities at a nonzero rate (and accelerations), and the loads."""
+        from ..forces import Structure
+
+        if self._forces is None:
+            self._forces = Structure.of(self._data)
+        if loads is None:
+            chosen = self._data["loads"]
+        else:
+            # checked by the file format, as a scene's own
+            chosen = Scene.from_dict({**self.to_dict(), "loads": loads})._data["loads"]
+        if sweep is None:
+            sweep = self.sweep(outputs="all", rate=rate or 1.0)
+        complete = set(sweep.point_names) >= set(self._data["points"]) and set(
+            sweep.link_names
+        ) >= set(self._data["links"]) - {self._data["ground"]}
+        # any nonzero rate serves: velocities are scaled to the rate asked for
+        if not complete or sweep.rate in (None, 0.0) or sweep.acceleration_array is None:
+            sweep = self.sweep(sweep.theta, outputs="all", rate=rate or sweep.rate or 1.0)
+        return self._forces, sweep, chosen
+
+    def statics(
+        self, sweep: SceneSweep | None = None, loads: Mapping[str, Any] | None = None
+    ) -> Any:
+        """The input effort that holds the scene in equilibrium under its loads (or
+        ``loads``, in the file format's ``loads`` form) at every input value of ``sweep``
+        (default: the default sweep), with every joint reaction, by Newton-Euler, checked
+        by virtual work. A sweep that lacks points or velocities is solved again at its
+        input values. Returns :class:`planarkin.forces.Forces`."""
+        from ..forces import analyse
+
+        st, sw, chosen = self._force_args(sweep, loads, None)
+        return analyse(st, self._data, sw, chosen)
+
+    def dynamics(
+        self,
+        sweep: SceneSweep | None = None,
+        *,
+        omega: object = None,
+        alpha: object = None,
+        loads: Mapping[str, Any] | None = None,
+    ) -> Any:
+        """Inverse dynamics: :meth:`statics` with the links' inertia (d'Alembert forces
+        from the sweep's accelerations) at input rate ``omega`` (rad/s, or length units per
+        second for a linear input; a number or one per point; default the sweep's rate)
+        and its rate of change ``alpha`` (default 0), with the shaking force and moment
+        and the kinetic and potential energy, checked by the energy balance."""
+        from ..forces import analyse
+
+        if omega is None:
+            if sweep is None or sweep.rate is None:
+                raise ValueError("omega is required (the input's rate) unless the sweep has a rate")
+            omega = sweep.rate
+        w = np.asarray(omega, dtype=np.float64)
+        st, sw, chosen = self._force_args(sweep, loads, float(w) if w.ndim == 0 else None)
+        return analyse(st, self._data, sw, chosen, omega=omega, alpha=alpha)
+
+    def effort_gradient(
+        self,
+        free: Iterable[str],
+        theta: object = None,
+        *,
+        measure: str = "peak",
+        loads: Mapping[str, Any] | None = None,
+    ) -> Any:
+        """The peak (or with ``measure="rms"`` the RMS) statics input effort over the
+        sweep at ``theta`` (default as :meth:`sweep`) under the scene's loads (or ``loads``),
+        and its exact derivatives by the drawn coordinates named in ``free`` ("A.x", "A.y",
+        "A"), input values held absolute: the poses' derivatives (:meth:`gradient`, pin-
+        jointed scenes) carried through the loads and the Newton-Euler solve. Returns
+        :class:`planarkin.forces.EffortGradient`."""
+        from ..forces import effort_gradient, unit_names
+
+        _entry(measure in ("peak", "rms"), "measure", f"must be 'peak' or 'rms', got {measure!r}")
+        st, sw, chosen = self._force_args(None if theta is None else self.sweep(
+            theta, outputs="all", rate=1.0), loads, None)  # fmt: skip
+        g = self.gradient(free, sw.theta)
+        names = list(self.points)
+        cols = [(names.index(f.split(".")[0]), "xy".index(f.split(".")[1])) for f in g.free]
+        # the gradient's sweep solved the same input values: its poses are this sweep's
+        order = [g.sweep.point_names.index(p) for p in sw.point_names]
+        units = unit_names(self._data["units"], self._data["unit_table"])
+        return effort_gradient(
+            st, self._data, sw, chosen, units, g.point_array[:, order], cols, g.free, measure
+        )
+
     # --- every assembly, circuits, tracing ------------------------------------------------
 
     def _assembly(self, pts: np.ndarray, label: str, det: float, step_det: list[float]) -> Assembly:
@@ -678,7 +793,19 @@ class Scene:
         follow that assembly's circuit."""
         arr = self._pose(assembly, "assembly")
         d = self.to_dict()
+        old = {n: np.asarray(v, dtype=np.float64) for n, v in d["points"].items()}
         d["points"] = {n: [float(x), float(y)] for n, (x, y) in zip(d["points"], arr, strict=True)}
+        for link, m in d.get("loads", {}).get("masses", {}).items():
+            if not isinstance(m["center"], str):
+                # a centre given in the drawing moves with its link
+                a, b = self._data["links"][link][:2]
+                u0, u1 = old[b] - old[a], np.subtract(d["points"][b], d["points"][a])
+                c, s_ = np.dot(u0, u1), u0[0] * u1[1] - u0[1] * u1[0]
+                r = np.hypot(c, s_)
+                c, s_ = c / r, s_ / r
+                v = np.asarray(m["center"], dtype=np.float64) - old[a]
+                turned = np.array([c * v[0] - s_ * v[1], s_ * v[0] + c * v[1]])
+                m["center"] = (np.array(d["points"][a]) + turned).tolist()
         return Scene(d)
 
     def as_fourbar(self) -> FourBarView:

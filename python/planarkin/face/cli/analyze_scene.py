@@ -10,6 +10,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from ...forces import report as forces_report
 from ...scene import report
 from ..figures import scene as scene_fig
 from ..progress import bar
@@ -181,6 +182,13 @@ def run(args: argparse.Namespace) -> int:
     summary = report.summary(
         sc, sw, {"sweep_median": t_sweep, "total": time.perf_counter() - t_start}
     )
+    if sc.loads is not None:
+        # a scene with loads: its statics along the same input values (forces.csv)
+        r = sc.statics(sc.sweep(theta, outputs="all", rate=1.0))
+        head, cols = forces_report.columns(r)
+        write_csv(out / "forces.csv", head, zip(*cols, strict=True))
+        files.insert(2, "forces.csv")
+        summary["forces"] = forces_report.totals(r)
     summary["files"] = files
     (out / SUMMARY_JSON).write_text(json_text(summary) + "\n", encoding="utf-8")
     if args.json:
@@ -188,6 +196,11 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(f"planarkin analyze: {sc.name or args.scene}")
         print(scene_table(summary))
+        if "forces" in summary:
+            f = summary["forces"]
+            print(f"  statics under its loads: peak input {f['peak_input']:.6g} "
+                  f"{f['effort_unit']}, RMS {f['rms_input']:.6g}; virtual work check "
+                  f"{f['checks']['virtual_work']:.1e} (planarkin forces for more)")  # fmt: skip
         ms = 1e3 * summary["wall_time_s"]["sweep_median"]
         print(f"  sweep {ms:.3f} ms (median of {n_runs} warm runs)")
         print(f"  wrote {', '.join(str(out / f) for f in files)}")

@@ -114,6 +114,30 @@ pub(super) fn value_of(v: &Bound<'_, PyAny>, depth: usize) -> PyResult<Value> {
     Ok(foreign(v, real(v).map_or(Like::Nothing, Like::Real)))
 }
 
+/// Plain data the core wrote (the normalised `loads` and `units` tables) as Python's
+/// dicts, lists, floats and strings.
+pub(super) fn to_py<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match v {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => PyBool::new(py, *b).to_owned().into_any(),
+        Value::Int(i) => i.into_pyobject(py)?.into_any(),
+        Value::Float(x) => PyFloat::new(py, *x).into_any(),
+        Value::Str(t) => PyString::new(py, t).into_any(),
+        Value::List(l) | Value::Tuple(l) => {
+            PyList::new(py, l.iter().map(|x| to_py(py, x)).collect::<PyResult<Vec<_>>>()?)?.into_any()
+        }
+        Value::Map(m) => {
+            let d = PyDict::new(py);
+            for (k, x) in m {
+                d.set_item(to_py(py, k)?, to_py(py, x)?)?;
+            }
+            d.into_any()
+        }
+        Value::BigInt { digits, .. } => PyString::new(py, digits).into_any(),
+        Value::Foreign(_) => py.None().into_bound(py),
+    })
+}
+
 /// Adds the scene format's keys and defaults (written once, in the core) to the module.
 pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SCENE_KEYS", format::KEYS.to_vec())?;

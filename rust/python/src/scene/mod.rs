@@ -36,8 +36,9 @@ type Joint = (String, String, (String, String));
 type DriveOut = Vec<(String, String)>;
 /// What `load_scene` reads besides the scene: (name, description, units), the points
 /// (exact for a sketch), links, ground, input, output, outputs, slots, prismatic pairs,
-/// lengths and how far a sketch's points moved.
-type Loaded = (
+/// lengths, how far a sketch's points moved, and the `units` table and `loads` (plain
+/// data, normalised by the core; None where not given).
+type Loaded<'py> = (
     PyScene,
     (Option<String>, Option<String>, Option<String>),
     Vec<(String, (f64, f64))>,
@@ -49,7 +50,7 @@ type Loaded = (
     Vec<(String, Joint)>,
     Vec<(String, Joint)>,
     Option<Vec<(String, String, f64)>>,
-    Option<Vec<f64>>,
+    (Option<Vec<f64>>, Bound<'py, PyAny>, Bound<'py, PyAny>),
 );
 
 fn drive_out(d: &Drive) -> DriveOut {
@@ -62,13 +63,18 @@ fn drive_out(d: &Drive) -> DriveOut {
 /// A scene from the file format's data (any mapping; the core checks every entry, in
 /// Python's words), a sketch's `lengths` assembled into the exact pose.
 #[pyfunction]
-fn load_scene(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<Loaded> {
+fn load_scene<'py>(py: Python<'py>, data: &Bound<'_, PyAny>) -> PyResult<Loaded<'py>> {
     let mut parsed = core_format::parse(&value_of(data, 1)?).map_err(err)?;
     let moved = match parsed.lengths {
         None => None,
         Some(_) => Signals::detach(py, |signals| parsed.assemble(signals))?,
     };
-    let Parsed { spec, name, description, units, input, output, outputs, lengths } = parsed;
+    let Parsed { spec, name, description, units, unit_table, input, output, outputs, lengths, loads } = parsed;
+    let none = || py.None().into_bound(py);
+    let (table, loads) = (
+        unit_table.map_or_else(|| Ok(none()), |u| format::to_py(py, &u.to_value()))?,
+        loads.map_or_else(|| Ok(none()), |l| format::to_py(py, &l.to_value()))?,
+    );
     let points = spec.points.iter().map(|(n, [x, y])| (n.clone(), (*x, *y))).collect();
     let links = spec.links.clone();
     let ground = spec.ground.clone();
@@ -80,7 +86,20 @@ fn load_scene(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<Loaded> {
     let inner = Scene::new(spec).map_err(err)?;
     let (inp, out) = (drive_out(&input), output.as_ref().map(drive_out));
     let scene = PyScene { inner, output };
-    Ok((scene, (name, description, units), points, links, ground, inp, out, outputs, slots, prismatic, lengths, moved))
+    Ok((
+        scene,
+        (name, description, units),
+        points,
+        links,
+        ground,
+        inp,
+        out,
+        outputs,
+        slots,
+        prismatic,
+        lengths,
+        (moved, table, loads),
+    ))
 }
 
 #[pymethods]

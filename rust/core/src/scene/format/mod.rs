@@ -7,6 +7,7 @@
 //! computes with a scene once it is built.
 
 mod defaults;
+mod loads;
 mod output;
 mod parse;
 mod value;
@@ -18,6 +19,7 @@ pub use defaults::{
     default_inputs, homotopy_options, linspace, max_step, size, sweep_options, trace_options, MAX_ITER, MAX_STEP, RUNS,
     SEED, SWEEP_LEN, TOL, TRACE_MAX_POINTS, TRACE_STEP,
 };
+pub use loads::{Center, Element, Loads, Mass, Profile, Target, Units, LOAD_KEYS};
 pub use output::linear_output;
 pub use parse::{kind_name, parse};
 pub use value::{float_repr, str_repr, Describe, Described, Foreign, Like, Value};
@@ -27,7 +29,7 @@ use crate::interrupt::Interrupt;
 use crate::scene::{assemble_sketch, LengthSpec, LinearKind, SceneSpec};
 
 /// The keys a scene may have, in the order messages list them.
-pub const KEYS: [&str; 12] = [
+pub const KEYS: [&str; 13] = [
     "name",
     "description",
     "units",
@@ -40,6 +42,7 @@ pub const KEYS: [&str; 12] = [
     "slots",
     "prismatic",
     "lengths",
+    "loads",
 ];
 /// The keys a scene must have.
 pub const REQUIRED: [&str; 4] = ["points", "links", "ground", "input"];
@@ -77,8 +80,12 @@ pub struct Parsed {
     pub name: Option<String>,
     /// `description`, if given.
     pub description: Option<String>,
-    /// `units`, if given.
+    /// `units`, if given: the length unit (the string, or the table's `length`).
     pub units: Option<String>,
+    /// `units` when given as a table (length, force, mass).
+    pub unit_table: Option<Units>,
+    /// `loads`, if given, checked against the scene's names.
+    pub loads: Option<Loads>,
     /// The input as the file gives it.
     pub input: Drive,
     /// The output as the file gives it, if any.

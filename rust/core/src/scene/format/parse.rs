@@ -1,7 +1,7 @@
 //! The scene file format's rules: which keys, which are required, what each entry holds,
 //! and the message naming the entry when it does not (Python's `repr` of what it got).
 
-use super::value::{Like, Value};
+use super::value::{real, Like, Value};
 use super::{Drive, Parsed, KEYS, MAX_DEPTH, REQUIRED};
 use crate::error::Error;
 use crate::scene::{LengthSpec, LinearKind, PrismaticSpec, SceneSpec, SlotSpec};
@@ -12,29 +12,6 @@ fn fail<T>(entry: impl Into<String>, message: impl Into<String>) -> Result<T, Er
 
 /// The table at `entry` must be a mapping; ordered entries.
 type Entries<'a> = &'a [(Value, Value)];
-
-/// A real number as Python's `float()` reads it for the format (not a bool or a string),
-/// or the message Python gives, naming `name`.
-pub(crate) fn real(name: &str, v: &Value) -> Result<f64, Error> {
-    let bad = || Err(Error::invalid(name.to_owned(), "must be a real number", v.repr()));
-    match v {
-        Value::Float(x) => Ok(*x),
-        Value::Int(i) => Ok(*i as f64),
-        Value::BigInt { digits, bits } => match digits.parse::<f64>() {
-            Ok(x) if x.is_finite() => Ok(x),
-            _ => Err(Error::invalid(
-                name.to_owned(),
-                "must be a real number within the float range",
-                format!("an integer of {bits} bits"),
-            )),
-        },
-        Value::Foreign(f) => match f.like {
-            Like::Real(x) => Ok(x),
-            _ => bad(),
-        },
-        _ => bad(),
-    }
-}
 
 /// Keys exactly `want` (as strings), in any order.
 fn keys_are(m: Entries<'_>, want: &[&str]) -> bool {
@@ -236,8 +213,8 @@ pub fn parse(data: &Value) -> Result<Parsed, Error> {
             None => return fail("outputs", format!("must be a list of point or link names, got {}", v.repr())),
         },
     };
-    let mut text = [None, None, None];
-    for (k, t) in ["name", "description", "units"].into_iter().zip(&mut text) {
+    let mut text = [None, None];
+    for (k, t) in ["name", "description"].into_iter().zip(&mut text) {
         match given(d, k) {
             None => {}
             Some(Value::Str(s)) => *t = Some(s.clone()),
@@ -245,6 +222,11 @@ pub fn parse(data: &Value) -> Result<Parsed, Error> {
         }
     }
     let lengths = lengths(d)?;
+    let (units, unit_table) = super::loads::units(given(d, "units"))?;
+    let (slot_names, prism_names): (Vec<String>, Vec<String>) =
+        (slots.iter().map(|s| s.0.clone()).collect(), prismatic.iter().map(|p| p.0.clone()).collect());
+    let names = super::loads::Names { points: &points, links: &lk, slots: &slot_names, prismatic: &prism_names };
+    let loads = super::loads::loads(given(d, "loads"), &names)?;
     let (spec_input, linear_input) = match &input {
         Drive::Angle { link, pivot } => ((link.clone(), pivot.clone()), None),
         Drive::Linear { kind, name } => ((String::new(), String::new()), Some((*kind, name.clone()))),
@@ -263,6 +245,6 @@ pub fn parse(data: &Value) -> Result<Parsed, Error> {
         prismatic: prismatic.into_iter().map(|(n, j)| (n, PrismaticSpec::from(j))).collect(),
         linear_input,
     };
-    let [name, description, units] = text;
-    Ok(Parsed { spec, name, description, units, input, output, outputs, lengths })
+    let [name, description] = text;
+    Ok(Parsed { spec, name, description, units, unit_table, input, output, outputs, lengths, loads })
 }

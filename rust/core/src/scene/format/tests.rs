@@ -108,7 +108,7 @@ fn every_entry_is_named_with_what_it_got() {
         (
             fourbar(|d| set(d, "colour", s("red"))),
             "scene: unknown keys ['colour']; known keys: name, description, units, points, links, ground, input, \
-             output, outputs, slots, prismatic, lengths",
+             output, outputs, slots, prismatic, lengths, loads",
         ),
         (fourbar(|d| d.retain(|(k, _)| *k != "ground")), "ground: is required"),
         (fourbar(|d| set(d, "points", list(vec![]))), "points: must be a table name -> [x, y]"),
@@ -217,4 +217,135 @@ fn defaults_are_numpys() {
     assert_eq!(size(&[[0.0, 0.0], [3.0, -1.0], [1.0, 1.5]]), 3.0);
     assert_eq!(MAX_STEP, 3f64.to_radians());
     assert_eq!(max_step(true, 2.0), 2.0 * MAX_STEP);
+}
+
+/// The four-bar with `loads` set to `loads`.
+fn loaded(loads: Value) -> Value {
+    fourbar(|d| set(d, "loads", loads))
+}
+
+fn f(x: f64) -> Value {
+    Value::Float(x)
+}
+
+#[test]
+fn units_read_as_a_string_or_a_table() {
+    let p = parse(&fourbar(|d| set(d, "units", s("mm")))).unwrap();
+    assert_eq!((p.units.as_deref(), p.unit_table), (Some("mm"), None));
+    let t = map(vec![("length", s("mm")), ("force", s("N")), ("mass", s("kg"))]);
+    let p = parse(&fourbar(|d| set(d, "units", t))).unwrap();
+    assert_eq!(p.units.as_deref(), Some("mm"));
+    let u = p.unit_table.unwrap();
+    assert_eq!((u.force.as_deref(), u.mass.as_deref()), (Some("N"), Some("kg")));
+    assert_eq!(u.to_value().repr(), "{'length': 'mm', 'force': 'N', 'mass': 'kg'}");
+    for (units, want) in [
+        (map(vec![("time", s("s"))]), "units: unknown key 'time'; known keys: length, force, mass"),
+        (map(vec![("force", f(1.0))]), "units.force: must be a string, got 1.0"),
+    ] {
+        assert_eq!(message(&fourbar(|d| set(d, "units", units))), want);
+    }
+}
+
+#[test]
+fn loads_read_normalised() {
+    let loads = map(vec![
+        ("forces", list(vec![map(vec![("point", s("B")), ("force", xy(0.0, -50.0))])])),
+        ("torques", list(vec![map(vec![("link", s("rocker")), ("torque", Value::Int(-2))])])),
+        (
+            "springs",
+            list(vec![map(vec![("between", list(vec![s("A"), s("O4")])), ("k", f(400.0)), ("free_length", f(4.5))])]),
+        ),
+        ("gravity", xy(0.0, -9.81)),
+        ("masses", map(vec![("coupler", map(vec![("mass", f(1.2)), ("center", xy(2.0, 1.0))]))])),
+    ]);
+    let p = parse(&loaded(loads)).unwrap();
+    let l = p.loads.unwrap();
+    assert_eq!(l.forces[0], (Target::Point("B".into()), Profile { input: None, values: vec![0.0, -50.0], width: 2 }));
+    assert_eq!(l.torques[0].1.values, vec![-2.0]);
+    assert_eq!((l.springs[0].rate, l.springs[0].free_length, l.springs[0].preload), (400.0, Some(4.5), 0.0));
+    assert_eq!(l.gravity, Some([0.0, -9.81]));
+    assert_eq!(l.masses[0].1, Mass { mass: 1.2, center: Center::At([2.0, 1.0]), inertia: 0.0 });
+    assert_eq!(
+        l.to_value().repr(),
+        "{'forces': [{'point': 'B', 'force': [0.0, -50.0]}], 'torques': [{'link': 'rocker', 'torque': -2.0}], \
+         'springs': [{'between': ['A', 'O4'], 'k': 400.0, 'free_length': 4.5, 'preload': 0.0}], 'dampers': [], \
+         'gravity': [0.0, -9.81], 'masses': {'coupler': {'mass': 1.2, 'center': [2.0, 1.0], 'inertia': 0.0}}}"
+    );
+    // a table over the input
+    let table = map(vec![(
+        "torques",
+        list(vec![map(vec![
+            ("link", s("crank")),
+            ("torque", list(vec![f(1.0), f(2.0)])),
+            ("input", list(vec![f(0.0), f(1.0)])),
+        ])]),
+    )]);
+    let l = parse(&loaded(table)).unwrap().loads.unwrap();
+    assert_eq!(l.torques[0].1, Profile { input: Some(vec![0.0, 1.0]), values: vec![1.0, 2.0], width: 1 });
+}
+
+#[test]
+fn every_load_entry_is_named_with_what_it_got() {
+    let force = |k: &str, n: &str, v: Value| map(vec![("forces", list(vec![map(vec![(k, s(n)), ("force", v)])]))]);
+    let mass = |m: Value| map(vec![("masses", map(vec![("coupler", m)]))]);
+    let cases: Vec<(Value, &str)> = vec![
+        (s("x"), "loads: must be a table with keys (optional 'forces', 'torques', 'springs', 'dampers', 'gravity', 'masses'), got 'x'"),
+        (map(vec![("wind", f(1.0))]), "loads: unknown key 'wind'; keys: (optional 'forces', 'torques', 'springs', 'dampers', 'gravity', 'masses')"),
+        (force("point", "Z", xy(0.0, 1.0)), "loads.forces[0].point: 'Z' is not a point of the scene"),
+        (force("point", "B", f(1.0)), "loads.forces[0].force: must be a pair [x, y], got 1.0"),
+        (force("slot", "piston", f(1.0)), "loads.forces[0].slot: must name a slot or prismatic pair of the scene, got 'piston'"),
+        (
+            map(vec![("forces", list(vec![map(vec![("link", s("crank"))])]))]),
+            "loads.forces[0]: must have a key 'point', 'slot' or 'prismatic', got {'link': 'crank'}",
+        ),
+        (
+            map(vec![("torques", list(vec![map(vec![("link", s("arm")), ("torque", f(1.0))])]))]),
+            "loads.torques[0].link: 'arm' is not a link of the scene",
+        ),
+        (
+            map(vec![(
+                "torques",
+                list(vec![map(vec![
+                    ("link", s("crank")),
+                    ("torque", list(vec![f(1.0)])),
+                    ("input", list(vec![f(0.0), f(1.0)])),
+                ])]),
+            )]),
+            "loads.torques[0].torque: must be a list of 2 values (one per input value), got [1.0]",
+        ),
+        (
+            map(vec![(
+                "torques",
+                list(vec![map(vec![
+                    ("link", s("crank")),
+                    ("torque", list(vec![f(1.0), f(2.0)])),
+                    ("input", list(vec![f(1.0), f(0.0)])),
+                ])]),
+            )]),
+            "loads.torques[0].input: must be strictly increasing",
+        ),
+        (
+            map(vec![("springs", list(vec![map(vec![("between", list(vec![s("A"), s("O4")])), ("k", f(-1.0)), ("free_length", f(1.0))])]))]),
+            "loads.springs[0].k: must be >= 0, got -1.0",
+        ),
+        (
+            map(vec![("springs", list(vec![map(vec![("between", list(vec![s("A"), s("A")])), ("k", f(1.0)), ("free_length", f(1.0))])]))]),
+            "loads.springs[0].between: must name two different points, got ['A', 'A']",
+        ),
+        (
+            map(vec![("dampers", list(vec![map(vec![("between", list(vec![s("A")])), ("c", f(1.0))])]))]),
+            "loads.dampers[0].between: must be a pair of point names, got ['A']",
+        ),
+        (map(vec![("gravity", xy(0.0, f64::NAN))]), "loads.gravity[1]: must be finite, got nan"),
+        (mass(map(vec![("mass", f(-1.0)), ("center", s("A"))])), "loads.masses.coupler.mass: must be >= 0, got -1.0"),
+        (mass(map(vec![("mass", f(1.0)), ("center", s("O4"))])), "loads.masses.coupler.center: 'O4' is not a point of link 'coupler'"),
+        (mass(map(vec![("mass", f(1.0))])), "loads.masses.coupler: must have key 'center', got {'mass': 1.0}"),
+        (
+            map(vec![("masses", map(vec![("arm", map(vec![("mass", f(1.0)), ("center", s("A"))]))]))]),
+            "loads.masses.arm: 'arm' is not a link of the scene",
+        ),
+    ];
+    for (loads, want) in cases {
+        assert_eq!(message(&loaded(loads)), want);
+    }
 }

@@ -1,7 +1,7 @@
 //! The data of a scene file as the bindings hand it over (JSON, TOML or a Python mapping,
 //! converted without checks), and Python's `repr` of it, which the format's messages quote.
 
-use crate::error::Real;
+use crate::error::{Error, Real};
 
 /// A value of a scene's data: what JSON, TOML and Python's plain types hold, and a
 /// [`Foreign`] fallback for anything else a binding meets.
@@ -243,4 +243,27 @@ pub fn str_repr(t: &str) -> String {
     }
     s.push(q);
     s
+}
+
+/// A real number as Python's `float()` reads it for the format (not a bool or a string),
+/// or the message Python gives, naming `name`.
+pub(crate) fn real(name: &str, v: &Value) -> Result<f64, Error> {
+    let bad = || Err(Error::invalid(name.to_owned(), "must be a real number", v.repr()));
+    match v {
+        Value::Float(x) => Ok(*x),
+        Value::Int(i) => Ok(*i as f64),
+        Value::BigInt { digits, bits } => match digits.parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok(x),
+            _ => Err(Error::invalid(
+                name.to_owned(),
+                "must be a real number within the float range",
+                format!("an integer of {bits} bits"),
+            )),
+        },
+        Value::Foreign(f) => match f.like {
+            Like::Real(x) => Ok(x),
+            _ => bad(),
+        },
+        _ => bad(),
+    }
 }
