@@ -167,7 +167,9 @@ def parallelogram_triad(direction_deg):
     parallelogram: B = C + (1, 1.5) moves on a circle of radius 2 about V = (1, 1.5), so
     B and A make a four-bar O2-A-B-V with crank 1, coupler 3 and rocker 2."""
     v = np.array([1.0, 1.5])
-    o2 = v + 3.354 * np.array([np.cos(np.radians(direction_deg)), np.sin(np.radians(direction_deg))])
+    o2 = v + 3.354 * np.array(
+        [np.cos(np.radians(direction_deg)), np.sin(np.radians(direction_deg))]
+    )
     a = o2 + np.array([1.0, 0.0])
     b = circle_circle(a, 3.0, v, 2.0, 1.0)
     u = (b - v) / 2.0
@@ -229,7 +231,9 @@ def test_a_crank_pin_in_a_slot_of_a_three_link_group_is_solved():
     p = {n: sw.points[n][ok] for n in ("A", "C", "D")}
     r = np.hypot(*(np.asarray(pts["A"]))).item()
     np.testing.assert_allclose(np.hypot(*p["A"].T), r, rtol=0, atol=1e-12)
-    np.testing.assert_allclose(np.hypot(*(p["C"] - [-3, 0]).T), np.hypot(*(c - [-3, 0])), atol=1e-12)
+    np.testing.assert_allclose(
+        np.hypot(*(p["C"] - [-3, 0]).T), np.hypot(*(c - [-3, 0])), atol=1e-12
+    )
     np.testing.assert_allclose(np.hypot(*(p["D"] - [3, 0]).T), np.hypot(*(d - [3, 0])), atol=1e-12)
     np.testing.assert_allclose(np.hypot(*(p["D"] - p["C"]).T), np.hypot(*(d - c)), atol=1e-12)
     # A on the line C-D (the slot), and C moving continuously (one branch)
@@ -251,8 +255,17 @@ def fourbar_near_toggle(eps):
     t = toggle - 0.3
     pa = a * np.array([np.cos(t), np.sin(t)])
     pb = circle_circle(pa, b, np.array([d, 0.0]), c, 1.0)
-    links = {"ground": ["O2", "O4"], "crank": ["O2", "A"], "coupler": ["A", "B"], "rocker": ["O4", "B"]}
-    sc = scene({"O2": [0, 0], "O4": [d, 0], "A": pa, "B": pb}, links, input={"link": "crank", "pivot": "O2"})
+    links = {
+        "ground": ["O2", "O4"],
+        "crank": ["O2", "A"],
+        "coupler": ["A", "B"],
+        "rocker": ["O4", "B"],
+    }
+    sc = scene(
+        {"O2": [0, 0], "O4": [d, 0], "A": pa, "B": pb},
+        links,
+        input={"link": "crank", "pivot": "O2"},
+    )
     return sc, (a, b, c, d), toggle
 
 
@@ -280,5 +293,5 @@ def test_a_dyad_near_its_dead_point_is_converged_only_within_1e9_of_the_size(eps
         return
     got = sw.points["B"][0]
     theta = mp.mpf(toggle) - mp.mpf(eps)
-    err = min(max(abs(float(x) - g) for x, g in zip(side, got)) for side in exact_b(dims, theta))
+    err = min(max(abs(float(x) - g) for x, g in zip(side, got, strict=True)) for side in exact_b(dims, theta))
     assert err <= 1e-9 * 6.0

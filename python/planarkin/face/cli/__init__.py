@@ -1,9 +1,8 @@
 """The ``planarkin`` command: ``main()`` builds the parser from the command modules (one
-per subcommand: analyze, animate, circuits, export, forces, scenes, synthesize, tradeoff, web; analyze's
-two variants in analyze_fourbar and analyze_scene) and turns what goes wrong into one line
-on stderr: a bad option or input (exit 2), a file that cannot be written or a missing
-optional extra (1), Ctrl-C
-(130)."""
+per subcommand: analyze, animate, circuits, export, forces, scenes, synthesize, tradeoff,
+web; analyze's two variants in analyze_fourbar and analyze_scene) and turns what goes wrong
+into one line on stderr: a bad option or input (exit 2), a file that cannot be written or a
+missing optional extra (1), Ctrl-C (130)."""
 
 from __future__ import annotations
 
