@@ -293,5 +293,8 @@ def test_a_dyad_near_its_dead_point_is_converged_only_within_1e9_of_the_size(eps
         return
     got = sw.points["B"][0]
     theta = mp.mpf(toggle) - mp.mpf(eps)
-    err = min(max(abs(float(x) - g) for x, g in zip(side, got, strict=True)) for side in exact_b(dims, theta))
+    err = min(
+        max(abs(float(x) - g) for x, g in zip(side, got, strict=True))
+        for side in exact_b(dims, theta)
+    )
     assert err <= 1e-9 * 6.0
