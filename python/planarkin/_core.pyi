@@ -184,7 +184,7 @@ def load_scene(
     list[tuple[str, _Joint]],
     list[tuple[str, _Joint]],
     list[tuple[str, str, float]] | None,
-    tuple[list[float] | None, dict[str, str] | None, dict[str, Any] | None],
+    tuple[list[float] | None, dict[str, str] | None, dict[str, Any] | None, dict[str, Any] | None],
 ]: ...
 
 @final

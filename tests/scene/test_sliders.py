@@ -104,9 +104,11 @@ def test_hydraulic_boom_angle_by_the_law_of_cosines():
     o, c1, e = pt(sc, "O"), pt(sc, "C1"), pt(sc, "E")
     g, b, rho0 = np.hypot(*(c1 - o)), np.hypot(*(e - o)), np.hypot(*(e - c1))
     lo, hi = sc.stroke()
-    # the stroke ends where O, C1 and E fall in line (rho = b - g and b + g)
-    assert lo == pytest.approx(b - g - rho0, abs=1e-5 * b)
-    assert hi == pytest.approx(b + g - rho0, abs=1e-5 * b)
+    # the stroke ends where O, C1 and E fall in line (rho = b - g and b + g), or at the
+    # cylinder's limits where those come first
+    lim = sc.limits["cylinder"]
+    assert lo == pytest.approx(max(b - g - rho0, lim[0]), abs=1e-9 * b)
+    assert hi == pytest.approx(min(b + g - rho0, lim[1]), abs=1e-9 * b)
     sw = sc.sweep(outputs="all")
     assert sw.input == "displacement" and sw.success[1:-1].all()
     s = sw.theta[1:-1]
@@ -154,6 +156,10 @@ def moved(sc, f=1.0, angle=0.0, shift=(0.0, 0.0)):
         n: [f * (c * x - s * y) + shift[0], f * (s * x + c * y) + shift[1]]
         for n, (x, y) in d["points"].items()
     }
+    # a displacement's limits scale with the drawing (an angle's do not)
+    for n, v in d.get("limits", {}).items():
+        if isinstance(v, list):
+            d["limits"][n] = [f * v[0], f * v[1]]
     return pk.Scene.from_dict(d)
 
 

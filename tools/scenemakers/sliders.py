@@ -138,7 +138,10 @@ def hydraulic_boom():
             "800 mm from O; the boom's tip T at 2000 mm. The input is the cylinder's "
             "extension (a prismatic pair rod-in-barrel). The boom angle follows from the law "
             "of cosines in the triangle O-C1-E, |C1 E| being the drawn length plus the "
-            "extension. Dimensions chosen here. Drawn with the boom at 30 deg."
+            "extension. Dimensions chosen here. Drawn with the boom at 30 deg. The cylinder "
+            "(805 mm pin to pin as drawn) retracts to 605 mm and extends to 1105 mm: limits "
+            "-200..300 mm on its extension; its barrel is 560 mm long and its rod 550 mm, so "
+            "the piston stays in the barrel over the whole stroke."
         ),
         "units": "mm",
         "points": {
@@ -146,8 +149,8 @@ def hydraulic_boom():
             "C1": c1,
             "E": e,
             "T": tip,
-            "C2": c1 + 300.0 * ax,
-            "R": e - 400.0 * ax,
+            "C2": c1 + 560.0 * ax,
+            "R": e - 550.0 * ax,
         },
         "links": {
             "ground": ["O", "C1"],
@@ -160,6 +163,7 @@ def hydraulic_boom():
         "input": {"prismatic": "cylinder"},
         "output": {"link": "boom", "pivot": "O"},
         "outputs": ["T"],
+        "limits": {"cylinder": [-200.0, 300.0]},
     }
 
 

@@ -112,7 +112,7 @@ class Scene:
         core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, extra = (
             _kernel.load_scene(data)
         )
-        moved, unit_table, loads = extra
+        moved, unit_table, loads, limits = extra
         pts = dict(points)
         self._core = core
         self._max_step = core.max_step  # the default, read once (every sweep takes it)
@@ -135,6 +135,7 @@ class Scene:
             "lengths": None if lengths is None else tuple(lengths),
             "unit_table": unit_table,
             "loads": loads,
+            "limits": limits,
         }
         self._plans: dict[tuple[str, ...] | None, tuple[Plan, Any]] = {}
         self._theta: np.ndarray | None = None
@@ -211,6 +212,8 @@ class Scene:
                 }
         if d["lengths"] is not None:
             out["lengths"] = [[a, b, v] for a, b, v in d["lengths"]]
+        if d["limits"] is not None:
+            out["limits"] = copy.deepcopy(d["limits"])
         if d["loads"] is not None:
             # the normalised loads, less what is empty
             out["loads"] = {
@@ -250,6 +253,12 @@ class Scene:
         from ..forces import unit_names
 
         return unit_names(self._data["units"], self._data["unit_table"])
+
+    @property
+    def limits(self) -> dict[str, Any] | None:
+        """The scene's travel limits as the file gives them (name -> [lo, hi], or
+        {"links": [a, b], "range": [lo, hi]}), or None."""
+        return copy.deepcopy(self._data["limits"])
 
     @property
     def loads(self) -> dict[str, Any] | None:

@@ -125,6 +125,8 @@ pub struct Scene {
     /// The drawn input: its angle, or 0 for a linear input (displacements are measured
     /// from the drawn pose).
     pub(crate) theta0: f64,
+    /// Travel limits ([`Scene::with_limits`]; none unless given).
+    pub(crate) limits: Vec<crate::scene::Limit>,
 }
 
 impl Scene {

@@ -4,7 +4,7 @@
 //! file format). Convert, release the GIL, map errors; nothing numeric.
 
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3};
-use planarkin_core::scene::format::{self as core_format, Drive, Parsed};
+use planarkin_core::scene::format::{self as core_format, Drive, Parsed, Value};
 use planarkin_core::scene::Scene;
 use pyo3::prelude::*;
 
@@ -36,7 +36,7 @@ type Joint = (String, String, (String, String));
 type DriveOut = Vec<(String, String)>;
 /// What `load_scene` reads besides the scene: (name, description, units), the points
 /// (exact for a sketch), links, ground, input, output, outputs, slots, prismatic pairs,
-/// lengths, how far a sketch's points moved, and the `units` table and `loads` (plain
+/// lengths, how far a sketch's points moved, and the `units` table, `loads` and `limits` (plain
 /// data, normalised by the core; None where not given).
 type Loaded<'py> = (
     PyScene,
@@ -50,7 +50,7 @@ type Loaded<'py> = (
     Vec<(String, Joint)>,
     Vec<(String, Joint)>,
     Option<Vec<(String, String, f64)>>,
-    (Option<Vec<f64>>, Bound<'py, PyAny>, Bound<'py, PyAny>),
+    (Option<Vec<f64>>, Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>),
 );
 
 fn drive_out(d: &Drive) -> DriveOut {
@@ -69,7 +69,7 @@ fn load_scene<'py>(py: Python<'py>, data: &Bound<'_, PyAny>) -> PyResult<Loaded<
         None => None,
         Some(_) => Signals::detach(py, |signals| parsed.assemble(signals))?,
     };
-    let Parsed { spec, name, description, units, unit_table, input, output, outputs, lengths, loads } = parsed;
+    let Parsed { spec, name, description, units, unit_table, input, output, outputs, lengths, loads, limits } = parsed;
     let none = || py.None().into_bound(py);
     let (table, loads) = (
         unit_table.map_or_else(|| Ok(none()), |u| format::to_py(py, &u.to_value()))?,
@@ -83,7 +83,13 @@ fn load_scene<'py>(py: Python<'py>, data: &Bound<'_, PyAny>) -> PyResult<Loaded<
     };
     let slots = spec.slots.iter().map(|(n, j)| joint((n, (&j.point, &j.guide, &j.line)))).collect();
     let prismatic = spec.prismatic.iter().map(|(n, j)| joint((n, (&j.link, &j.guide, &j.line)))).collect();
-    let inner = Scene::new(spec).map_err(err)?;
+    let inner = Scene::new(spec).and_then(|s| s.with_limits(&limits)).map_err(err)?;
+    let limits = if limits.is_empty() {
+        none()
+    } else {
+        let table = limits.iter().map(|l| (Value::Str(l.name.clone()), l.to_value())).collect();
+        format::to_py(py, &Value::Map(table))?
+    };
     let (inp, out) = (drive_out(&input), output.as_ref().map(drive_out));
     let scene = PyScene { inner, output };
     Ok((
@@ -98,7 +104,7 @@ fn load_scene<'py>(py: Python<'py>, data: &Bound<'_, PyAny>) -> PyResult<Loaded<
         slots,
         prismatic,
         lengths,
-        (moved, table, loads),
+        (moved, table, loads, limits),
     ))
 }
 

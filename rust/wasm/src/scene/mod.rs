@@ -39,8 +39,8 @@ impl Kept {
         let mut parsed = core_format::parse(&format::value(data)).map_err(|e| e.to_string())?;
         // a sketch: the core assembles the exact pose, which is what is drawn and saved
         parsed.assemble(&Never).map_err(|e| e.to_string())?;
-        let Parsed { spec, output, outputs, .. } = parsed;
-        let scene = Scene::new(spec).map_err(|e| e.to_string())?;
+        let Parsed { spec, output, outputs, limits, .. } = parsed;
+        let scene = Scene::new(spec).and_then(|s| s.with_limits(&limits)).map_err(|e| e.to_string())?;
         // names checked, as Python does; the stroke is found on this plan, as Python's is
         let outputs_plan = match outputs {
             Some(o) => Some(scene.plan(Some(&o)).map_err(|e| e.to_string())?),

@@ -21,11 +21,26 @@ impl Scene {
     /// Compiles the steps that solve `outputs` (point or link names; `None`: every point
     /// and link). Errors name an unknown output.
     pub fn plan(&self, outputs: Option<&[String]>) -> Result<Plan, Error> {
-        let (points, links) = match outputs {
+        let (points, links): (Vec<usize>, Vec<usize>) = match outputs {
             None => ((0..self.names.len()).collect(), (0..self.links.len()).collect()),
             Some(names) => self.resolve(names)?,
         };
-        compile(self, &points, &links)
+        if self.limits.is_empty() {
+            return compile(self, &points, &links);
+        }
+        // a limit stops the motion wherever it binds: its points are solved too, and
+        // reported only as they would be without it
+        let reported = compile(self, &points, &links)?.points;
+        let mut with = points.clone();
+        for p in self.limits.iter().flat_map(|l| l.coordinate.points()) {
+            if !with.contains(&p) {
+                with.push(p);
+            }
+        }
+        let mut plan = compile(self, &with, &links)?;
+        plan.points = reported;
+        plan.limits = self.limits.clone();
+        Ok(plan)
     }
 
     fn resolve(&self, names: &[String]) -> Result<(Vec<usize>, Vec<usize>), Error> {
@@ -493,7 +508,8 @@ fn prune(sc: &Scene, ops: Vec<Op>, want_points: &[usize], want_links: &[usize]) 
         };
         let s = match opens {
             Some((kind, mut unknowns)) => {
-                unknowns.retain(|&l| l >= sc.links.len() || sc.links[l].points.iter().filter(|&&p| known[p]).count() < 2);
+                unknowns
+                    .retain(|&l| l >= sc.links.len() || sc.links[l].points.iter().filter(|&&p| known[p]).count() < 2);
                 steps.push(StepInfo { kind, points: vec![], unknowns });
                 step_op.push(i);
                 Some(steps.len() - 1)
@@ -525,5 +541,6 @@ fn prune(sc: &Scene, ops: Vec<Op>, want_points: &[usize], want_links: &[usize]) 
         scale: sc.scale,
         origin: sc.origin,
         linear: sc.linear.is_some(),
+        limits: Vec::new(),
     })
 }

@@ -66,6 +66,8 @@ pub struct Plan {
     pub(crate) origin: Xy,
     /// The input is a displacement (no turn repeats it: never wrapped).
     pub(crate) linear: bool,
+    /// Travel limits: the motion stops where one binds.
+    pub(crate) limits: Vec<crate::scene::Limit>,
 }
 
 impl Plan {

@@ -7,6 +7,7 @@
 //! computes with a scene once it is built.
 
 mod defaults;
+mod limits;
 mod loads;
 mod output;
 mod parse;
@@ -19,6 +20,7 @@ pub use defaults::{
     default_inputs, homotopy_options, linspace, max_step, size, sweep_options, trace_options, MAX_ITER, MAX_STEP, RUNS,
     SEED, SWEEP_LEN, TOL, TRACE_MAX_POINTS, TRACE_STEP,
 };
+pub use limits::{Bounded, LimitSpec};
 pub use loads::{Center, Element, Loads, Mass, Profile, Target, Units, LOAD_KEYS};
 pub use output::linear_output;
 pub use parse::{kind_name, parse};
@@ -29,7 +31,7 @@ use crate::interrupt::Interrupt;
 use crate::scene::{assemble_sketch, LengthSpec, LinearKind, SceneSpec};
 
 /// The keys a scene may have, in the order messages list them.
-pub const KEYS: [&str; 13] = [
+pub const KEYS: [&str; 14] = [
     "name",
     "description",
     "units",
@@ -43,6 +45,7 @@ pub const KEYS: [&str; 13] = [
     "prismatic",
     "lengths",
     "loads",
+    "limits",
 ];
 /// The keys a scene must have.
 pub const REQUIRED: [&str; 4] = ["points", "links", "ground", "input"];
@@ -86,6 +89,9 @@ pub struct Parsed {
     pub unit_table: Option<Units>,
     /// `loads`, if given, checked against the scene's names.
     pub loads: Option<Loads>,
+    /// `limits` (empty if not given), names checked; [`Scene::with_limits`](crate::scene::Scene::with_limits)
+    /// resolves them.
+    pub limits: Vec<LimitSpec>,
     /// The input as the file gives it.
     pub input: Drive,
     /// The output as the file gives it, if any.

@@ -227,6 +227,9 @@ pub fn parse(data: &Value) -> Result<Parsed, Error> {
         (slots.iter().map(|s| s.0.clone()).collect(), prismatic.iter().map(|p| p.0.clone()).collect());
     let names = super::loads::Names { points: &points, links: &lk, slots: &slot_names, prismatic: &prism_names };
     let loads = super::loads::loads(given(d, "loads"), &names)?;
+    let joint_names: Vec<String> = slot_names.iter().chain(&prism_names).cloned().collect();
+    let link_names: Vec<String> = lk.iter().map(|l| l.0.clone()).collect();
+    let limits = super::limits::limits(given(d, "limits"), &joint_names, &link_names)?;
     let (spec_input, linear_input) = match &input {
         Drive::Angle { link, pivot } => ((link.clone(), pivot.clone()), None),
         Drive::Linear { kind, name } => ((String::new(), String::new()), Some((*kind, name.clone()))),
@@ -246,5 +249,5 @@ pub fn parse(data: &Value) -> Result<Parsed, Error> {
         linear_input,
     };
     let [name, description] = text;
-    Ok(Parsed { spec, name, description, units, unit_table, input, output, outputs, lengths, loads })
+    Ok(Parsed { spec, name, description, units, unit_table, input, output, outputs, lengths, loads, limits })
 }

@@ -39,6 +39,7 @@ const FLIP_HALVINGS: i32 = 14;
 /// branch near a fold lands about the square root of the step away).
 const FLIP_JUMP: f64 = 1e-5;
 
+#[derive(Clone)]
 pub(super) struct Solver<'p> {
     pub(super) plan: &'p Plan,
     pub(super) opts: SceneSweepOptions,

@@ -4,8 +4,8 @@
 
 use super::columns;
 use super::continuation::Solver;
-use super::ways;
 use super::options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};
+use super::ways;
 use crate::error::{quoted, try_zeros, Error};
 use crate::interrupt::{Interrupt, Poll};
 use crate::scene::build::Plan;
@@ -68,7 +68,9 @@ impl Plan {
         if opts.predictor == ScenePredictor::ClosedForm {
             return self.closed_form_sweep(theta, opts, out, &poll);
         }
-        if self.columns_ok() {
+        let stops = self.stops(opts, &poll)?;
+        let within = |t: &f64| !t.is_finite() || (stops.0 <= *t && *t <= stops.1);
+        if self.columns_ok() && theta.iter().all(within) {
             columns::sweep(self, theta, opts, &mut out, &poll)?;
             if self.certified(theta, opts, &out) {
                 return Ok(());
@@ -86,13 +88,13 @@ impl Plan {
             }
         }
         for run in ways::direct(theta, self.theta0) {
-            self.continuation(&run, None, opts, &mut out, &mut dirs, &poll)?;
+            self.continuation(&run, None, stops, opts, &mut out, &mut dirs, &poll)?;
         }
         // an angle stopped by a dead point one way may be reached the other way round
         if !self.linear {
             let stopped = (0..n).filter(|&k| out.status[k] == limit);
             for run in ways::other(theta, self.theta0, stopped) {
-                self.continuation(&run, Some(theta), opts, &mut out, &mut dirs, &poll)?;
+                self.continuation(&run, Some(theta), stops, opts, &mut out, &mut dirs, &poll)?;
             }
         }
         let (dx, dy) = dirs.split_at(n * nl);
@@ -121,6 +123,13 @@ impl Plan {
         }
         columns::sweep(self, theta, opts, &mut out, poll)?;
         non_finite_rows(theta, &mut out);
+        // each value on its own, but not past a limit the motion from the drawn pose meets
+        let stops = self.stops(opts, poll)?;
+        for (k, &t) in theta.iter().enumerate() {
+            if t.is_finite() && !(stops.0 <= t && t <= stops.1) {
+                self.mark_stopped(k, if t > stops.1 { stops.1 } else { stops.0 }, &mut out);
+            }
+        }
         // a closed form that does not close says NOT_ASSEMBLABLE of its own step; whether
         // the linkage has no assembly at all is the classification's to say
         let (limit, none) = (Status::Limit.code(), Status::NotAssemblable.code());
@@ -192,6 +201,7 @@ impl Plan {
         &self,
         run: &ways::Run,
         other: Option<&[f64]>,
+        stops: (f64, f64),
         opts: &SceneSweepOptions,
         out: &mut SceneSweepOut<'_>,
         dirs: &mut [f64],
@@ -202,8 +212,30 @@ impl Plan {
         }
         let mut s = Solver::new(self, *opts);
         s.eval(self.theta0); // tangents at the drawn pose
+                             // rows past a limit's stop: a solver that solved nothing writes them
+        let mut idle: Option<Solver<'_>> = None;
         for &(k, t) in run {
             poll.tick()?;
+            if !(stops.0 <= t && t <= stops.1) {
+                let stop = if t > stops.1 { stops.1 } else { stops.0 };
+                match other {
+                    // the other way is stopped too: name it where it is the shorter way
+                    Some(asked) => {
+                        if (t - self.theta0).abs() < (asked[k] - self.theta0).abs() {
+                            out.limit[k] = stop;
+                        }
+                    }
+                    None => {
+                        let idle = idle.get_or_insert_with(|| {
+                            let mut z = Solver::new(self, *opts);
+                            z.eval(f64::NAN);
+                            z
+                        });
+                        self.write_stopped(k, stop, idle, out, dirs);
+                    }
+                }
+                continue;
+            }
             s.nit = 0;
             s.advance(t, poll)?;
             if let Some(asked) = other {

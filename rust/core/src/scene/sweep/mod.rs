@@ -7,6 +7,7 @@ mod columns;
 mod continuation;
 mod entry;
 mod jump;
+mod limits;
 mod options;
 mod predict;
 mod step;

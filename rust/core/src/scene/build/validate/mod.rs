@@ -88,6 +88,7 @@ pub(crate) fn structure(spec: SceneSpec) -> Result<Scene, Error> {
         prismatic: prism_list,
         linear,
         theta0,
+        limits: Vec::new(),
     })
 }
 
