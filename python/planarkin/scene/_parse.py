@@ -10,6 +10,8 @@ import tomllib
 from collections.abc import Iterator, Mapping
 from typing import Any
 
+import numpy as np
+
 from .._kernel import SCENE_MAX_DEPTH
 
 __all__ = ["MAX_DEPTH", "check_depth", "parse"]
@@ -35,17 +37,23 @@ class _Twice(dict):
 
 
 def _object(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
-    out: dict[str, Any] = {}
-    twice = None
-    for k, v in pairs:
-        if k in out and twice is None:
-            twice = k
-        out[k] = v
-    if twice is None:
+    out = dict(pairs)
+    if len(out) == len(pairs):
         return out
+    seen: set[str] = set()
+    twice = next(k for k, _ in pairs if k in seen or seen.add(k))  # type: ignore[func-returns-value]
     marked = _Twice(out)
     marked.twice = twice
     return marked
+
+
+def _json_depth_bound(text: str) -> int:
+    """An upper bound on a JSON text's nesting: its deepest run of brackets (those inside
+    strings counted too), in one vectorized pass."""
+    b = np.frombuffer(text.encode("utf-8"), dtype=np.uint8)
+    step = (b == ord("[")).astype(np.int32) + (b == ord("{"))
+    step -= (b == ord("]")).astype(np.int32) + (b == ord("}"))
+    return int(np.cumsum(step).max(initial=0))
 
 
 def _walk(data: Any) -> Iterator[tuple[str, Any, int]]:
@@ -78,8 +86,16 @@ def parse(text: str, suffix: str, where: str) -> Any:
     """The data of a scene file's ``text`` (``suffix`` ".json" or ".toml"); ``where``
     (the file) begins every error message."""
     try:
+        twice: list[bool] = []
+
+        def hook(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+            out = _object(pairs)
+            if isinstance(out, _Twice):
+                twice.append(True)
+            return out
+
         if suffix == ".json":
-            data = json.loads(text, object_pairs_hook=_object, parse_int=_int)
+            data = json.loads(text, object_pairs_hook=hook, parse_int=_int)
         else:
             data = tomllib.loads(text)
     except RecursionError:
@@ -89,11 +105,14 @@ def parse(text: str, suffix: str, where: str) -> Any:
     except ValueError as e:  # JSONDecodeError and TOMLDecodeError are ValueErrors
         kind = "JSON" if suffix == ".json" else "TOML"
         raise ValueError(f"{where}: not valid {kind}: {e}") from None
-    check_depth(data, where)
-    for name, v, _ in _walk(data):
-        if isinstance(v, _Twice):
-            entry = f"{name}.{v.twice}" if name else v.twice
-            raise ValueError(
-                f"{where}: {entry} is given twice (JSON would silently keep the last one)"
-            )
+    # the walks name the entry; they run only where a cheap test says they will find one
+    if suffix != ".json" or _json_depth_bound(text) > MAX_DEPTH:
+        check_depth(data, where)
+    if twice:
+        for name, v, _ in _walk(data):
+            if isinstance(v, _Twice):
+                entry = f"{name}.{v.twice}" if name else v.twice
+                raise ValueError(
+                    f"{where}: {entry} is given twice (JSON would silently keep the last one)"
+                )
     return data
