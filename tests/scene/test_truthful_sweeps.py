@@ -298,3 +298,19 @@ def test_a_dyad_near_its_dead_point_is_converged_only_within_1e9_of_the_size(eps
         for side in exact_b(dims, theta)
     )
     assert err <= 1e-9 * 6.0
+
+
+@pytest.mark.parametrize("name", ["jansen", "double-butterfly-1", "stephenson3", "hydraulic-boom"])
+def test_a_rows_answer_does_not_depend_on_the_rest_of_the_array(name):
+    # issue 32: a row changed from LIMIT to CONVERGED when one more angle was appended;
+    # any subset, order or start gives each value the same status and pose
+    sc = pk.scenes.load(name)
+    full = sc.sweep(outputs="all")
+    size = float(np.ptp(np.array(list(sc.points.values())), axis=0).max())
+    rng = np.random.default_rng(11)
+    for _ in range(3):
+        pick = rng.permutation(len(full.theta))[: rng.integers(5, 60)]
+        part = sc.sweep(full.theta[pick], outputs="all")
+        np.testing.assert_array_equal(part.status, full.status[pick])
+        ok = part.success
+        np.testing.assert_allclose(part.coords[ok], full.coords[pick][ok], rtol=0, atol=1e-9 * size)
