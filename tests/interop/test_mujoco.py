@@ -105,3 +105,25 @@ def test_every_built_in_scene_replays(name: str) -> None:
     if sw.input == "displacement":
         # the stroke's ends are dead points (SINGULAR: no pose) or limits (solved)
         assert np.isin(sw.status[[0, -1]], [pk.Status.SINGULAR, pk.Status.CONVERGED]).all()
+
+
+@pytest.mark.parametrize("name", ["fourbar-loaded", "jansen-loaded", "engine"])
+def test_masses_and_gravity_come_from_the_scenes_loads(name: str, tmp_path) -> None:  # noqa: ANN001
+    """MuJoCo reads each link's mass, its centre (world coordinates at the drawn pose) and
+    its moment of inertia about it as the scene's loads give them, and the gravity."""
+    mujoco = pytest.importorskip("mujoco", reason="the mujoco extra is not installed")
+    sc = pk.scenes.load(name)
+    loads = sc.loads
+    m = mujoco.MjModel.from_xml_path(str(mjcf.write(sc, tmp_path / f"{name}.xml")))
+    d = mujoco.MjData(m)
+    mujoco.mj_kinematics(m, d)
+    mujoco.mj_comPos(m, d)
+    for link, spec in (loads.get("masses") or {}).items():
+        body = m.body(link)
+        assert body.mass[0] == pytest.approx(spec["mass"], rel=1e-12)
+        c = spec["center"]
+        centre = sc.points[c] if isinstance(c, str) else c
+        np.testing.assert_allclose(d.xipos[body.id][:2], centre, rtol=0, atol=1e-9)
+        assert body.inertia[2] == pytest.approx(spec["inertia"], rel=1e-9, abs=1e-15)
+    g = loads.get("gravity") or [0.0, 0.0]
+    np.testing.assert_allclose(m.opt.gravity, [g[0], g[1], 0.0], rtol=0, atol=0)

@@ -207,13 +207,35 @@ def _all(b: _Body) -> list[_Body]:
     return [b] + [d for c in b.children for d in _all(c)]
 
 
-def _body_text(b: _Body, parent: Point, r: float, depth: int) -> list[str]:
+def _masses(sc: Scene) -> dict[str, tuple[float, Point, float]]:
+    """Link -> (mass, centre in the drawing, moment of inertia about it) from the scene's
+    loads (none without them)."""
+    masses = (sc.loads or {}).get("masses") or {}
+    out = {}
+    for link, m in masses.items():
+        c = m["center"]
+        centre = sc.points[c] if isinstance(c, str) else (float(c[0]), float(c[1]))
+        out[link] = (float(m["mass"]), centre, float(m.get("inertia", 0.0)))
+    return out
+
+
+def _body_text(
+    b: _Body, parent: Point, r: float, depth: int, masses: dict[str, tuple[float, Point, float]]
+) -> list[str]:
     pad = "  " * depth
     out = [f'{pad}<body name={quoteattr(b.name)} pos="{_xyz(_rel(b.origin, parent))}">']
-    extent = max([math.hypot(*s) for s in b.sites.values()] + [r])
-    inertia = _f(extent * extent / 3 + r * r)
-    out.append(f'{pad}  <inertial pos="0 0 0" mass="1" diaginertia="{inertia} {inertia} '
-               f'{inertia}"/>')  # fmt: skip
+    if b.name in masses:
+        # the scene's mass, centre and inertia about it (a plane body: the two in-plane
+        # axes take the same value, which keeps MuJoCo's triangle inequality)
+        m, centre, i_zz = masses[b.name]
+        i = _f(max(i_zz, 1e-12 * m * r * r))
+        out.append(f'{pad}  <inertial pos="{_xyz(_rel(centre, b.origin))}" mass="{_f(m)}" '
+                   f'diaginertia="{i} {i} {i}"/>')  # fmt: skip
+    else:
+        extent = max([math.hypot(*s) for s in b.sites.values()] + [r])
+        inertia = _f(extent * extent / 3 + r * r)
+        out.append(f'{pad}  <inertial pos="0 0 0" mass="1" diaginertia="{inertia} {inertia} '
+                   f'{inertia}"/>')  # fmt: skip
     out += [f"{pad}  {j}" for j in b.joints]
     for p, q in b.geoms:
         if p != q:
@@ -222,19 +244,21 @@ def _body_text(b: _Body, parent: Point, r: float, depth: int) -> list[str]:
     for s, p in b.sites.items():
         out.append(f'{pad}  <site name={quoteattr(s)} pos="{_xyz(p)}" size="{_f(r * 0.6)}"/>')
     for c in b.children:
-        out += _body_text(c, b.origin, r, depth + 1)
+        out += _body_text(c, b.origin, r, depth + 1, masses)
     out.append(f"{pad}</body>")
     return out
 
 
 def _text(sc: Scene, ground: _Body, equality: list[str], inp: str, kp: float, size: float) -> str:
     r = 0.02 * size
+    g = (sc.loads or {}).get("gravity") or [0.0, 0.0]
+    gravity = (float(g[0]), float(g[1]))
     lines = [
         f"<mujoco model={quoteattr(sc.name or 'scene')}>",
         f"  <!-- planarkin export; lengths in the scene's unit ({sc.units or 'unitless'}),"
         " angles in radians; qpos = 0 is the drawn pose -->",
         '  <compiler angle="radian" autolimits="true"/>',
-        '  <option timestep="0.0005" gravity="0 0 0" integrator="implicitfast">',
+        f'  <option timestep="0.0005" gravity="{_xyz(gravity)}" integrator="implicitfast">',
         '    <flag contact="disable"/>',
         "  </option>",
         "  <default>",
@@ -249,10 +273,17 @@ def _text(sc: Scene, ground: _Body, equality: list[str], inp: str, kp: float, si
         if p != q:
             lines.append(f'    <geom type="capsule" size="{_f(r)}" '
                          f'fromto="{_xyz(p)} {_xyz(q)}"/>')  # fmt: skip
+    masses = _masses(sc)
     for c in ground.children:
-        lines += _body_text(c, ground.origin, r, 2)
+        lines += _body_text(c, ground.origin, r, 2, masses)
     # the input's servo: stiff against every body's inertia, critically damped
-    inertia = sum(_inertia(b, r) for c in ground.children for b in _all(c))
+    inertia = sum(
+        masses[b.name][2] + masses[b.name][0] * math.dist(masses[b.name][1], b.origin) ** 2
+        if b.name in masses
+        else _inertia(b, r)
+        for c in ground.children
+        for b in _all(c)
+    )
     kv = 2 * math.sqrt(kp) * inertia
     kp *= inertia
     lines += ["  </worldbody>", "  <equality>"]
