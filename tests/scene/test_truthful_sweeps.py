@@ -314,3 +314,41 @@ def test_a_rows_answer_does_not_depend_on_the_rest_of_the_array(name):
         np.testing.assert_array_equal(part.status, full.status[pick])
         ok = part.success
         np.testing.assert_allclose(part.coords[ok], full.coords[pick][ok], rtol=0, atol=1e-9 * size)
+
+
+def reflect(p, a, b):
+    d = (b - a) / np.hypot(*(b - a))
+    v = p - a
+    return a + 2 * (v @ d) * d - v
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_a_kite_inside_a_group_stays_on_the_kite(seed):
+    # a triad whose loop O4-C-D-O6 is an exact kite (|O4 C| = |O4 O6| = 3, |C D| = |D O6|
+    # = 2): on the kite branch C is O6 reflected in the line O4-D; the folded circuit
+    # (C held at O6) crosses it at the kite's change point and must never be taken
+    rng = np.random.default_rng(seed)
+    o4, o6 = np.zeros(2), np.array([3.0, 0.0])
+    phi = np.radians(rng.uniform(5.0, 80.0))
+    c = 3.0 * np.array([np.cos(phi), np.sin(phi)])
+    d = circle_circle(o6, 2.0, c, 2.0, 1.0)
+    b = c + 0.6 * (d - c) + 0.8 * np.array([-(d - c)[1], (d - c)[0]])
+    psi, chi, length = rng.uniform(0, 2 * np.pi), rng.uniform(0, 2 * np.pi), rng.uniform(1.5, 4)
+    a = b + length * np.array([np.cos(psi), np.sin(psi)])
+    o2 = a + np.array([np.cos(chi), np.sin(chi)])
+    pts = {"O2": o2, "O4": o4, "O6": o6, "A": a, "B": b, "C": c, "D": d}
+    links = {
+        "ground": ["O2", "O4", "O6"],
+        "crank": ["O2", "A"],
+        "ab": ["A", "B"],
+        "tern": ["C", "D", "B"],
+        "r4": ["O4", "C"],
+        "r6": ["O6", "D"],
+    }
+    sc = scene(pts, links, input={"link": "crank", "pivot": "O2"})
+    theta = sc.input_angle + np.radians(np.arange(0.0, 360.5, 0.5))
+    sw = sc.sweep(theta, outputs="all")
+    ok = np.where(sw.success)[0]
+    assert len(ok) > 30
+    gap = [np.hypot(*(sw.points["C"][k] - reflect(o6, o4, sw.points["D"][k]))) for k in ok]
+    assert max(gap) < 1e-9
