@@ -40,10 +40,10 @@ def fourbar(a, b, c, d, th, side):
     )
 
 
-def slider_crank(r, l, e, th, side):
-    """Offset slider-crank: crank O2-A (r), rod A-B (l), B in a ground slot at height e."""
+def slider_crank(r, rod, e, th, side):
+    """Offset slider-crank: crank O2-A (r), rod A-B (rod), B in a ground slot at height e."""
     pa = [r * math.cos(th), r * math.sin(th)]
-    pb = [pa[0] + side * math.sqrt(l * l - (e - pa[1]) ** 2), e]
+    pb = [pa[0] + side * math.sqrt(rod * rod - (e - pa[1]) ** 2), e]
     return pk.Scene.from_dict(
         {
             "points": {"O2": [0, 0], "X": [1, 0], "A": pa, "B": pb},
