@@ -291,10 +291,12 @@ impl<'s> Tracer<'s> {
             let dn = self.det(end.as_slice());
             // the step in pieces over which the input is monotone: split at a dead point
             let mut pieces = vec![(0.0, self.theta(x.as_slice()))];
+            let mut dead = None;
             if d * dn < 0.0 {
-                let (tp, at) = self.turning_point(&x, &dir, len, d, &delta);
+                let (tp, at, z) = self.turning_point(&x, &dir, len, d, &delta);
                 out.turning_points.push(tp);
                 pieces.push((at, tp));
+                dead = z;
             }
             pieces.push((len, self.theta(end.as_slice())));
             if let Some(w) = watch {
@@ -310,6 +312,10 @@ impl<'s> Tracer<'s> {
                         }
                     }
                 }
+            }
+            // the path passes through its dead point (the input's extreme there, as refined)
+            if let Some(z) = dead {
+                self.record(&mut out, z.as_slice(), self.det(z.as_slice()))?;
             }
             if closing.is_some() {
                 self.record(&mut out, end.as_slice(), dn)?;
@@ -351,19 +357,28 @@ impl<'s> Tracer<'s> {
     }
 
     /// Bisection on the conditioning's sign along the step from x (where it is `d0`) in the
-    /// unit direction t, of length h: the input there and the step's parameter.
-    fn turning_point(&self, x: &DVector<f64>, t: &DVector<f64>, h: f64, d0: f64, delta: &[Xy]) -> (f64, f64) {
+    /// unit direction t, of length h: the input there, the step's parameter and the
+    /// unknowns (None where no bisection point converged).
+    fn turning_point(
+        &self,
+        x: &DVector<f64>,
+        t: &DVector<f64>,
+        h: f64,
+        d0: f64,
+        delta: &[Xy],
+    ) -> (f64, f64, Option<DVector<f64>>) {
         let (mut lo, mut hi) = (0.0, h);
-        let mut best = (self.theta(x.as_slice()), 0.0);
+        let mut best = (self.theta(x.as_slice()), 0.0, None);
         for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
             let Some((y, _)) = self.correct(&(x + t * mid), t, delta) else { break };
-            best = (self.theta(y.as_slice()), mid);
+            best = (self.theta(y.as_slice()), mid, None);
             if self.det(y.as_slice()) * d0 > 0.0 {
                 lo = mid;
             } else {
                 hi = mid;
             }
+            best.2 = Some(y);
             if hi - lo < 1e-13 {
                 break;
             }
