@@ -44,8 +44,9 @@ pub struct Assemblies {
     pub paths: Vec<Vec<usize>>,
     /// Homotopy paths that failed over all calls (0 when nothing was lost in tracking).
     pub failed_paths: usize,
-    /// Branches where a dyad's known points coincide with equal links: a continuum of
-    /// assemblies (the point anywhere on a circle), not listed.
+    /// Branches where a dyad's known points coincide with equal links (the point anywhere
+    /// on a circle), or a slot's point lies on its turning guide's pivot (the guide at any
+    /// angle): a continuum of assemblies, not listed.
     pub continua: usize,
 }
 
@@ -142,6 +143,11 @@ impl Walk<'_> {
                 Ok(())
             }
             Op::Group(g) => self.group(i, g, pos, dets, labels),
+            Op::Rpr(r) if r.on_pivot(pos[r.k], pos[r.q]) => {
+                // a slot's point on its guide's pivot: the guide at any angle, not listed
+                self.out.continua += 1;
+                Ok(())
+            }
             op => {
                 // sliders: two sides where there are two, one solution otherwise
                 let sides: &[f64] = if op.sided() { &[1.0, -1.0] } else { &[1.0] };

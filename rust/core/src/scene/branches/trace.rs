@@ -6,8 +6,8 @@
 //! Its solution set is a curve; each step predicts along the unit tangent (the null vector
 //! of dF) and corrects by Newton on [F; t . (x - x_pred)] = 0, so dead points, where
 //! theta turns back, are passed like any other point. Turning points are where the plan's
-//! signed conditioning (the product of its steps') changes sign, refined by bisection
-//! along the step.
+//! signed conditioning (the product of its steps') changes sign and the input reverses,
+//! refined by bisection along the step.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -292,7 +292,15 @@ impl<'s> Tracer<'s> {
             // the step in pieces over which the input is monotone: split at a dead point
             let mut pieces = vec![(0.0, self.theta(x.as_slice()))];
             let mut dead = None;
-            if d * dn < 0.0 {
+            // the conditioning changes sign at a dead point, where the input reverses, and at
+            // a change point, where it does not (links falling in line and on through it, a
+            // slot's point passing through its guide's pivot)
+            let reverses = d * dn < 0.0 && {
+                let te =
+                    if closing.is_some() { self.tangent(end.as_slice(), &delta, Some(&t)) } else { Some(tn.clone()) };
+                te.is_none_or(|te| t[self.input] * te[self.input] < 0.0)
+            };
+            if reverses {
                 let (tp, at, z) = self.turning_point(&x, &dir, len, d, &delta);
                 out.turning_points.push(tp);
                 pieces.push((at, tp));
