@@ -111,3 +111,26 @@ def test_circuit_through_the_pass_is_one_full_turn_without_turning_points():
     (c,) = slotted(0.0).circuits()
     assert len(c.assemblies) == 2 and c.full_turn and len(c.turning_points) == 0
     assert c.net_turn == pytest.approx(4 * math.pi, abs=1e-9)
+
+
+def test_crank_and_slotted_lever_at_the_whitworth_boundary_drives_its_ram_through():
+    # the built-in Whitworth with its crank shortened to the pivot distance (r = c = 30):
+    # the lever (its arm O4-C opposite the slot, |O4 C| = 50) turns on through the pass and
+    # the ram D (rod C-D = 150 on the line y = c) follows: x_D = x_C - sqrt(rod^2 - (y_C -
+    # c)^2), the lever's slot at (t + 90) / 2 + 90 deg, plus 180 as drawn at 30 deg (the
+    # pin behind O4: sin((30 - 90) / 2) < 0)
+    c, big_r, rod, t0 = 30.0, 50.0, 150.0, math.radians(30.0)
+    d = pk.scenes.data("whitworth")
+    pa = [c * math.cos(t0), c * math.sin(t0)]
+    g = math.atan2(pa[1] - c, pa[0])
+    pc = [-big_r * math.cos(g), c - big_r * math.sin(g)]
+    pd = [pc[0] - math.sqrt(rod**2 - (pc[1] - c) ** 2), c]
+    d["points"].update({"A": pa, "C": pc, "D": pd})
+    sc = pk.Scene.from_dict(d)
+    sw = sc.sweep(outputs="all")
+    slot = np.radians((np.degrees(sw.theta) + 90.0) / 2.0 + 90.0 + 180.0)
+    cx, cy = big_r * np.cos(slot + np.pi), c + big_r * np.sin(slot + np.pi)
+    ram = cx - np.sqrt(rod**2 - (cy - c) ** 2)
+    passing = gap_deg(np.degrees(sw.theta), 90.0) < 1e-6
+    assert sw.success[~passing].all()
+    assert np.abs(sw.points["D"][~passing, 0] - ram[~passing]).max() < 1e-12 * rod
