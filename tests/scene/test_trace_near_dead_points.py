@@ -126,3 +126,31 @@ def test_hydraulic_boom_redrawn_next_to_a_stroke_end_keeps_both_ends(end, gap):
         ends = boom_stroke(sc.points)
         assert abs(ends[end]) < 2 * gap  # redrawn where asked
         assert_one_circuit(sc, ends, TOL * size)
+
+
+def test_slider_group_drawn_next_to_a_fold_is_one_circuit_with_both_folds():
+    # a slot inside a Newton group (test_slider_groups.slot_triad): the folds have no closed
+    # form here; the NumPy reference (one Newton system of every link, no plan) brackets
+    # each: it converges 2e-9 inside and fails 2e-9 outside
+    from planarkin.reference import scene_sweep
+    from test_slider_groups import slot_triad
+
+    d = slot_triad()
+    far = pk.Scene.from_dict(d)
+    assert [s.kind for s in far.plan().steps] == ["group"]
+    (c,) = far.circuits()
+    tps = np.sort(c.turning_points)
+    assert len(tps) == 2
+    for tp in tps:
+        inward = math.copysign(1.0, far.input_angle - tp)
+        ref = scene_sweep(d, [tp + inward * 2e-9, tp - inward * 2e-9])
+        assert ref.status[0] == pk.Status.CONVERGED and ref.status[1] != pk.Status.CONVERGED
+    for tp in tps:
+        inward = math.copysign(1.0, far.input_angle - tp)
+        for eps in (1e-5, 1e-7):
+            found = far.assemblies(tp + inward * eps)
+            assert len(found) == 2  # the two branches meeting at the fold
+            for a in found:
+                near = pk.Scene.from_dict({**d, "points": {n: list(xy) for n, xy in a.items()}})
+                assert len(near.assemblies()) == 2
+                assert_one_circuit(near, tps, 1e-9)
