@@ -306,8 +306,10 @@ class Trace(InputResult):
     points: dict[str, np.ndarray]
     #: (M,) the plan's signed conditioning along the path.
     det: np.ndarray
-    #: Input values (continuous, like ``theta``) of the dead points passed, refined by
-    #: bisection on the conditioning's sign, in path order.
+    #: Input values (continuous, like ``theta``) of the dead points passed (where the
+    #: conditioning changes sign and the input reverses; a change point, where it goes on,
+    #: is none), refined by bisection on the conditioning's sign, in path order. The path
+    #: holds the pose at each of them.
     turning_points: np.ndarray
     #: The path came back to its start (its last point is the start again).
     closed: bool
@@ -335,7 +337,8 @@ class Circuit:
     full_turn: bool
     #: Net change of the input angle once round (NaN when the trace did not close).
     net_turn: float
-    #: (lowest, highest) input angle on the path (continuous).
+    #: (lowest, highest) input angle on the path (continuous): where the input reverses,
+    #: the refined turning points.
     range: tuple[float, float]
     trace: Trace
 

@@ -94,10 +94,11 @@ class InputAxis:
         """A circuit's motion: its net turn, turning points and input range, shown in the
         turn that holds ``at``."""
         shift = math.tau * round((at - math.radians(wrapped(at))) / math.tau)
+        lo, hi = _range(c)
         return {
             "net_turn_deg": math.degrees(c.net_turn),
             "turning_points_deg": [wrapped(v) for v in c.turning_points],
-            "input_range_deg": [math.degrees(c.range[0] - shift), math.degrees(c.range[1] - shift)],
+            "input_range_deg": [math.degrees(lo - shift), math.degrees(hi - shift)],
         }
 
     def reach_grid(self, scene: Scene) -> np.ndarray:
@@ -153,12 +154,7 @@ class LinearAxis(InputAxis):
         return {**shared, "units": scene.units, "theta": v}
 
     def circuit(self, c: Circuit, at: float) -> dict[str, Any]:
-        tps = [float(v) for v in c.turning_points]
-        # the traced range, its turning points (refined by bisection) included
-        return {
-            "turning_points": tps,
-            "input_range": [float(min([c.range[0], *tps])), float(max([c.range[1], *tps]))],
-        }
+        return {"turning_points": [float(v) for v in c.turning_points], "input_range": _range(c)}
 
     def reach_grid(self, scene: Scene) -> np.ndarray:
         pts = np.array(list(scene.points.values()), dtype=float)
@@ -171,6 +167,13 @@ class LinearAxis(InputAxis):
     def speed(self, omega: float, unit: str) -> dict[str, Any]:
         return {"omega_rad_s": None, "rpm": None, "speed": f"{omega:g} {unit}/s",
                 "speed_value": omega}  # fmt: skip
+
+
+def _range(c: Circuit) -> list[float]:
+    """A circuit's input range (continuous): where the input reverses, its ends are the
+    turning points refined by bisection, never the nearest traced sample."""
+    ends = [*c.range, *np.asarray(c.trace.turning_points, dtype=np.float64).tolist()]
+    return [float(min(ends)), float(max(ends))]
 
 
 def input_axis(kind: str, units: str | None = None) -> InputAxis:

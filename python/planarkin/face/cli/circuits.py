@@ -104,7 +104,7 @@ class _AngleWords:
         kind = (
             "input turns fully"
             if r["full_turn"]
-            else f"input rocks between {lo:.2f} and {hi:.2f} deg"
+            else f"input rocks between {lo:.4f} and {hi:.4f} deg"
         )
         if not r["full_turn"] and (hi > 180 or lo <= -180):
             kind += " (a continuous range through 180 deg)"

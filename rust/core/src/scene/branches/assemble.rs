@@ -44,8 +44,9 @@ pub struct Assemblies {
     pub paths: Vec<Vec<usize>>,
     /// Homotopy paths that failed over all calls (0 when nothing was lost in tracking).
     pub failed_paths: usize,
-    /// Branches where a dyad's known points coincide with equal links: a continuum of
-    /// assemblies (the point anywhere on a circle), not listed.
+    /// Branches where a dyad's known points coincide with equal links (the point anywhere
+    /// on a circle), or a slot's point lies on its turning guide's pivot (the guide at any
+    /// angle): a continuum of assemblies, not listed.
     pub continua: usize,
 }
 
@@ -142,6 +143,11 @@ impl Walk<'_> {
                 Ok(())
             }
             Op::Group(g) => self.group(i, g, pos, dets, labels),
+            Op::Rpr(r) if r.on_pivot(pos[r.k], pos[r.q]) => {
+                // a slot's point on its guide's pivot: the guide at any angle, not listed
+                self.out.continua += 1;
+                Ok(())
+            }
             op => {
                 // sliders: two sides where there are two, one solution otherwise
                 let sides: &[f64] = if op.sided() { &[1.0, -1.0] } else { &[1.0] };
@@ -224,7 +230,10 @@ impl Walk<'_> {
     fn slider_group(&self, g: &Group, anchors: &[Xy]) -> Result<Solved, Error> {
         let (a, b, quads) = g.homotopy_form(anchors);
         let roots = quadric_solutions_polled(&a, &b, &quads, &self.opts, &self.poll)?;
-        let tight = NewtonOptions { tol: 1e-14, max_iter: 50, ..NewtonOptions::default() };
+        // near a dead point the Jacobian's conditioning limits what rounding lets Newton
+        // resolve (1e-14 there is PRECISION_LOSS, not a complex root): a looser tolerance
+        // is tried before a nearly real root is called complex
+        let tols = [1e-14, 1e-12, 1e-10];
         let n = g.n();
         let mut real: Vec<Vec<f64>> = Vec::new();
         let mut complex = 0;
@@ -234,9 +243,12 @@ impl Walk<'_> {
             let polished = (imag <= 1e-6 * zmax)
                 .then(|| {
                     let guess = g.unknowns_of_root(z);
-                    let out = g.solve(anchors, None, &guess, &tight, false);
-                    let near = (0..n).all(|k| g.gap(k, out.phi[k], guess[k]).abs() <= 1e-4);
-                    (out.status == Status::Converged && near).then(|| out.phi[..n].to_vec())
+                    tols.iter().find_map(|&tol| {
+                        let opts = NewtonOptions { tol, max_iter: 50, ..NewtonOptions::default() };
+                        let out = g.solve(anchors, None, &guess, &opts, false);
+                        let near = (0..n).all(|k| g.gap(k, out.phi[k], guess[k]).abs() <= 1e-4);
+                        (out.status == Status::Converged && near).then(|| out.phi[..n].to_vec())
+                    })
                 })
                 .flatten();
             match polished {

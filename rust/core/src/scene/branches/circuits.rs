@@ -20,7 +20,8 @@ pub struct Circuit {
     /// Net change of the input angle once round the circuit (a multiple of 2 pi when
     /// closed: nonzero means the input turns fully round on it).
     pub net_turn: f64,
-    /// Smallest and largest input angle on the path (continuous).
+    /// Smallest and largest input angle on the path (continuous): where the input reverses,
+    /// the refined turning points.
     pub range: (f64, f64),
     /// The path.
     pub trace: Trace,
@@ -83,8 +84,9 @@ impl Tracer<'_> {
                     members.push(j);
                 }
             }
-            let lo = tr.theta.iter().copied().fold(f64::INFINITY, f64::min);
-            let hi = tr.theta.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            // the range's ends are the refined turning points where the input reverses
+            let lo = tr.theta.iter().chain(&tr.turning_points).copied().fold(f64::INFINITY, f64::min);
+            let hi = tr.theta.iter().chain(&tr.turning_points).copied().fold(f64::NEG_INFINITY, f64::max);
             let net = if tr.closed { tr.theta[tr.theta.len() - 1] - tr.theta[0] } else { f64::NAN };
             circuits.push(Circuit {
                 assemblies: members,

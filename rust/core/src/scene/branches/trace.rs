@@ -6,8 +6,8 @@
 //! Its solution set is a curve; each step predicts along the unit tangent (the null vector
 //! of dF) and corrects by Newton on [F; t . (x - x_pred)] = 0, so dead points, where
 //! theta turns back, are passed like any other point. Turning points are where the plan's
-//! signed conditioning (the product of its steps') changes sign, refined by bisection
-//! along the step.
+//! signed conditioning (the product of its steps') changes sign and the input reverses,
+//! refined by bisection along the step.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -267,35 +267,68 @@ impl<'s> Tracer<'s> {
                 h *= 0.5;
                 continue;
             }
-            let dn = self.det(y.as_slice());
-            if d * dn < 0.0 {
-                let tp = self.turning_point(&x, &t, h, d, &delta);
-                out.turning_points.push(tp);
-            }
-            if let Some(w) = watch {
-                let (wa, wb) = (self.offset(self.theta(x.as_slice()), w), self.offset(self.theta(y.as_slice()), w));
-                // (an angle's wrap from pi to -pi is no crossing)
-                let wrapped = self.chain.is_angle(self.input) && (wa - wb).abs() >= std::f64::consts::PI;
-                if wa != 0.0 && wa * wb <= 0.0 && !wrapped {
-                    if let Some(p) = self.crossing(&x, &t, h, w, &delta) {
-                        crossings.push(p);
+            travelled += h;
+            // back at the start (all rotations equal modulo 2 pi)? The last step then ends
+            // at the start itself, along the chord from x (a dead point between them, met
+            // when the drawing lies near one, is still found on it)
+            let mut closing = None;
+            if travelled > 4.0 * opts.step && self.wrapped_gap(&y, &x0) < h {
+                let unwrapped = self.unwrap_like(&x0, &y);
+                if let Some((z, _)) = self.correct(&unwrapped, &t, &delta) {
+                    if self.wrapped_gap(&z, &x0) < 1e-9 {
+                        closing = Some(z);
                     }
                 }
             }
-            travelled += h;
-            // back at the start (all rotations equal modulo 2 pi)?
-            if travelled > 4.0 * opts.step {
-                let gap = self.wrapped_gap(&y, &x0);
-                if gap < h {
-                    let unwrapped = self.unwrap_like(&x0, &y);
-                    if let Some((z, _)) = self.correct(&unwrapped, &t, &delta) {
-                        if self.wrapped_gap(&z, &x0) < 1e-9 {
-                            self.record(&mut out, z.as_slice(), self.det(z.as_slice()))?;
-                            out.closed = true;
-                            break;
+            let (end, dir, len) = match &closing {
+                Some(z) => {
+                    let chord = z - &x;
+                    let len = chord.norm();
+                    (z.clone(), if len > 0.0 { chord / len } else { t.clone() }, len)
+                }
+                None => (y.clone(), t.clone(), h),
+            };
+            let dn = self.det(end.as_slice());
+            // the step in pieces over which the input is monotone: split at a dead point
+            let mut pieces = vec![(0.0, self.theta(x.as_slice()))];
+            let mut dead = None;
+            // the conditioning changes sign at a dead point, where the input reverses, and at
+            // a change point, where it does not (links falling in line and on through it, a
+            // slot's point passing through its guide's pivot)
+            let reverses = d * dn < 0.0 && {
+                let te =
+                    if closing.is_some() { self.tangent(end.as_slice(), &delta, Some(&t)) } else { Some(tn.clone()) };
+                te.is_none_or(|te| t[self.input] * te[self.input] < 0.0)
+            };
+            if reverses {
+                let (tp, at, z) = self.turning_point(&x, &dir, len, d, &delta);
+                out.turning_points.push(tp);
+                pieces.push((at, tp));
+                dead = z;
+            }
+            pieces.push((len, self.theta(end.as_slice())));
+            if let Some(w) = watch {
+                for k in 1..pieces.len() {
+                    let ((lo, ta), (hi, tb)) = (pieces[k - 1], pieces[k]);
+                    let (wa, wb) = (self.offset(ta, w), self.offset(tb, w));
+                    // (an angle's wrap from pi to -pi is no crossing; the start is none)
+                    let wrapped = self.chain.is_angle(self.input) && (wa - wb).abs() >= std::f64::consts::PI;
+                    let start = closing.is_some() && k + 1 == pieces.len() && wb == 0.0;
+                    if wa != 0.0 && wa * wb <= 0.0 && !wrapped && !start {
+                        if let Some(p) = self.crossing(&x, &dir, (lo, hi), w, &delta) {
+                            crossings.push(p);
                         }
                     }
                 }
+            }
+            // the path passes through its dead point (the input's extreme there, as refined)
+            if let Some(z) = dead {
+                self.record(&mut out, z.as_slice(), self.det(z.as_slice()))?;
+            }
+            if closing.is_some() {
+                self.record(&mut out, end.as_slice(), dn)?;
+                out.closed = true;
+                break;
             }
             self.record(&mut out, y.as_slice(), dn)?;
             x = y;
@@ -331,19 +364,29 @@ impl<'s> Tracer<'s> {
         Ok(())
     }
 
-    /// Bisection on the conditioning's sign along the step from x (where it is `d0`).
-    fn turning_point(&self, x: &DVector<f64>, t: &DVector<f64>, h: f64, d0: f64, delta: &[Xy]) -> f64 {
+    /// Bisection on the conditioning's sign along the step from x (where it is `d0`) in the
+    /// unit direction t, of length h: the input there, the step's parameter and the
+    /// unknowns (None where no bisection point converged).
+    fn turning_point(
+        &self,
+        x: &DVector<f64>,
+        t: &DVector<f64>,
+        h: f64,
+        d0: f64,
+        delta: &[Xy],
+    ) -> (f64, f64, Option<DVector<f64>>) {
         let (mut lo, mut hi) = (0.0, h);
-        let mut best = self.theta(x.as_slice());
+        let mut best = (self.theta(x.as_slice()), 0.0, None);
         for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
             let Some((y, _)) = self.correct(&(x + t * mid), t, delta) else { break };
-            best = self.theta(y.as_slice());
+            best = (self.theta(y.as_slice()), mid, None);
             if self.det(y.as_slice()) * d0 > 0.0 {
                 lo = mid;
             } else {
                 hi = mid;
             }
+            best.2 = Some(y);
             if hi - lo < 1e-13 {
                 break;
             }
@@ -351,13 +394,21 @@ impl<'s> Tracer<'s> {
         best
     }
 
-    /// The point of the step from x along t (length h) where the input angle is `target`
-    /// modulo 2 pi, by bisection; positions in the solving frame.
-    fn crossing(&self, x: &DVector<f64>, t: &DVector<f64>, h: f64, target: f64, delta: &[Xy]) -> Option<Vec<Xy>> {
+    /// The point of the step from x along t, between the parameters `span` (over which the
+    /// input is monotone), where the input angle is `target` modulo 2 pi, by bisection;
+    /// positions in the solving frame.
+    fn crossing(
+        &self,
+        x: &DVector<f64>,
+        t: &DVector<f64>,
+        span: (f64, f64),
+        target: f64,
+        delta: &[Xy],
+    ) -> Option<Vec<Xy>> {
         let g = |y: &DVector<f64>| self.offset(self.theta(y.as_slice()), target);
-        let (mut lo, mut hi) = (0.0, h);
-        let g0 = g(x);
-        let mut y = x.clone();
+        let (mut lo, mut hi) = span;
+        let mut y = if lo > 0.0 { self.correct(&(x + t * lo), t, delta)?.0 } else { x.clone() };
+        let g0 = g(&y);
         for _ in 0..80 {
             let mid = 0.5 * (lo + hi);
             y = self.correct(&(x + t * mid), t, delta)?.0;

@@ -7,7 +7,12 @@
 //!   (0 where the circle touches the line: a dead point);
 //! - [`LineLine`]: a point on two known lines; conditioning the sine between them;
 //! - [`Rpr`]: a guide turning about a known point whose line passes through a known point;
-//!   conditioning the cosine between the line and the guide's radius to the point.
+//!   conditioning the signed distance along the line from the foot of the guide's pivot to
+//!   the point (solving frame: a fraction of the scene's scale). It falls to 0 where the
+//!   line touches the circle the point keeps about the pivot (a dead point) and, for a slot
+//!   through the pivot, changes sign as the point passes through the pivot: the guide then
+//!   turns on smoothly with the point behind the pivot, its side carried like a dyad's
+//!   through a change point.
 //!
 //! A line is known when two points fix it: it passes through `base + m_off (b - a)` with
 //! direction `m_dir (b - a)` (complex products), so it turns and moves with the link that
@@ -186,6 +191,10 @@ impl LineLine {
     }
 }
 
+/// A slot's point this near its guide's pivot, the slot passing as near (solving frame):
+/// the point is on the pivot.
+const ON_PIVOT: f64 = 16.0 * f64::EPSILON;
+
 /// The guide's turn behind an [`Rpr`] position: its line's direction `u`, the signed
 /// distance `along` it from k to q, and the arm k -> t.
 #[derive(Clone, Copy, Debug)]
@@ -243,8 +252,14 @@ impl Rpr {
         let w = sub(q, k);
         let rw = dot(w, w).sqrt();
         let c = self.c();
+        if self.on_pivot_at(rw, c) {
+            // the point on the pivot (the slot through it): any guide angle assembles, none
+            // is chosen by the point (conditioning 0: SINGULAR); the drawn one is given
+            let arm = sub(self.t0, self.k0);
+            return Some(([k[0] + arm[0], k[1] + arm[1]], 0.0, RprTurn { u: self.d, along: 0.0, arm }));
+        }
         let round = 4.0 * f64::EPSILON * (rw + c.abs());
-        if !(c.abs() <= rw + round) || rw == 0.0 {
+        if !(c.abs() <= rw + round) {
             return None;
         }
         // u = R d: cross(u, w) = c and dot(u, w) = side sqrt(|w|^2 - c^2)
@@ -253,16 +268,30 @@ impl Rpr {
         // the rotation taking d to u, applied to t0 - k0
         let rot = [u[0] * self.d[0] + u[1] * self.d[1], u[1] * self.d[0] - u[0] * self.d[1]];
         let arm = cmul(rot, sub(self.t0, self.k0));
-        Some(([k[0] + arm[0], k[1] + arm[1]], along / rw, RprTurn { u, along, arm }))
+        // (the guide's rate is the point's across the line over `along`: its conditioning,
+        // continuous and changing sign where the point passes through the pivot)
+        Some(([k[0] + arm[0], k[1] + arm[1]], along, RprTurn { u, along, arm }))
     }
 
-    /// Signed conditioning at positions (guide placed so that t is at `t`).
+    /// Signed conditioning at positions (guide placed so that t is at `t`): what
+    /// [`Rpr::place`] gives there.
     pub(crate) fn det_at(&self, t: Xy, k: Xy, q: Xy) -> f64 {
-        // the guide's rotation from t, then the cosine between its line and k -> q
+        // the guide's rotation from t, then the distance along its line from k's foot to q
         let rot = cdiv(sub(t, k), sub(self.t0, self.k0));
         let n = dot(rot, rot).sqrt();
         let u = cmul([rot[0] / n, rot[1] / n], self.d);
+        dot(u, sub(q, k))
+    }
+
+    /// The point is on the pivot, the slot through it (to rounding of the solving frame,
+    /// whose lengths are about 1): every guide angle assembles (a continuum).
+    pub(crate) fn on_pivot(&self, k: Xy, q: Xy) -> bool {
         let w = sub(q, k);
-        dot(u, w) / dot(w, w).sqrt()
+        self.on_pivot_at(dot(w, w).sqrt(), self.c())
+    }
+
+    #[inline]
+    fn on_pivot_at(&self, rw: f64, c: f64) -> bool {
+        rw <= ON_PIVOT && c.abs() <= ON_PIVOT
     }
 }
