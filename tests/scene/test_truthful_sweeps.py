@@ -352,3 +352,66 @@ def test_a_kite_inside_a_group_stays_on_the_kite(seed):
     assert len(ok) > 30
     gap = [np.hypot(*(sw.points["C"][k] - reflect(o6, o4, sw.points["D"][k]))) for k in ok]
     assert max(gap) < 1e-9
+
+
+# --- a cylinder pushing a point of a group's link (the input's joint in a Newton group) ---
+
+
+def excavator():
+    """A four-bar O2-A-B-O4 whose coupler point E is pushed by a cylinder from ground K:
+    no dyad reaches A, B or E; the cylinder's joint must join the group, held at the
+    input (issue 32: 'no rigid group of at most 12 links solves them')."""
+    o2, o4, k = np.array([0.0, 0.0]), np.array([4.0, 0.0]), np.array([-1.0, -2.0])
+    a, b, e = np.array([0.5, 1.8]), np.array([3.5, 2.6]), np.array([2.0, 3.4])
+    u = unit(e - k)
+    pts = {"O2": o2, "O4": o4, "K": k, "A": a, "B": b, "E": e, "C2": k + 0.4 * u, "R": k + 0.8 * u}
+    links = {
+        "ground": ["O2", "O4", "K"],
+        "crank": ["O2", "A"],
+        "coupler": ["A", "B", "E"],
+        "rocker": ["O4", "B"],
+        "barrel": ["K", "C2"],
+        "rod": ["R", "E"],
+    }
+    return scene(
+        pts,
+        links,
+        input={"prismatic": "cyl"},
+        prismatic={"cyl": {"link": "rod", "guide": "barrel", "line": ["K", "C2"]}},
+    ), pts
+
+
+def test_a_cylinder_pushing_a_coupler_point_is_solved_as_a_held_group():
+    sc, pts = excavator()
+    assert [s.kind for s in sc.plan("all").steps] == ["group"]
+    sw = sc.sweep(outputs="all", rate=1.0)
+    ok = sw.success
+    assert ok.sum() >= 355
+    p = {n: sw.points[n][ok] for n in pts}
+    drawn = {n: np.asarray(v) for n, v in pts.items()}
+    for a, b in [("O2", "A"), ("A", "B"), ("B", "O4"), ("A", "E"), ("B", "E"), ("R", "E")]:
+        got = np.hypot(*(p[a] - p[b]).T)
+        np.testing.assert_allclose(got, np.hypot(*(drawn[a] - drawn[b])), rtol=0, atol=1e-12)
+    # the cylinder: |K E| is its drawn length plus the extension, K, C2, R and E in line
+    ke0 = np.hypot(*(drawn["E"] - drawn["K"]))
+    np.testing.assert_allclose(np.hypot(*(p["E"] - p["K"]).T), ke0 + sw.theta[ok], atol=1e-12)
+    line = unit_rows(p["E"] - p["K"])
+    for n in ("C2", "R"):
+        assert np.abs(cross(line, p[n] - p["K"])).max() < 1e-12
+    # one branch: every point moves continuously with the extension (a switch to the other
+    # assembly would jump by a sizeable fraction of the linkage between two rows)
+    ds = np.diff(sw.theta[ok])
+    for n in ("A", "B", "E"):
+        jump = np.hypot(*np.diff(p[n], axis=0).T)
+        speed = np.hypot(*sw.velocities[n][ok].T)
+        assert (jump <= 2.0 * np.maximum(speed[:-1], speed[1:]) * ds + 1e-9).all()
+    # velocities and accelerations against central differences of positions
+    k = int(np.flatnonzero(ok)[len(np.flatnonzero(ok)) // 2])
+    h = 1e-4
+    s = sw.theta[k] + np.array([-h, 0.0, h])
+    three = sc.sweep(s, outputs="all", rate=1.0)
+    e = three.points["E"]
+    np.testing.assert_allclose(sw.velocities["E"][k], (e[2] - e[0]) / (2 * h), atol=1e-7)
+    np.testing.assert_allclose(
+        sw.accelerations["E"][k], (e[2] - 2 * e[1] + e[0]) / h**2, rtol=0, atol=1e-5
+    )

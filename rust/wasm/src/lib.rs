@@ -188,7 +188,7 @@ mod tests {
             (
                 r#"{"colour": 1.5}"#,
                 "scene: unknown keys ['colour']; known keys: name, description, units, points, links, ground, input, \
-                 output, outputs, slots, prismatic, lengths, loads",
+                 output, outputs, slots, prismatic, lengths, loads, limits",
             ),
             (
                 r#"{"points": {"A": [0, 0]}, "links": {"l": ["A", 2]}, "ground": "l", "input": {"link": "l", "pivot": "A"}}"#,

@@ -185,7 +185,7 @@ impl Walk<'_> {
     ) -> Result<(), Error> {
         {
             {
-                let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
+                let anchors = g.with_held(|p| pos[p], self.s);
                 let (real, count, paths, failed) = match g.linear_form(&anchors) {
                     Some((a, b)) => {
                         let sol = unit_circle_solutions_polled(&a, &b, &self.opts, &self.poll)?;

@@ -420,6 +420,13 @@ fn find_group(sc: &Scene, known: &[bool]) -> Result<Group, Error> {
                     return Ok(g);
                 }
             }
+            // a linear input's joint among them, held at the input (a cylinder pushing a
+            // point of a group's link)
+            if sc.linear.is_some() && Group::freedom_held(sc, &set, known) == 0 {
+                if let Some(g) = Group::build_held(sc, &set, known) {
+                    return Ok(g);
+                }
+            }
             // next combination of `size` out of cand.len()
             let n = cand.len();
             let mut i = size;

@@ -101,7 +101,7 @@ impl Plan {
                 Op::Dyad(d) => d.det_at(pos[d.p], pos[d.k1], pos[d.k2]),
                 Op::Group(g) => {
                     let x = g.unknowns_from(|p| pos[p]);
-                    let anchors: Vec<Xy> = g.anchors.iter().map(|&p| pos[p]).collect();
+                    let anchors = g.with_held(|p| pos[p], g.held_at(|p| pos[p]));
                     g.conditioning_with(&x, &anchors)
                 }
                 op => op.slider_det_at(0.0, pos),

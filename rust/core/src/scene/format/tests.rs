@@ -108,7 +108,7 @@ fn every_entry_is_named_with_what_it_got() {
         (
             fourbar(|d| set(d, "colour", s("red"))),
             "scene: unknown keys ['colour']; known keys: name, description, units, points, links, ground, input, \
-             output, outputs, slots, prismatic, lengths, loads",
+             output, outputs, slots, prismatic, lengths, loads, limits",
         ),
         (fourbar(|d| d.retain(|(k, _)| *k != "ground")), "ground: is required"),
         (fourbar(|d| set(d, "points", list(vec![]))), "points: must be a table name -> [x, y]"),

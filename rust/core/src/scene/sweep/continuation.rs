@@ -367,6 +367,12 @@ impl<'p> Solver<'p> {
         anchors.extend(g.anchors.iter().map(|&a| self.pos[a]));
         anchor_vel.clear();
         anchor_vel.extend(g.anchors.iter().map(|&a| self.vel[a]));
+        if g.held.is_some() {
+            // the input's own joint in the group: its displacement (solving frame), moving
+            // at a unit rate by the solving frame's input
+            anchors.push([theta * self.rate(), 0.0]);
+            anchor_vel.push([1.0, 0.0]);
+        }
         let (anchors, anchor_vel) = (&anchors[..], &anchor_vel[..]);
         let near_dead = !(det0.abs() >= NEAR_DEAD);
         let near_newton = NewtonOptions { max_iter: self.opts.newton.max_iter.min(NEAR_DEAD_ITER), ..self.opts.newton };
@@ -470,7 +476,7 @@ impl<'p> Solver<'p> {
             vel[p] = v;
         });
         if self.need_acc {
-            let anchor_acc: Vec<Xy> = g.anchors.iter().map(|&a| self.acc[a]).collect();
+            let anchor_acc = g.with_held(|a| self.acc[a], 0.0);
             let k = [anchors, anchor_vel, &anchor_acc[..]];
             let ddphi = g.second(&out.phi[..n], &out.dphi[..n], k).unwrap_or([f64::NAN; MAX]);
             let acc = &mut self.acc;

@@ -22,7 +22,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::{Group, Term, Turn, MAX};
+use super::{Group, Term, Turn, HELD, MAX};
 use crate::scene::vec2::{cmul, perp, sub, Xy};
 use crate::solve::newton::{self, hadamard_ratio, System};
 use crate::wrap_angle;
@@ -71,19 +71,21 @@ impl Group {
         mut f: impl FnMut(usize, f64),
         mut j: impl FnMut(usize, usize, f64),
     ) {
+        let held = self.held_of(anchors);
         for (c, cl) in self.closures.iter().enumerate() {
             let d = sub(anchors[cl.plus], anchors[cl.minus]);
             let (mut fx, mut fy) = (d[0], d[1]);
             for t in &cl.terms {
                 let m = t.m(cs, anchors);
-                let r = cmul(m, t.arm(x));
+                let r = cmul(m, t.arm(x, held));
                 fx += r[0];
                 fy += r[1];
                 if let Turn::Col(k) = t.turn {
                     j(2 * c, k, -r[1]);
                     j(2 * c + 1, k, r[0]);
                 }
-                if let Some((k, dv)) = t.slide {
+                // (a held slide is the input, not an unknown: no column)
+                if let Some((k, dv)) = t.slide.filter(|s| s.0 != HELD) {
                     let md = cmul(m, dv);
                     j(2 * c, k, md[0]);
                     j(2 * c + 1, k, md[1]);
@@ -96,13 +98,18 @@ impl Group {
 
     /// dF/dtheta at fixed unknowns, per closure: the anchors' rates `anchor_d` (and those of
     /// the known turns read from them).
-    pub(super) fn rate_terms(&self, x: &[f64], anchor_d: &[Xy]) -> [Xy; MAX] {
+    pub(super) fn rate_terms(&self, x: &[f64], cs: &[Xy], anchors: &[Xy], anchor_d: &[Xy]) -> [Xy; MAX] {
+        let (held, dheld) = (self.held_of(anchors), self.held_of(anchor_d));
         let mut out = [[0.0; 2]; MAX];
         for (c, cl) in self.closures.iter().enumerate().take(MAX) {
             let mut r = sub(anchor_d[cl.plus], anchor_d[cl.minus]);
             for t in &cl.terms {
                 if let Turn::Known(a, b) = t.turn {
-                    let w = cmul(sub(anchor_d[b], anchor_d[a]), t.arm(x));
+                    let w = cmul(sub(anchor_d[b], anchor_d[a]), t.arm(x, held));
+                    r = [r[0] + w[0], r[1] + w[1]];
+                }
+                if let Some((HELD, d)) = t.slide {
+                    let w = cmul(t.m(cs, anchors), [dheld * d[0], dheld * d[1]]);
                     r = [r[0] + w[0], r[1] + w[1]];
                 }
             }
@@ -127,9 +134,10 @@ impl Group {
     /// The second derivative of a term without its x'' part: for a rotation column c
     /// (rate w) -w^2 M arm + 2 w s' perp(M d); for a known turn M'' arm + 2 M' s' d.
     #[inline]
-    pub(super) fn term_curvature(t: &Term, cs: &[Xy], dx: &[f64], x: &[f64], k: [&[Xy]; 3]) -> Xy {
-        let arm = t.arm(x);
-        let sd = t.slide.map_or([0.0; 2], |(s, d)| [dx[s] * d[0], dx[s] * d[1]]);
+    pub(super) fn term_curvature(&self, t: &Term, cs: &[Xy], dx: &[f64], x: &[f64], k: [&[Xy]; 3]) -> Xy {
+        // (a held slide's s'' is 0: the input moves at a constant rate)
+        let arm = t.arm(x, self.held_of(k[0]));
+        let sd = t.slide_rate(dx, self.held_of(k[1])).map_or([0.0; 2], |(w, d)| [w * d[0], w * d[1]]);
         match t.turn {
             Turn::Col(c) => {
                 let w = dx[c];
@@ -148,8 +156,8 @@ impl Group {
     /// The rate of a term with the unknowns' rates `dx`: perp(M arm) w + M s' d for a
     /// rotation column, M' arm + M s' d for a known turn.
     #[inline]
-    pub(super) fn term_rate(t: &Term, m: Xy, arm: Xy, dx: &[f64], anchor_vel: &[Xy]) -> Xy {
-        let sd = t.slide.map_or([0.0; 2], |(s, d)| cmul(m, [dx[s] * d[0], dx[s] * d[1]]));
+    pub(super) fn term_rate(&self, t: &Term, m: Xy, arm: Xy, dx: &[f64], anchor_vel: &[Xy]) -> Xy {
+        let sd = t.slide_rate(dx, self.held_of(anchor_vel)).map_or([0.0; 2], |(w, d)| cmul(m, [w * d[0], w * d[1]]));
         let turn = match t.turn {
             Turn::Col(c) => {
                 let r = perp(cmul(m, arm));
@@ -214,7 +222,7 @@ pub(super) fn second_n<const N: usize>(g: &Group, x: &[f64], dx: &[f64], k: [&[X
     for (c, cl) in g.closures.iter().enumerate() {
         let mut r = sub(k[2][cl.plus], k[2][cl.minus]);
         for t in &cl.terms {
-            let q = Group::term_curvature(t, &cs, dx, x, k);
+            let q = g.term_curvature(t, &cs, dx, x, k);
             r = [r[0] + q[0], r[1] + q[1]];
         }
         rhs[2 * c] = -r[0];

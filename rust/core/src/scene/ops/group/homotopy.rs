@@ -1,7 +1,7 @@
 //! A group's closures in the homotopy's form: `A z = b` in the rotations' (cos, sin),
 //! with the quadrics of its sliders, and the unknowns from a root.
 
-use super::{Group, Reader, Turn};
+use super::{Group, Reader, Turn, HELD};
 use crate::scene::vec2::{cmul, sub, Xy};
 use crate::solve::homotopy::Quadric;
 
@@ -61,18 +61,23 @@ impl Group {
         let m = 2 * self.closures.len();
         let mut a = nalgebra::DMatrix::zeros(m, next);
         let mut b = nalgebra::DVector::zeros(m);
+        let held = self.held_of(anchors);
         for (c, cl) in self.closures.iter().enumerate() {
             let mut rhs = sub(anchors[cl.plus], anchors[cl.minus]);
             let (rx, ry) = (2 * c, 2 * c + 1);
             for t in &cl.terms {
+                // a held slide is part of the edge's vector (the input is given)
+                let (v, slide) = match t.slide {
+                    Some((HELD, _)) => (t.arm(&[], held), None),
+                    other => (t.v, other),
+                };
                 match t.turn {
                     Turn::Col(g) => {
-                        let v = t.v;
                         a[(rx, g)] += v[0];
                         a[(rx, nr + g)] -= v[1];
                         a[(ry, g)] += v[1];
                         a[(ry, nr + g)] += v[0];
-                        if let Some((k, d)) = t.slide {
+                        if let Some((k, d)) = slide {
                             let (e, f) = (at[k], at[k] + 1);
                             a[(rx, e)] += d[0];
                             a[(rx, f)] -= d[1];
@@ -82,9 +87,9 @@ impl Group {
                     }
                     Turn::Known(ia, ib) => {
                         let mm = sub(anchors[ib], anchors[ia]);
-                        let w = cmul(mm, t.v);
+                        let w = cmul(mm, v);
                         rhs = [rhs[0] + w[0], rhs[1] + w[1]];
-                        if let Some((k, d)) = t.slide {
+                        if let Some((k, d)) = slide {
                             let md = cmul(mm, d);
                             a[(rx, at[k])] += md[0];
                             a[(ry, at[k])] += md[1];

@@ -40,8 +40,12 @@ pub(crate) enum Turn {
     Known(usize, usize),
 }
 
+/// The slide "column" of a linear input's own joint inside a group: its displacement is
+/// the input, not an unknown (see [`Group::held`]).
+pub(crate) const HELD: usize = usize::MAX;
+
 /// An edge between two points of the group: `M (v + s d)`, s the displacement in column
-/// `slide.0` (a sliding edge) or none.
+/// `slide.0` (a sliding edge; [`HELD`]: the linear input's, given) or none.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Term {
     pub turn: Turn,
@@ -54,12 +58,23 @@ impl Term {
         Term { v: [-self.v[0], -self.v[1]], slide: self.slide.map(|(k, d)| (k, [-d[0], -d[1]])), ..self }
     }
 
-    /// v + s d.
+    /// v + s d (`held`: the linear input's displacement, for a [`HELD`] slide).
     #[inline]
-    fn arm(&self, x: &[f64]) -> Xy {
+    fn arm(&self, x: &[f64], held: f64) -> Xy {
         match self.slide {
+            Some((HELD, d)) => [self.v[0] + held * d[0], self.v[1] + held * d[1]],
             Some((k, d)) => [self.v[0] + x[k] * d[0], self.v[1] + x[k] * d[1]],
             None => self.v,
+        }
+    }
+
+    /// The rate of the slide's displacement: the unknowns' `dx`, or the input's `held`.
+    #[inline]
+    fn slide_rate(&self, dx: &[f64], held: f64) -> Option<(f64, Xy)> {
+        match self.slide {
+            Some((HELD, d)) => Some((held, d)),
+            Some((k, d)) => Some((dx[k], d)),
+            None => None,
         }
     }
 
@@ -122,6 +137,11 @@ pub(crate) struct Group {
     pub sign: f64,
     /// The column of the input (a group of the whole linkage, as tracing builds it).
     pub input: Option<usize>,
+    /// A linear input's own joint inside the group (a cylinder driving a coupler point):
+    /// the (from, to) points of its edge and the edge. Its displacement is the input: the
+    /// group's functions read it (and its rates) from one more anchor past its own, `[s, 0]`
+    /// ([`Group::with_held`]).
+    pub held: Option<(usize, usize, Term)>,
 }
 
 /// What one Newton solve of a group gives.
@@ -165,6 +185,29 @@ impl Group {
 
     /// Whether the group has sliders or known turns (then it has no homotopy form).
     pub(crate) fn has_slides(&self) -> bool {
-        self.n() > self.nrot || self.closures.iter().any(|c| c.terms.iter().any(|t| matches!(t.turn, Turn::Known(..))))
+        self.n() > self.nrot
+            || self.held.is_some()
+            || self.closures.iter().any(|c| c.terms.iter().any(|t| matches!(t.turn, Turn::Known(..))))
+    }
+
+    /// The held displacement (or its rate) from anchors `k` that carry it past the group's
+    /// own (0 for a group without one).
+    #[inline]
+    pub(crate) fn held_of(&self, k: &[Xy]) -> f64 {
+        if self.held.is_some() {
+            k[self.anchors.len()][0]
+        } else {
+            0.0
+        }
+    }
+
+    /// The anchors' values `at` each anchor point, with the held displacement's `held`
+    /// appended where the group has one.
+    pub(crate) fn with_held(&self, at: impl Fn(usize) -> Xy, held: f64) -> Vec<Xy> {
+        let mut out: Vec<Xy> = self.anchors.iter().map(|&p| at(p)).collect();
+        if self.held.is_some() {
+            out.push([held, 0.0]);
+        }
+        out
     }
 }

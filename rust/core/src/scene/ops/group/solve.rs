@@ -29,13 +29,14 @@ impl Group {
     pub(super) fn each_node(&self, x: &[f64], anchors: &[Xy], mut visit: impl FnMut(usize, &Node, Xy, Xy)) {
         let cs: Vec<Xy> = x[..self.nrot].iter().map(|a| cs_of(*a)).collect();
         for (i, nd) in self.nodes.iter().enumerate() {
-            visit(i, nd, nd.term.m(&cs, anchors), nd.term.arm(x));
+            visit(i, nd, nd.term.m(&cs, anchors), nd.term.arm(x, self.held_of(anchors)));
         }
     }
 
     /// Positions of the nodes from the anchors' positions and the unknowns.
     pub(crate) fn place(&self, x: &[f64], anchors: &[Xy], mut put: impl FnMut(usize, Xy)) {
-        let mut pos: Vec<Xy> = anchors.to_vec();
+        // (the anchors' own: a held displacement past them is no point)
+        let mut pos: Vec<Xy> = anchors[..self.anchors.len()].to_vec();
         self.each_node(x, anchors, |_, nd, m, arm| {
             let r = cmul(m, arm);
             let b = pos[nd.base];
@@ -59,7 +60,8 @@ impl Group {
         mut put: impl FnMut(usize, Xy, Xy),
     ) {
         const SMALL: usize = 32;
-        let total = anchors.len() + self.nodes.len();
+        let na = self.anchors.len();
+        let total = na + self.nodes.len();
         let (mut pbuf, mut vbuf) = ([[0.0; 2]; SMALL], [[0.0; 2]; SMALL]);
         let mut heap: (Vec<Xy>, Vec<Xy>);
         let (pos, vel): (&mut [Xy], &mut [Xy]) = if total <= SMALL {
@@ -68,14 +70,14 @@ impl Group {
             heap = (vec![[0.0; 2]; total], vec![[0.0; 2]; total]);
             (&mut heap.0, &mut heap.1)
         };
-        pos[..anchors.len()].copy_from_slice(anchors);
-        vel[..anchors.len()].copy_from_slice(anchor_vel);
-        for (k, nd) in (anchors.len()..).zip(&self.nodes) {
-            let (m, arm) = (nd.term.m(&cs[..self.nrot], anchors), nd.term.arm(x));
+        pos[..na].copy_from_slice(&anchors[..na]);
+        vel[..na].copy_from_slice(&anchor_vel[..na]);
+        for (k, nd) in (na..).zip(&self.nodes) {
+            let (m, arm) = (nd.term.m(&cs[..self.nrot], anchors), nd.term.arm(x, self.held_of(anchors)));
             let r = cmul(m, arm);
             let (b, vb) = (pos[nd.base], vel[nd.base]);
             pos[k] = [b[0] + r[0], b[1] + r[1]];
-            let w = Self::term_rate(&nd.term, m, arm, dx, anchor_vel);
+            let w = self.term_rate(&nd.term, m, arm, dx, anchor_vel);
             vel[k] = [vb[0] + w[0], vb[1] + w[1]];
             put(nd.point, pos[k], vel[k]);
         }
@@ -92,14 +94,14 @@ impl Group {
         mut put: impl FnMut(usize, Xy),
     ) {
         let cs: Vec<Xy> = x[..self.nrot].iter().map(|a| cs_of(*a)).collect();
-        let mut acc: Vec<Xy> = k[2].to_vec();
+        let mut acc: Vec<Xy> = k[2][..self.anchors.len()].to_vec();
         let still = vec![[0.0; 2]; k[0].len()];
         for nd in &self.nodes {
             let t = &nd.term;
             let m = t.m(&cs, k[0]);
             // the x'' part: w' perp(M arm) + M s'' d
-            let lin = Self::term_rate(t, m, t.arm(x), ddx, &still);
-            let rest = Self::term_curvature(t, &cs, dx, x, k);
+            let lin = self.term_rate(t, m, t.arm(x, self.held_of(k[0])), ddx, &still);
+            let rest = self.term_curvature(t, &cs, dx, x, k);
             let ab = acc[nd.base];
             let a = [ab[0] + lin[0] + rest[0], ab[1] + lin[1] + rest[1]];
             acc.push(a);
@@ -127,6 +129,18 @@ impl Group {
             }
         }
         x
+    }
+
+    /// The held displacement (solving frame) at positions `pos` of every point, read off
+    /// its edge as a slide column is; 0 for a group without one.
+    pub(crate) fn held_at(&self, pos: impl Fn(usize) -> Xy) -> f64 {
+        let Some((from, to, term)) = self.held else { return 0.0 };
+        let anchors: Vec<Xy> = self.anchors.iter().map(|&p| pos(p)).collect();
+        let x = self.unknowns_from(&pos);
+        let cs: Vec<Xy> = x[..self.nrot].iter().map(|a| cs_of(*a)).collect();
+        let (_, d) = term.slide.expect("the held edge slides");
+        let q = sub(cdiv(sub(pos(to), pos(from)), term.m(&cs, &anchors)), term.v);
+        dot(q, d) / dot(d, d)
     }
 
     /// The elbow signs of the group's joints at positions `pos`: "+" / "-" per joint.
@@ -174,7 +188,7 @@ pub(super) fn solve_n<const N: usize>(
             g.turns(&phi[..N], &mut cs);
             let mut jacobian = SMatrix::<f64, N, N>::zeros();
             g.closure_terms_with(&phi[..N], &cs[..g.nrot], anchors, |_, _| {}, |r, c, v| jacobian[(r, c)] += v);
-            let d = g.rate_terms(&phi[..N], vel);
+            let d = g.rate_terms(&phi[..N], &cs[..g.nrot], anchors, vel);
             let rhs = SVector::<f64, N>::from_fn(|r, _| -d[r / 2][r % 2]);
             if let Some(t) = newton::eliminate(jacobian, rhs, &mut 1.0) {
                 dphi[..N].copy_from_slice(t.as_slice());

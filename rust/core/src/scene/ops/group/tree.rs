@@ -1,7 +1,7 @@
 //! Building a group: its links' rotation classes and columns, its edges (sliding ones
 //! included), the spanning tree from the anchors and a closure per loop.
 
-use super::{Closure, Group, Node, Reader, Term, Turn, MAX};
+use super::{Closure, Group, Node, Reader, Term, Turn, HELD, MAX};
 use crate::scene::input::LinearKind;
 use crate::scene::model::Scene;
 use crate::scene::vec2::{self, cdiv, cmul, dot, sub, Xy};
@@ -22,12 +22,23 @@ impl Group {
     /// the known points, when it has more than [`MAX`] unknowns, or when it is singular as
     /// drawn. A linear input's joint is not part of it (its displacement is the input).
     pub(crate) fn build(sc: &Scene, links: &[usize], known: &[bool]) -> Option<Group> {
-        let mut g = Self::tree(sc, links, known, false)?;
+        Self::build_form(sc, links, known, Form::Rigid)
+    }
+
+    /// [`Group::build`] with the linear input's own joint among the links, its displacement
+    /// held at the input ([`Group::held`]): a cylinder pushing a point of a group's link.
+    pub(crate) fn build_held(sc: &Scene, links: &[usize], known: &[bool]) -> Option<Group> {
+        Self::build_form(sc, links, known, Form::Held).filter(|g| g.held.is_some())
+    }
+
+    fn build_form(sc: &Scene, links: &[usize], known: &[bool], form: Form) -> Option<Group> {
+        let mut g = Self::tree_form(sc, links, known, form)?;
         let n = g.n();
         if n == 0 || n > MAX || n % 2 == 1 {
             return None;
         }
-        let anchors: Vec<Xy> = g.anchors.iter().map(|&p| sc.xy[p]).collect();
+        // (a held displacement is 0 as drawn)
+        let anchors = g.with_held(|p| sc.xy[p], 0.0);
         let det = g.conditioning_with(&[0.0; MAX][..n], &anchors);
         if !(det.abs() >= newton::SINGULAR_THRESHOLD) {
             return None;
@@ -39,6 +50,7 @@ impl Group {
     /// The joints of a set of links: the slots and prismatic pairs that act on it (and the
     /// linear input's joint only for a whole-linkage `chain`).
     fn joints_of(sc: &Scene, inset: &[bool], known: &[bool], chain: bool) -> (Vec<usize>, Vec<usize>) {
+        // (`chain`: the input's joint included, as a whole-linkage chain or a held group has it)
         let all_known = |l: usize| sc.links[l].points.iter().all(|&p| known[p]);
         let is_input = |k: LinearKind, i: usize| sc.linear.is_some_and(|l| l.kind == k && l.index == i);
         let slots = (0..sc.slots.len())
@@ -65,6 +77,16 @@ impl Group {
     /// Constraints minus freedoms of a set of links over the known points (Gruebler's count
     /// with its slots and prismatic pairs): 0 for a rigid group.
     pub(crate) fn freedom(sc: &Scene, links: &[usize], known: &[bool]) -> i64 {
+        Self::freedom_form(sc, links, known, false)
+    }
+
+    /// [`Group::freedom`] with the linear input's joint counted, and its displacement as
+    /// one more constraint (the input holds it): 0 for a rigid held group.
+    pub(crate) fn freedom_held(sc: &Scene, links: &[usize], known: &[bool]) -> i64 {
+        Self::freedom_form(sc, links, known, true)
+    }
+
+    fn freedom_form(sc: &Scene, links: &[usize], known: &[bool], held: bool) -> i64 {
         let mut inset = vec![false; sc.links.len()];
         for &l in links {
             inset[l] = true;
@@ -76,8 +98,11 @@ impl Group {
             }
         }
         let c: i64 = m.iter().map(|(&p, &k)| if known[p] { 2 * k } else { 2 * (k - 1) }).sum();
-        let (slots, prismatic) = Self::joints_of(sc, &inset, known, false);
-        3 * links.len() as i64 - c - slots.len() as i64 - 2 * prismatic.len() as i64
+        let (slots, prismatic) = Self::joints_of(sc, &inset, known, held);
+        let is_input = |k: LinearKind, i: usize| sc.linear.is_some_and(|l| l.kind == k && l.index == i);
+        let holds = slots.iter().any(|&i| is_input(LinearKind::Slot, i))
+            || prismatic.iter().any(|&i| is_input(LinearKind::Prismatic, i));
+        3 * links.len() as i64 - c - slots.len() as i64 - 2 * prismatic.len() as i64 - i64::from(holds)
     }
 
     /// The spanning tree and closures of `links` over the known points, with the slots and
@@ -86,12 +111,17 @@ impl Group {
     /// linear input's displacement); otherwise the group must be rigid. Any size: the caller
     /// checks what it needs.
     pub(crate) fn tree(sc: &Scene, links: &[usize], known: &[bool], chain: bool) -> Option<Group> {
+        Self::tree_form(sc, links, known, if chain { Form::Chain } else { Form::Rigid })
+    }
+
+    fn tree_form(sc: &Scene, links: &[usize], known: &[bool], form: Form) -> Option<Group> {
+        let chain = form == Form::Chain;
         let nl = sc.links.len();
         let mut inset = vec![false; nl];
         for &l in links {
             inset[l] = true;
         }
-        let (slots, prismatic) = Self::joints_of(sc, &inset, known, chain);
+        let (slots, prismatic) = Self::joints_of(sc, &inset, known, form != Form::Rigid);
 
         let mut readers = Vec::new();
         let mut cls = Classes::new(sc, links, known, &prismatic, &mut readers)?;
@@ -106,8 +136,8 @@ impl Group {
                 }
             }
         }
-        let Edges { edges, leaves, nslides, mut input } =
-            Edges::new(sc, links, known, (&slots, &prismatic), &mut cls, &mut anchors, &mut readers);
+        let Edges { edges, leaves, nslides, mut input, held } =
+            Edges::new(sc, links, known, (&slots, &prismatic), form, &mut cls, &mut anchors, &mut readers);
         if chain && input.is_none() {
             let pv = sc.input?;
             input = match cls.turn_of(&sc.xy, pv.link, &mut anchors).0 {
@@ -139,6 +169,7 @@ impl Group {
             elbows,
             sign: 0.0,
             input: if chain { input } else { None },
+            held,
         })
     }
 }
@@ -225,6 +256,18 @@ struct Edges {
     leaves: Vec<(usize, usize, Term)>,
     nslides: usize,
     input: Option<usize>,
+    /// The linear input's joint held at the input (a held group): its edge.
+    held: Option<(usize, usize, Term)>,
+}
+
+/// What a set of links is built into: a rigid group (the input's joint left out), a rigid
+/// group with the input's joint held at the input, or the whole linkage as a chain with
+/// the input free.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Form {
+    Rigid,
+    Held,
+    Chain,
 }
 
 impl Edges {
@@ -233,6 +276,7 @@ impl Edges {
         links: &[usize],
         known: &[bool],
         (slots, prismatic): (&[usize], &[usize]),
+        form: Form,
         cls: &mut Classes,
         anchors: &mut Vec<usize>,
         readers: &mut Vec<Reader>,
@@ -258,15 +302,28 @@ impl Edges {
         let mut edges: Vec<(usize, usize, Term)> = Vec::new();
         let mut slide_cols = Vec::new();
         let mut input = None;
+        let mut held = None;
+        let is_input = |k: LinearKind, i: usize| sc.linear.is_some_and(|l| l.kind == k && l.index == i);
+        // a held input's displacement is no column: its slide reads the input instead
+        let column = |is: bool, slide_cols: &mut Vec<usize>| {
+            if is && form == Form::Held {
+                HELD
+            } else {
+                let k = nrot + slide_cols.len();
+                slide_cols.push(k);
+                k
+            }
+        };
         for &i in slots {
             let s = &sc.slots[i];
             let (a, b) = s.line;
             let (turn, unit) = cls.turn_of(xy, s.guide, anchors);
             let d = vec2::unit(sub(xy[b], xy[a]));
-            let k = nrot + slide_cols.len();
-            slide_cols.push(k);
+            let k = column(is_input(LinearKind::Slot, i), &mut slide_cols);
             let term = Term { turn, v: cmul(unit, sub(xy[s.point], xy[a])), slide: Some((k, cmul(unit, d))) };
-            if sc.linear.is_some_and(|l| l.kind == LinearKind::Slot && l.index == i) {
+            if k == HELD {
+                held = Some((a, s.point, term));
+            } else if is_input(LinearKind::Slot, i) {
                 input = Some(k);
             }
             // a known slot point (a crank pin in a slot of the group's link) anchors the group
@@ -275,7 +332,9 @@ impl Edges {
                     anchor_index(anchors, p);
                 }
             }
-            readers.push(Reader::Slide { from: a, to: s.point, term });
+            if k != HELD {
+                readers.push(Reader::Slide { from: a, to: s.point, term });
+            }
             edges.push((a, s.point, term));
         }
         for &i in prismatic {
@@ -284,10 +343,11 @@ impl Edges {
             let (turn, unit) = cls.turn_of(xy, pr.guide, anchors);
             let d = vec2::unit(sub(xy[b], xy[a]));
             let c = centres[pr.link];
-            let k = nrot + slide_cols.len();
-            slide_cols.push(k);
+            let k = column(is_input(LinearKind::Prismatic, i), &mut slide_cols);
             let term = Term { turn, v: cmul(unit, sub(xy[c], xy[a])), slide: Some((k, cmul(unit, d))) };
-            if sc.linear.is_some_and(|l| l.kind == LinearKind::Prismatic && l.index == i) {
+            if k == HELD {
+                held = Some((a, c, term));
+            } else if is_input(LinearKind::Prismatic, i) {
                 input = Some(k);
             }
             for p in [a, c] {
@@ -295,7 +355,9 @@ impl Edges {
                     anchor_index(anchors, p);
                 }
             }
-            readers.push(Reader::Slide { from: a, to: c, term });
+            if k != HELD {
+                readers.push(Reader::Slide { from: a, to: c, term });
+            }
             edges.push((a, c, term));
         }
         for &(a, c, _) in &edges {
@@ -316,7 +378,7 @@ impl Edges {
                 }
             }
         }
-        Edges { edges, leaves, nslides: slide_cols.len(), input }
+        Edges { edges, leaves, nslides: slide_cols.len(), input, held }
     }
 }
 
