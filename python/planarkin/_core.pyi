@@ -134,7 +134,7 @@ _I8: TypeAlias = npt.NDArray[np.int8]
 _Assemblies: TypeAlias = tuple[
     list[tuple[_F64, str, float, list[float]]], list[list[int]], list[list[int]], int, int
 ]
-_Trace: TypeAlias = tuple[_F64, _F64, _F64, list[float], bool]
+_Trace: TypeAlias = tuple[_F64, _F64, _F64, list[float], bool, list[float]]
 
 @final
 class Scene:

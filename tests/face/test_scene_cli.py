@@ -133,20 +133,38 @@ def _boom_stroke_ends() -> tuple[float, float]:
     return float(abs(oe - oc) - ce), float(oc + oe - ce)
 
 
+def _free_boom(tmp_path):
+    """The built-in boom without its cylinder's limits (the linkage's whole motion)."""
+    d = {k: v for k, v in pk.scenes.data("hydraulic-boom").items() if k != "limits"}
+    path = tmp_path / "free-boom.json"
+    path.write_text(json.dumps(d))
+    return path
+
+
 def test_circuits_of_a_linear_input_are_in_its_length_unit(tmp_path, capsys):
-    assert cli.main(["circuits", "hydraulic-boom", "--out", str(tmp_path)]) == 0
+    boom = _free_boom(tmp_path)
+    assert cli.main(["circuits", str(boom), "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     lo, hi = _boom_stroke_ends()
     assert "at input = 0 mm" in out and "deg" not in out.split("\n")[2]
     assert f"turning points (mm): {hi:.6g}, {lo:.6g}" in out
     s = json.loads((tmp_path / "circuits.json").read_text())
-    (c,) = pk.scenes.load("hydraulic-boom").circuits(0.0)
+    (c,) = pk.Scene.load(boom).circuits(0.0)
     assert s["input_kind"] == "displacement" and s["units"] == "mm"
     (row,) = s["circuits"]
     np.testing.assert_allclose(row["turning_points"], c.turning_points, rtol=0, atol=0)
     np.testing.assert_allclose(sorted(row["turning_points"]), [lo, hi], rtol=0, atol=1e-6)
     # the input moves between the stroke's ends (the turning points are its extremes)
     np.testing.assert_allclose(row["input_range"], [lo, hi], rtol=0, atol=1e-6)
+
+
+def test_circuits_say_where_the_scenes_limits_stop_the_motion(tmp_path, capsys):
+    assert cli.main(["circuits", "hydraulic-boom", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert out.count("stopped by the scene's limits at -200, 300 mm") == 2
+    s = json.loads((tmp_path / "circuits.json").read_text())
+    for r in s["circuits"]:
+        np.testing.assert_allclose(r["limits"], [-200.0, 300.0], rtol=1e-12)
 
 
 def test_circuits_of_a_linear_input_out_of_its_stroke_names_the_reachable_range(tmp_path, capsys):

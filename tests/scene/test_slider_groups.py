@@ -186,7 +186,8 @@ def test_every_slider_built_in_traces_closed_keeping_its_slots():
     for name in [n for n in pk.scenes.names() if {"slots", "prismatic"} & set(pk.scenes.data(n))]:
         sc = pk.scenes.load(name)
         tr = sc.trace()
-        assert tr.closed, name
+        # closed, or an arc between the scene's travel limits
+        assert tr.closed or len(tr.limits) == 2, name
         # every traced pose solves: a sweep at the traced inputs away from turning points
         # gives the same points on the same circuit where it is the drawn one
         d = pk.scenes.data(name)

@@ -156,3 +156,35 @@ def test_limits_are_saved_and_read_back(tmp_path):
 def test_bad_limits_are_one_line_errors_naming_the_entry(limits, message):
     with pytest.raises(ValueError, match=message):
         boom(limits)
+
+
+def test_traces_and_circuits_stop_at_the_limits():
+    # the boom's one circuit (joined at its stroke's dead points, -726 and 716 mm) is cut
+    # by the cylinder's limits into two arcs, each from -200 to 300 mm
+    sc = pk.scenes.load("hydraulic-boom")
+    tr = sc.trace()
+    np.testing.assert_allclose(sorted(tr.limits), [-200.0, 300.0], rtol=1e-12)
+    assert not tr.closed and len(tr.turning_points) == 0
+    assert tr.theta.min() >= -200.0 - 1e-9 and tr.theta.max() <= 300.0 + 1e-9
+    circuits = sc.circuits()
+    assert len(circuits) == 2
+    for c in circuits:
+        assert not c.full_turn
+        np.testing.assert_allclose(c.range, (-200.0, 300.0), rtol=1e-12)
+
+
+def test_a_revolute_limit_cuts_the_crank_rockers_trace_where_the_closed_form_says():
+    data, dims = crank_rocker()
+    t0 = math.radians(60.0)
+    phi0 = rocker_angle(dims, t0)
+    data["limits"] = {"rock": {"links": ["ground", "rocker"], "range": [-0.2, 0.3]}}
+    sc = pk.Scene.from_dict(data)
+    tr = sc.trace()
+    assert len(tr.limits) == 2 and not tr.closed
+    for at in tr.limits:
+        rel = math.remainder(rocker_angle(dims, at) - phi0, math.tau)
+        assert min(abs(rel + 0.2), abs(rel - 0.3)) < 1e-9
+    # the sweep stops at the same inputs
+    sw = sc.sweep(np.linspace(t0 - 2.5, t0 + 2.5, 101))
+    named = np.unique(np.round(sw.limit[~np.isnan(sw.limit)], 9))
+    np.testing.assert_allclose(np.sort(named), np.sort(np.round(tr.limits, 9)), atol=1e-9)

@@ -670,7 +670,7 @@ class Scene:
         return self._assemblies(t, raw)
 
     def _trace(self, raw: tuple) -> Trace:
-        theta, coords, det, turning, closed = raw
+        theta, coords, det, turning, closed, limits = raw
         names = list(self._data["points"])
         return Trace(
             theta=theta,
@@ -679,6 +679,7 @@ class Scene:
             turning_points=np.asarray(turning, dtype=np.float64),
             closed=bool(closed),
             coords=coords,
+            limits=np.asarray(limits, dtype=np.float64),
             input_kind=self.input_kind,
             units=self._data["units"],
         )

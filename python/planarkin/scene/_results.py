@@ -319,10 +319,15 @@ class Trace(InputResult):
     input_kind: str = field(default="angle", kw_only=True)
     #: The scene's length unit (None: not named).
     units: str | None = field(default=None, kw_only=True)
+    #: Input values (continuous, like ``theta``) where the path stops at a travel limit of
+    #: the scene (``limits``), in path order: its two ends, or empty.
+    limits: np.ndarray = field(default_factory=lambda: np.empty(0), kw_only=True)
 
     def _describe(self) -> str:
         k = len(self.turning_points)
-        return f"{'closed' if self.closed else 'open'}, {k} turning point{'' if k == 1 else 's'}"
+        ends = ", stopped by limits at both ends" if len(self.limits) else ""
+        how = "closed" if self.closed else "open"
+        return f"{how}, {k} turning point{'' if k == 1 else 's'}{ends}"
 
 
 @dataclass(frozen=True, eq=False, repr=False)

@@ -392,6 +392,8 @@ def circuits_summary(
             **axis.circuit(c, at),
             "closed": c.trace.closed,
             "trace_points": len(c.trace),
+            # where the scene's travel limits stop the motion (in the input's unit)
+            "limits": [axis.value(v) for v in c.trace.limits],
         }
         for k, c in enumerate(found)
     ]

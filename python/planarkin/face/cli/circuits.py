@@ -109,7 +109,7 @@ class _AngleWords:
         if not r["full_turn"] and (hi > 180 or lo <= -180):
             kind += " (a continuous range through 180 deg)"
         tps = ", ".join(f"{v:.4f}" for v in r["turning_points_deg"]) or "none"
-        return f"{kind}; turning points (deg): {tps}"
+        return f"{kind}; turning points (deg): {tps}{_stops(r, '.4f', 'deg')}"
 
 
 class _LinearWords(_AngleWords):
@@ -133,7 +133,15 @@ class _LinearWords(_AngleWords):
         lo, hi = r["input_range"]
         tps = ", ".join(f"{v:.6g}" for v in r["turning_points"]) or "none"
         return (f"input moves between {lo:.6g} and {hi:.6g} {self.unit}; "
-                f"turning points ({self.unit}): {tps}")  # fmt: skip
+                f"turning points ({self.unit}): {tps}{_stops(r, '.6g', self.unit)}")  # fmt: skip
+
+
+def _stops(r: dict, fmt: str, unit: str) -> str:
+    """Where the scene's travel limits stop a circuit's motion, if they do."""
+    if not r.get("limits"):
+        return ""
+    at = ", ".join(format(v, fmt) for v in r["limits"])
+    return f"; stopped by the scene's limits at {at} {unit}"
 
 
 #: The table's words for each kind of input.

@@ -11,7 +11,7 @@ use crate::errors::{err, Signals};
 
 type AssemblyOut<'py> = (Arr2<'py, f64>, String, f64, Vec<f64>);
 pub(super) type AssembliesOut<'py> = (Vec<AssemblyOut<'py>>, Vec<Vec<usize>>, Vec<Vec<usize>>, usize, usize);
-pub(super) type TraceOut<'py> = (Arr1<'py, f64>, Arr3<'py, f64>, Arr1<'py, f64>, Vec<f64>, bool);
+pub(super) type TraceOut<'py> = (Arr1<'py, f64>, Arr3<'py, f64>, Arr1<'py, f64>, Vec<f64>, bool, Vec<f64>);
 pub(super) type CircuitOut<'py> = (Vec<usize>, Vec<f64>, f64, (f64, f64), TraceOut<'py>);
 
 /// `Scene.assemblies`: every real assembly at `theta`.
@@ -83,5 +83,5 @@ fn assemblies_out(py: Python<'_>, a: Assemblies) -> PyResult<AssembliesOut<'_>> 
 fn trace_out(py: Python<'_>, t: Trace, np: usize) -> PyResult<TraceOut<'_>> {
     let m = t.theta.len();
     let pts = cube(py, (m, np, 2), flat("trace points", &t.points)?);
-    Ok((t.theta.into_pyarray(py), pts, t.det.into_pyarray(py), t.turning_points, t.closed))
+    Ok((t.theta.into_pyarray(py), pts, t.det.into_pyarray(py), t.turning_points, t.closed, t.limits))
 }

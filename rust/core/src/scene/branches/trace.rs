@@ -64,6 +64,9 @@ pub struct Trace {
     pub turning_points: Vec<f64>,
     /// The path came back to its start (the last point is the start again).
     pub closed: bool,
+    /// Input values (continuous, as `theta`) where the path stops at a travel limit (the
+    /// scene's `limits`), in path order: its two ends, or none.
+    pub limits: Vec<f64>,
 }
 
 /// The whole linkage as one curve.
@@ -245,9 +248,49 @@ impl<'s> Tracer<'s> {
             .tangent(x0.as_slice(), &delta, None)
             .ok_or_else(|| Error::scene("trace", "no tangent at the start"))?;
         let mut out = Trace::default();
-        let mut x = x0.clone();
+        self.record(&mut out, x0.as_slice(), self.det(x0.as_slice()))?;
+        // travel limits bind only a path that starts inside them
+        let limited = !self.plan.limits.is_empty() && self.inside(x0.as_slice());
+        let stopped = self.walk(&x0, &t, opts, watch, limited, poll, &mut out, &mut crossings)?;
+        if stopped {
+            // the other way from the start, to the other limit: the path is the arc between
+            let mut back = Trace::default();
+            self.record(&mut back, x0.as_slice(), self.det(x0.as_slice()))?;
+            t = -t;
+            self.walk(&x0, &t, opts, watch, true, poll, &mut back, &mut crossings)?;
+            out = join(back, out, self.plan.npoints);
+        }
+        Ok((out, crossings))
+    }
+
+    /// Every travel limit holds at unknowns x.
+    fn inside(&self, x: &[f64]) -> bool {
+        let pos = self.positions(x);
+        self.plan.limits.iter().all(|l| {
+            let v = l.value(&pos, self.plan.scale);
+            let slack = 16.0 * f64::EPSILON * (l.range.0.abs() + l.range.1.abs());
+            v >= l.range.0 - slack && v <= l.range.1 + slack
+        })
+    }
+
+    /// Follows the path from x0 along t0 into `out` (which holds x0) until it closes,
+    /// `opts.max_points` is reached or (`limited`) a travel limit binds, the last recorded
+    /// then; true when it stopped at a limit.
+    #[allow(clippy::too_many_arguments)]
+    fn walk(
+        &self,
+        x0: &DVector<f64>,
+        t0: &DVector<f64>,
+        opts: &TraceOptions,
+        watch: Option<f64>,
+        limited: bool,
+        poll: &Poll<'_>,
+        out: &mut Trace,
+        crossings: &mut Vec<Vec<Xy>>,
+    ) -> Result<bool, Error> {
+        let delta = self.anchors();
+        let (mut x, mut t) = (x0.clone(), t0.clone());
         let mut d = self.det(x.as_slice());
-        self.record(&mut out, x.as_slice(), d)?;
         let mut h = opts.step;
         let hmin = opts.step * 1e-7;
         let mut travelled = 0.0;
@@ -272,10 +315,10 @@ impl<'s> Tracer<'s> {
             // at the start itself, along the chord from x (a dead point between them, met
             // when the drawing lies near one, is still found on it)
             let mut closing = None;
-            if travelled > 4.0 * opts.step && self.wrapped_gap(&y, &x0) < h {
-                let unwrapped = self.unwrap_like(&x0, &y);
+            if travelled > 4.0 * opts.step && self.wrapped_gap(&y, x0) < h {
+                let unwrapped = self.unwrap_like(x0, &y);
                 if let Some((z, _)) = self.correct(&unwrapped, &t, &delta) {
-                    if self.wrapped_gap(&z, &x0) < 1e-9 {
+                    if self.wrapped_gap(&z, x0) < 1e-9 {
                         closing = Some(z);
                     }
                 }
@@ -288,6 +331,15 @@ impl<'s> Tracer<'s> {
                 }
                 None => (y.clone(), t.clone(), h),
             };
+            if limited && !self.inside(end.as_slice()) {
+                // a travel limit binds within this step: the path stops there
+                let (at, z) = self.limit_point(&x, &dir, len, &delta);
+                if let Some(z) = z {
+                    self.record(out, z.as_slice(), self.det(z.as_slice()))?;
+                }
+                out.limits.push(at);
+                return Ok(true);
+            }
             let dn = self.det(end.as_slice());
             // the step in pieces over which the input is monotone: split at a dead point
             let mut pieces = vec![(0.0, self.theta(x.as_slice()))];
@@ -323,14 +375,14 @@ impl<'s> Tracer<'s> {
             }
             // the path passes through its dead point (the input's extreme there, as refined)
             if let Some(z) = dead {
-                self.record(&mut out, z.as_slice(), self.det(z.as_slice()))?;
+                self.record(out, z.as_slice(), self.det(z.as_slice()))?;
             }
             if closing.is_some() {
-                self.record(&mut out, end.as_slice(), dn)?;
+                self.record(out, end.as_slice(), dn)?;
                 out.closed = true;
                 break;
             }
-            self.record(&mut out, y.as_slice(), dn)?;
+            self.record(out, y.as_slice(), dn)?;
             x = y;
             t = tn;
             d = dn;
@@ -342,7 +394,28 @@ impl<'s> Tracer<'s> {
                 h
             };
         }
-        Ok((out, crossings))
+        Ok(false)
+    }
+
+    /// Bisection on the travel limits along the step from x (inside them) in the unit
+    /// direction t, of length h: the input where the first binds, and the pose there.
+    fn limit_point(&self, x: &DVector<f64>, t: &DVector<f64>, h: f64, delta: &[Xy]) -> (f64, Option<DVector<f64>>) {
+        let (mut lo, mut hi) = (0.0, h);
+        let mut best = (self.theta(x.as_slice()), Some(x.clone()));
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            let Some((y, _)) = self.correct(&(x + t * mid), t, delta) else { break };
+            if self.inside(y.as_slice()) {
+                lo = mid;
+                best = (self.theta(y.as_slice()), Some(y));
+            } else {
+                hi = mid;
+            }
+            if hi - lo < 1e-14 {
+                break;
+            }
+        }
+        best
     }
 
     fn record(&self, out: &mut Trace, x: &[f64], det: f64) -> Result<(), Error> {
@@ -462,4 +535,22 @@ impl Scene {
         };
         Tracer::new(self)?.trace_from(&pos, opts, interrupt)
     }
+}
+
+/// The path `back` (from the start, the other way) reversed, then `ahead` (from the start):
+/// one arc between the two limits, the start once; `np` points per path point.
+fn join(back: Trace, ahead: Trace, np: usize) -> Trace {
+    let m = back.theta.len();
+    let mut out = Trace::default();
+    for k in (1..m).rev() {
+        out.theta.push(back.theta[k]);
+        out.det.push(back.det[k]);
+        out.points.extend_from_slice(&back.points[k * np..(k + 1) * np]);
+    }
+    out.theta.extend(ahead.theta);
+    out.det.extend(ahead.det);
+    out.points.extend(ahead.points);
+    out.turning_points = back.turning_points.into_iter().rev().chain(ahead.turning_points).collect();
+    out.limits = back.limits.into_iter().chain(ahead.limits).collect();
+    out
 }
