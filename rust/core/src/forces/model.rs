@@ -117,6 +117,29 @@ impl Table {
         }
     }
 
+    /// Both components of a vector table at input `x`.
+    #[inline]
+    pub fn at2(&self, x: f64) -> [f64; 2] {
+        let n = self.xs.len();
+        if n == 0 {
+            return [self.ys[0], self.ys[1]];
+        }
+        let x = self.period.map_or(x, |p| x.rem_euclid(p));
+        if x <= self.xs[0] || n == 1 {
+            return [self.ys[0], self.ys[1]];
+        }
+        if x >= self.xs[n - 1] {
+            return [self.ys[2 * n - 2], self.ys[2 * n - 1]];
+        }
+        let j = self.xs.partition_point(|&v| v <= x) - 1;
+        let (x0, x1) = (self.xs[j], self.xs[j + 1]);
+        let y = |k: usize| {
+            let (y0, y1) = (self.ys[j * 2 + k], self.ys[(j + 1) * 2 + k]);
+            (y1 - y0) / (x1 - x0) * (x - x0) + y0
+        };
+        [y(0), y(1)]
+    }
+
     /// The value at input `x`, component `k`.
     #[inline]
     pub fn at(&self, x: f64, k: usize) -> f64 {

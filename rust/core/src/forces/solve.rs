@@ -222,7 +222,7 @@ pub fn solve(model: &Model, motion: &Motion<'_>, drive: Option<Drive<'_>>) -> Re
     let (mut vw_res, mut vw_scale) = (0.0f64, 0.0f64);
     let (mut e_res, mut e_scale) = (0.0f64, 0.0f64);
     let converged = Status::Converged.code();
-    let rate = motion.rate;
+    let per_rate = 1.0 / motion.rate;
     for i in 0..n {
         let theta = motion.theta[i];
         let (w, al) = drive.map_or((0.0, 0.0), |d| (d.omega[i], d.alpha[i]));
@@ -230,20 +230,21 @@ pub fn solve(model: &Model, motion: &Motion<'_>, drive: Option<Drive<'_>>) -> Re
         for (q, &c) in motion.point_map.iter().enumerate() {
             let o = (i * sp + c) * 2;
             row.p[q] = [motion.coords[o], motion.coords[o + 1]];
-            row.v1[q] = [motion.velocity[o] / rate, motion.velocity[o + 1] / rate];
+            row.v1[q] = [motion.velocity[o] * per_rate, motion.velocity[o + 1] * per_rate];
         }
         for (l, &c) in motion.link_map.iter().enumerate() {
-            row.w1[l] = motion.angular_velocity[i * sl + c] / rate;
+            row.w1[l] = motion.angular_velocity[i * sl + c] * per_rate;
         }
         if let Some((acc, aacc)) = accel {
-            let r2 = rate * rate;
+            // the accelerations at a constant unit rate, scaled to this rate and its change
+            let ww = w * w * per_rate * per_rate;
             for (q, &c) in motion.point_map.iter().enumerate() {
                 let o = (i * sp + c) * 2;
                 let v1 = row.v1[q];
-                row.acc[q] = [w * w * (acc[o] / r2) + al * v1[0], w * w * (acc[o + 1] / r2) + al * v1[1]];
+                row.acc[q] = [ww * acc[o] + al * v1[0], ww * acc[o + 1] + al * v1[1]];
             }
             for (l, &c) in motion.link_map.iter().enumerate() {
-                row.wa[l] = w * w * (aacc[i * sl + c] / r2) + al * row.w1[l];
+                row.wa[l] = ww * aacc[i * sl + c] + al * row.w1[l];
             }
         }
         for (j, line) in model.lines.iter().enumerate() {
@@ -327,7 +328,7 @@ fn loads(model: &Model, row: &Row, t: &mut Tally, theta: f64, w: f64, dynamic: b
     let refp = |k: usize| row.p[model.refs[k]];
     let scaled = |v: [f64; 2]| [w * v[0], w * v[1]];
     for (link, q, tab) in &l.point_forces {
-        let f = [tab.at(theta, 0), tab.at(theta, 1)];
+        let f = tab.at2(theta);
         let (p, v1) = (row.p[*q], row.v1[*q]);
         t.force(*link, sub(p, refp(*link)), f, v1, scaled(v1), true);
     }
@@ -386,8 +387,8 @@ fn loads(model: &Model, row: &Row, t: &mut Tally, theta: f64, w: f64, dynamic: b
         let k = m.link;
         // the centre's arm from point a as drawn, turned with the link
         let d = sub(row.p[m.b], row.p[m.a]);
-        let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
-        let d = [d[0] / len, d[1] / len];
+        let inv = 1.0 / (d[0] * d[0] + d[1] * d[1]).sqrt();
+        let d = [d[0] * inv, d[1] * inv];
         let cs = dot(d, m.drawn);
         let sn = cross(m.drawn, d);
         let r = [cs * m.arm[0] - sn * m.arm[1], sn * m.arm[0] + cs * m.arm[1]];
@@ -507,6 +508,7 @@ fn blocks(model: &Model, a: &[f64], rhs: &[f64], x: &mut [f64], lu: &mut [f64], 
 fn fixed<const N: usize>(a: &[f64], k: usize, blk: &super::model::Block, b: &mut [f64]) -> bool {
     let mut m = [[0.0; N]; N];
     let mut v = [0.0; N];
+    let mut inv = [0.0; N];
     for (i, &r) in blk.rows.iter().enumerate().take(N) {
         for (j, &c) in blk.columns.iter().enumerate().take(N) {
             m[i][j] = a[r * k + c];
@@ -531,14 +533,18 @@ fn fixed<const N: usize>(a: &[f64], k: usize, blk: &super::model::Block, b: &mut
         }
         // as LAPACK's getf2: the column scaled by the pivot's reciprocal
         let d = 1.0 / m[col][col];
+        inv[col] = d;
         let pivot_row = m[col];
+        let vc = v[col];
         for r in col + 1..N {
-            let f = m[r][col] * d;
-            if f != 0.0 {
+            // the blocks are sparse, in the same pattern row after row (a well-predicted
+            // branch)
+            if m[r][col] != 0.0 {
+                let f = m[r][col] * d;
                 for j in col + 1..N {
                     m[r][j] -= f * pivot_row[j];
                 }
-                v[r] -= f * v[col];
+                v[r] -= f * vc;
             }
         }
     }
@@ -547,7 +553,7 @@ fn fixed<const N: usize>(a: &[f64], k: usize, blk: &super::model::Block, b: &mut
         for j in col + 1..N {
             s -= m[col][j] * v[j];
         }
-        v[col] = s / m[col][col];
+        v[col] = s * inv[col];
     }
     b[..N].copy_from_slice(&v);
     true
