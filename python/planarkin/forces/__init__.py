@@ -5,6 +5,7 @@ virtual work against Newton-Euler and by the energy balance. ``Scene.statics`` a
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any
 
@@ -59,7 +60,9 @@ def analyse(
 def _per_point(name: str, v: Any, n: int) -> np.ndarray:
     a = np.asarray(v, dtype=np.float64)
     if a.ndim == 0:
-        a = np.full(n, float(a))
+        if not math.isfinite(a):
+            raise ValueError(f"{name} must be finite")
+        return np.full(n, float(a))
     if a.shape != (n,):
         raise ValueError(
             f"{name} must be a number or one value per sweep point ({n}), got shape {a.shape}"

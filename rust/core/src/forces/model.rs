@@ -247,6 +247,86 @@ pub struct Model {
     pub(crate) loads: Loads,
     pub(crate) output: Option<Output>,
     pub(crate) widest: usize,
+    pub(crate) plans: Vec<Plan>,
+}
+
+/// How one block is eliminated: first the unknowns that a pure force row (only axis unit
+/// forces: entries +-1) pins down and that no other force row of the block reads (the
+/// outer pins of a dyad), by those rows, exactly; then the rest (a dyad's middle pin) by
+/// a small dense solve with partial pivoting. Indices are local to the block.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub(crate) struct Plan {
+    /// (row, column) of each exact pivot.
+    pub statics: Vec<(usize, usize)>,
+    /// The rows and columns left for the dense solve (as many).
+    pub rest_rows: Vec<usize>,
+    pub rest_cols: Vec<usize>,
+    /// The block's entries in the full matrix (row-major, `columns` wide), row-major.
+    pub entries: Vec<usize>,
+    /// (local row, entry in the full matrix, unknown) of what the rows read from earlier
+    /// blocks.
+    pub prior: Vec<(usize, usize, usize)>,
+}
+
+impl Plan {
+    fn of(block: &Block, forces: &[UnitForce], couples: &[UnitCouple], k: usize) -> Plan {
+        let m = block.rows.len();
+        let entries = block.rows.iter().flat_map(|&r| block.columns.iter().map(move |&c| r * k + c)).collect();
+        let prior = (0..m).flat_map(|i| block.prior.iter().map(move |&c| (i, block.rows[i] * k + c, c))).collect();
+        // each local row's columns, and whether it is a pure force row
+        let mut reads = vec![vec![false; m]; m];
+        let mut pure = vec![true; m];
+        let local_col = |c: usize| block.columns.iter().position(|&x| x == c);
+        for (i, &r) in block.rows.iter().enumerate() {
+            let (link, axis) = (r / 3, r % 3);
+            pure[i] = axis != 2;
+            for f in forces.iter().filter(|f| f.link == link) {
+                let hits = match (f.dir, axis) {
+                    (_, 2) => true,
+                    (Direction::X, 0) | (Direction::Y, 1) => true,
+                    (Direction::X, _) | (Direction::Y, _) => false,
+                    _ => {
+                        pure[i] = false;
+                        true
+                    }
+                };
+                if hits {
+                    // (an earlier unknown is on the right-hand side already)
+                    if let Some(j) = local_col(f.column) {
+                        reads[i][j] = true;
+                    }
+                    if f.sign == 0.0 {
+                        pure[i] = false;
+                    }
+                }
+            }
+            if axis == 2 {
+                for c in couples.iter().filter(|c| c.link == link) {
+                    if let Some(j) = local_col(c.column) {
+                        reads[i][j] = true;
+                    }
+                }
+            }
+        }
+        let force_rows: Vec<usize> = (0..m).filter(|&i| block.rows[i] % 3 != 2).collect();
+        let mut taken = vec![false; m];
+        let mut statics = Vec::new();
+        for &i in force_rows.iter().filter(|&&i| pure[i]) {
+            let only_here = |j: usize| force_rows.iter().all(|&q| q == i || !reads[q][j]);
+            if let Some(j) = (0..m).find(|&j| reads[i][j] && !taken[j] && only_here(j)) {
+                taken[j] = true;
+                statics.push((i, j));
+            }
+        }
+        let is_static_row = |i: usize| statics.iter().any(|s| s.0 == i);
+        Plan {
+            rest_rows: (0..m).filter(|&i| !is_static_row(i)).collect(),
+            rest_cols: (0..m).filter(|&j| !taken[j]).collect(),
+            statics,
+            entries,
+            prior,
+        }
+    }
 }
 
 /// The parts of a [`Model`] (see its fields' namesakes there).
@@ -355,6 +435,7 @@ impl Model {
             _ => {}
         }
         let widest = p.blocks.iter().map(|b| b.rows.len()).max().unwrap_or(0);
+        let plans = p.blocks.iter().map(|b| Plan::of(b, &p.forces, &p.couples, p.columns)).collect();
         Ok(Model {
             points: p.points,
             moving: p.moving,
@@ -368,6 +449,7 @@ impl Model {
             loads: p.loads,
             output: p.output,
             widest,
+            plans,
         })
     }
 

@@ -467,52 +467,95 @@ fn matrix(model: &Model, row: &Row, a: &mut [f64]) {
 /// Solves the moving links' equations block by block into `x`; false where a block is
 /// singular (an exactly zero pivot) or its solution is not finite.
 fn blocks(model: &Model, a: &[f64], rhs: &[f64], x: &mut [f64], lu: &mut [f64], b: &mut [f64]) -> bool {
-    let k = model.columns;
-    for blk in &model.blocks {
+    for (blk, plan) in model.blocks.iter().zip(&model.plans) {
         let m = blk.rows.len();
         for (i, &r) in blk.rows.iter().enumerate() {
-            let ar = &a[r * k..(r + 1) * k];
-            b[i] = rhs[r] - blk.prior.iter().map(|&c| ar[c] * x[c]).sum::<f64>();
+            b[i] = rhs[r];
+        }
+        for &(i, e, c) in &plan.prior {
+            b[i] -= a[e] * x[c];
         }
         if m == 1 {
-            x[blk.columns[0]] = b[0] / a[blk.rows[0] * k + blk.columns[0]];
+            x[blk.columns[0]] = b[0] / a[plan.entries[0]];
             continue;
         }
-        let solved = match m {
-            2 => fixed::<2>(a, k, blk, &mut b[..2]),
-            3 => fixed::<3>(a, k, blk, &mut b[..3]),
-            4 => fixed::<4>(a, k, blk, &mut b[..4]),
-            6 => fixed::<6>(a, k, blk, &mut b[..6]),
-            _ => {
-                for (i, &r) in blk.rows.iter().enumerate() {
-                    for (j, &c) in blk.columns.iter().enumerate() {
-                        lu[i * m + j] = a[r * k + c];
+        let lu = &mut lu[..m * m];
+        for (v, &e) in lu.iter_mut().zip(&plan.entries) {
+            *v = a[e];
+        }
+        // the exact pivots first: their rows stay as they are, the others lose the column
+        for &(i, j) in &plan.statics {
+            let p = lu[i * m + j];
+            for &q in &plan.rest_rows {
+                let e = lu[q * m + j];
+                if e != 0.0 {
+                    let f = e / p;
+                    for &l in &plan.rest_cols {
+                        lu[q * m + l] -= f * lu[i * m + l];
                     }
+                    lu[q * m + j] = 0.0;
+                    b[q] -= f * b[i];
                 }
-                dense_solve(&mut lu[..m * m], &mut b[..m], m)
             }
+        }
+        let t = plan.rest_rows.len();
+        let mut small = [0.0; 36];
+        let mut v = [0.0; 6];
+        let solved = if t <= 6 {
+            for (i, &q) in plan.rest_rows.iter().enumerate() {
+                for (j, &l) in plan.rest_cols.iter().enumerate() {
+                    small[i * t + j] = lu[q * m + l];
+                }
+                v[i] = b[q];
+            }
+            match t {
+                0 => true,
+                1 => {
+                    v[0] /= small[0];
+                    true
+                }
+                2 => fixed::<2>(&small, &mut v),
+                3 => fixed::<3>(&small, &mut v),
+                4 => fixed::<4>(&small, &mut v),
+                _ => dense_solve(&mut small[..t * t], &mut v[..t], t),
+            }
+        } else {
+            let mut big: Vec<f64> = Vec::with_capacity(t * t);
+            for &q in &plan.rest_rows {
+                big.extend(plan.rest_cols.iter().map(|&l| lu[q * m + l]));
+            }
+            let mut w: Vec<f64> = plan.rest_rows.iter().map(|&q| b[q]).collect();
+            let ok = dense_solve(&mut big, &mut w, t);
+            for (j, &l) in plan.rest_cols.iter().enumerate() {
+                x[blk.columns[l]] = w[j];
+            }
+            ok
         };
         if !solved {
             return false;
         }
-        for (i, &c) in blk.columns.iter().enumerate() {
-            x[c] = b[i];
+        if t <= 6 {
+            for (j, &l) in plan.rest_cols.iter().enumerate() {
+                x[blk.columns[l]] = v[j];
+            }
+        }
+        for &(i, j) in &plan.statics {
+            let s: f64 = plan.rest_cols.iter().map(|&l| lu[i * m + l] * x[blk.columns[l]]).sum();
+            x[blk.columns[j]] = (b[i] - s) / lu[i * m + j];
         }
     }
     x.iter().all(|v| v.is_finite())
 }
 
-/// [`dense_solve`] of a block of a size known at compile time (the common dyads and
-/// single links), on the stack.
+/// [`dense_solve`] of a system of a size known at compile time (`a` row-major, N x N),
+/// on the stack: `b` becomes the solution. False on an exactly zero pivot.
 #[inline]
-fn fixed<const N: usize>(a: &[f64], k: usize, blk: &super::model::Block, b: &mut [f64]) -> bool {
+fn fixed<const N: usize>(a: &[f64], b: &mut [f64]) -> bool {
     let mut m = [[0.0; N]; N];
     let mut v = [0.0; N];
     let mut inv = [0.0; N];
-    for (i, &r) in blk.rows.iter().enumerate().take(N) {
-        for (j, &c) in blk.columns.iter().enumerate().take(N) {
-            m[i][j] = a[r * k + c];
-        }
+    for i in 0..N {
+        m[i].copy_from_slice(&a[i * N..(i + 1) * N]);
         v[i] = b[i];
     }
     for col in 0..N {
@@ -537,8 +580,6 @@ fn fixed<const N: usize>(a: &[f64], k: usize, blk: &super::model::Block, b: &mut
         let pivot_row = m[col];
         let vc = v[col];
         for r in col + 1..N {
-            // the blocks are sparse, in the same pattern row after row (a well-predicted
-            // branch)
             if m[r][col] != 0.0 {
                 let f = m[r][col] * d;
                 for j in col + 1..N {
