@@ -75,9 +75,7 @@ class ForceModel:
         springs: list[_Element],
         dampers: list[_Element],
         gravity: tuple[float, float] | None,
-        masses: list[
-            tuple[int, int, int, tuple[float, float], tuple[float, float], float, float]
-        ],
+        masses: list[tuple[int, int, int, tuple[float, float], tuple[float, float], float, float]],
         period: float | None,
         output: tuple[bool, int, int] | None,
     ) -> ForceModel: ...

@@ -18,6 +18,9 @@ from ._units import inertia_factor
 
 __all__ = ["Native", "native"]
 
+#: A spring or damper as the kernel takes it: points, their links, rate, free length, preload.
+_Element = tuple[int, int, int, int, float, float, float]
+
 
 def _table(e: Mapping[str, Any], key: str) -> tuple[list[float], list[float]]:
     xs = e.get("input")
@@ -58,7 +61,7 @@ class Native:
             line_forces.append((j, pt, holder, _table(e, "force")))
         torques = [(lidx[e["link"]], _table(e, "torque")) for e in L.get("torques", [])]
 
-        def element(e: Mapping[str, Any], spring: bool) -> tuple[int, int, int, int, float, float, float]:  # fmt: skip
+        def element(e: Mapping[str, Any], spring: bool) -> _Element:
             a, b = e["between"]
             if spring:
                 rate, free, pre = e["k"], e["free_length"], e["preload"]
@@ -110,7 +113,10 @@ class Native:
                     st.f_link, st.f_col, st.f_sign, st.f_pt, st.f_kind, st.f_line, strict=True
                 )
             ],
-            [(int(k), int(c), float(s)) for k, c, s in zip(st.c_link, st.c_col, st.c_sign, strict=True)],
+            [
+                (int(k), int(c), float(s))
+                for k, c, s in zip(st.c_link, st.c_col, st.c_sign, strict=True)
+            ],
             [tuple(int(v) for v in line) for line in st.lines],  # type: ignore[misc]
             [(r.tolist(), c.tolist(), p.tolist()) for r, c, p in st.blocks],
             point_forces,

@@ -417,7 +417,13 @@ impl Model {
             || l.line_forces.iter().any(|(j, q, k, t)| !line_ok(*j) || !pt(*q) || !mv(*k) || t.width != 1)
             || l.torques.iter().any(|(k, t)| !mv(*k) || t.width != 1)
             || l.springs.iter().chain(&l.dampers).any(|e| {
-                !pt(e.a) || !pt(e.b) || !mv(e.link_a) || !mv(e.link_b) || !(e.rate.is_finite() && e.free_length.is_finite() && e.preload.is_finite())
+                !(pt(e.a)
+                    && pt(e.b)
+                    && mv(e.link_a)
+                    && mv(e.link_b)
+                    && e.rate.is_finite()
+                    && e.free_length.is_finite()
+                    && e.preload.is_finite())
             })
             || l.masses.iter().any(|m| {
                 m.link >= p.moving

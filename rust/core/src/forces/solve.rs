@@ -112,8 +112,16 @@ impl Tally {
         self.f.iter_mut().for_each(|v| *v = [0.0; 2]);
         self.m.iter_mut().for_each(|v| *v = 0.0);
         for s in [
-            &mut self.gen, &mut self.gabs, &mut self.power, &mut self.pabs, &mut self.pot, &mut self.dpot,
-            &mut self.dpabs, &mut self.kin, &mut self.dkin, &mut self.dkabs,
+            &mut self.gen,
+            &mut self.gabs,
+            &mut self.power,
+            &mut self.pabs,
+            &mut self.pot,
+            &mut self.dpot,
+            &mut self.dpabs,
+            &mut self.kin,
+            &mut self.dkin,
+            &mut self.dkabs,
         ] {
             *s = 0.0;
         }
@@ -148,8 +156,8 @@ struct Row {
 /// Statics (`drive` None) or inverse dynamics along `motion`.
 pub fn solve(model: &Model, motion: &Motion<'_>, drive: Option<Drive<'_>>) -> Result<Solution, Error> {
     let n = motion.theta.len();
-    let sp = if n == 0 { 0 } else { motion.coords.len() / (2 * n) };
-    let sl = if n == 0 { 0 } else { motion.angular_velocity.len() / n };
+    let sp = motion.coords.len().checked_div(2 * n).unwrap_or(0);
+    let sl = motion.angular_velocity.len().checked_div(n).unwrap_or(0);
     let need = |name: &str, a: &[f64], len: usize| {
         if a.len() == len {
             Ok(())
@@ -409,10 +417,7 @@ fn loads(model: &Model, row: &Row, t: &mut Tally, theta: f64, w: f64, dynamic: b
         let mut tq = 0.0;
         if dynamic {
             let (wa, wl) = (row.wa[k], w * w1);
-            let ag = [
-                row.acc[m.a][0] + wa * rp[0] - wl * wl * r[0],
-                row.acc[m.a][1] + wa * rp[1] - wl * wl * r[1],
-            ];
+            let ag = [row.acc[m.a][0] + wa * rp[0] - wl * wl * r[0], row.acc[m.a][1] + wa * rp[1] - wl * wl * r[1]];
             // d'Alembert: the inertia force and couple as loads (no power: they are the
             // kinetic energy's rate of change, tallied apart)
             f[0] -= m.mass * ag[0];

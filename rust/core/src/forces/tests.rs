@@ -34,10 +34,7 @@ fn pendulum(torque_table: Option<Table>) -> Model {
             pin(1, 1.0, 0, Direction::Y),
             pin(1, -1.0, 1, Direction::Y),
         ],
-        couples: vec![
-            UnitCouple { link: 0, column: 2, sign: 1.0 },
-            UnitCouple { link: 1, column: 2, sign: -1.0 },
-        ],
+        couples: vec![UnitCouple { link: 0, column: 2, sign: 1.0 }, UnitCouple { link: 1, column: 2, sign: -1.0 }],
         lines: vec![],
         blocks: vec![Block { rows: vec![0, 1, 2], columns: vec![0, 1, 2], prior: vec![] }],
         loads,
