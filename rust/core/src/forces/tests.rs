@@ -180,3 +180,59 @@ fn forces_model_refuses_bad_indices() {
     q.size = 0.0;
     assert!(Model::new(q).is_err());
 }
+
+#[test]
+fn forces_parts_from_a_scene_hold_a_pendulum_by_hand() {
+    use crate::scene::format::{parse, Value};
+    use crate::scene::Scene;
+    let st = |x: &str| Value::Str(x.into());
+    let map = |v: Vec<(&str, Value)>| Value::Map(v.into_iter().map(|(k, v)| (Value::Str(k.into()), v)).collect());
+    let xy = |x: f64, y: f64| Value::List(vec![Value::Float(x), Value::Float(y)]);
+    let names = |v: &[&str]| Value::List(v.iter().map(|n| Value::Str((*n).into())).collect());
+    let data = map(vec![
+        ("points", map(vec![("O", xy(0.0, 0.0)), ("X", xy(1.0, 0.0)), ("P", xy(0.8, 0.6)), ("G", xy(0.4, 0.3))])),
+        ("links", map(vec![("ground", names(&["O", "X"])), ("arm", names(&["O", "P", "G"]))])),
+        ("ground", st("ground")),
+        ("input", map(vec![("link", st("arm")), ("pivot", st("O"))])),
+        (
+            "loads",
+            map(vec![
+                ("gravity", xy(0.0, -G)),
+                (
+                    "masses",
+                    map(vec![(
+                        "arm",
+                        map(vec![("mass", Value::Float(M)), ("center", st("G")), ("inertia", Value::Float(I))]),
+                    )]),
+                ),
+                ("forces", Value::List(vec![map(vec![("point", st("P")), ("force", xy(2.0, 0.0))])])),
+            ]),
+        ),
+    ]);
+    let parsed = parse(&data).unwrap();
+    let loads = parsed.loads.clone().unwrap();
+    let scene = Scene::new(parsed.spec.clone()).unwrap();
+    let model = Model::new(parts(&scene, &parsed.input, &loads, None, 1.0).unwrap()).unwrap();
+    assert_eq!((model.columns(), model.moving()), (3, 1));
+    let coords: Vec<f64> = scene.drawn().iter().flat_map(|p| [p[0], p[1]]).collect();
+    let zeros = vec![0.0; coords.len()];
+    let motion = Motion {
+        theta: &[0.6435011087932844],
+        status: &[Status::Converged.code()],
+        det: &[1.0],
+        coords: &coords,
+        velocity: &zeros,
+        acceleration: None,
+        angular_velocity: &[0.0],
+        angular_acceleration: None,
+        point_map: &[0, 1, 2, 3],
+        link_map: &[0],
+        rate: 1.0,
+    };
+    let out = solve(&model, &motion, None).unwrap();
+    // the weight at G (arm 0.4) and the push at P (arm 0.6 below the line of action)
+    close(out.unknowns[2], M * G * 0.4 + 2.0 * 0.6);
+    close(out.unknowns[0], -2.0);
+    close(out.unknowns[1], M * G);
+    assert!((inertia_factor(Some("mm"), None) - 1e-3).abs() < 1e-18);
+}
