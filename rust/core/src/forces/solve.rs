@@ -231,6 +231,7 @@ pub fn solve(model: &Model, motion: &Motion<'_>, drive: Option<Drive<'_>>) -> Re
     let (mut e_res, mut e_scale) = (0.0f64, 0.0f64);
     let converged = Status::Converged.code();
     let per_rate = 1.0 / motion.rate;
+    let inv_size = 1.0 / model.size;
     for i in 0..n {
         let theta = motion.theta[i];
         let (w, al) = drive.map_or((0.0, 0.0), |d| (d.omega[i], d.alpha[i]));
@@ -277,7 +278,7 @@ pub fn solve(model: &Model, motion: &Motion<'_>, drive: Option<Drive<'_>>) -> Re
             for l in 0..model.moving {
                 rhs[3 * l] = -t.f[l][0];
                 rhs[3 * l + 1] = -t.f[l][1];
-                rhs[3 * l + 2] = -t.m[l] / model.size;
+                rhs[3 * l + 2] = -t.m[l] * inv_size;
             }
             if !blocks(model, &a, &rhs, x, &mut lu, &mut b) {
                 st = Status::Singular.code();
@@ -443,29 +444,33 @@ fn loads(model: &Model, row: &Row, t: &mut Tally, theta: f64, w: f64, dynamic: b
 /// reference point (divided by the size) from unit unknowns, ground's rows last.
 fn matrix(model: &Model, row: &Row, a: &mut [f64]) {
     let k = model.columns;
-    let s = model.size;
+    // moments are divided by the size: multiplied by its reciprocal (a division per entry
+    // costs more than the rest of the entry)
+    let inv = 1.0 / model.size;
     for f in &model.forces {
         let r = sub(row.p[f.point], row.p[model.refs[f.link]]);
-        let d = match f.dir {
-            Direction::X => [1.0, 0.0],
-            Direction::Y => [0.0, 1.0],
-            Direction::Normal(j) => row.n[j],
-            Direction::Along(j) => row.u[j],
-        };
         let base = 3 * f.link * k + f.column;
+        let w = f.sign * inv;
         // an axis force leaves the other axis' entry alone (another column may own it)
         match f.dir {
-            Direction::X => a[base] = f.sign,
-            Direction::Y => a[base + k] = f.sign,
-            _ => {
+            Direction::X => {
+                a[base] = f.sign;
+                a[base + 2 * k] = -r[1] * w;
+            }
+            Direction::Y => {
+                a[base + k] = f.sign;
+                a[base + 2 * k] = r[0] * w;
+            }
+            Direction::Normal(j) | Direction::Along(j) => {
+                let d = if matches!(f.dir, Direction::Normal(_)) { row.n[j] } else { row.u[j] };
                 a[base] = f.sign * d[0];
                 a[base + k] = f.sign * d[1];
+                a[base + 2 * k] = cross(r, d) * w;
             }
         }
-        a[base + 2 * k] = f.sign * cross(r, d) / s;
     }
     for c in &model.couples {
-        a[(3 * c.link + 2) * k + c.column] = c.sign / s;
+        a[(3 * c.link + 2) * k + c.column] = c.sign * inv;
     }
 }
 
@@ -490,11 +495,11 @@ fn blocks(model: &Model, a: &[f64], rhs: &[f64], x: &mut [f64], lu: &mut [f64], 
         }
         // the exact pivots first: their rows stay as they are, the others lose the column
         for &(i, j) in &plan.statics {
-            let p = lu[i * m + j];
+            let p = 1.0 / lu[i * m + j];
             for &q in &plan.rest_rows {
                 let e = lu[q * m + j];
                 if e != 0.0 {
-                    let f = e / p;
+                    let f = e * p;
                     for &l in &plan.rest_cols {
                         lu[q * m + l] -= f * lu[i * m + l];
                     }
@@ -546,7 +551,7 @@ fn blocks(model: &Model, a: &[f64], rhs: &[f64], x: &mut [f64], lu: &mut [f64], 
         }
         for &(i, j) in &plan.statics {
             let s: f64 = plan.rest_cols.iter().map(|&l| lu[i * m + l] * x[blk.columns[l]]).sum();
-            x[blk.columns[j]] = (b[i] - s) / lu[i * m + j];
+            x[blk.columns[j]] = (b[i] - s) * (1.0 / lu[i * m + j]);
         }
     }
     x.iter().all(|v| v.is_finite())
