@@ -8,7 +8,9 @@ import planarkin as pk
 import pytest
 
 
-@pytest.mark.parametrize("name", ["fourbar-loaded", "jansen-loaded"])
+@pytest.mark.parametrize(
+    "name", ["engine", "fourbar-loaded", "hydraulic-boom-loaded", "jansen-loaded"]
+)
 def test_the_effort_curve_equals_pythons_statics(page, name):
     state = page.open(f"?scene={name}")
     assert not page.message(), page.message()
