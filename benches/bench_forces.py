@@ -1,8 +1,9 @@
 """Forces beside the kinematics they need: Jansen's leg with its loads (the jansen-loaded
 built-in: a foot ground reaction, link masses, gravity) over 361 crank angles. Rows: the
 kinematic sweep with velocities and accelerations (every point, ``rate`` given), the
-inverse dynamics and the statics on that sweep (every pin reaction and the input torque:
-a batched dense Newton-Euler solve in NumPy, plus virtual work and the energy check), and
+inverse dynamics and the statics on that sweep (every pin reaction and the input torque,
+by the core's kernel: the Newton-Euler equations block by block per row, virtual work
+and the energy check), the same by the NumPy reference (a batched dense solve), and
 sweep plus dynamics together, as a user runs them. The issue's target: forces within 3x
 the kinematic sweep. Correctness (virtual work against Newton-Euler) is checked outside
 the timed calls."""
@@ -53,6 +54,14 @@ def test_forces_statics(benchmark, jansen):
     r = benchmark(sc.statics, sw)
     assert r.check < 1e-10
     record(benchmark, "forces_statics", "planarkin sc.statics(sw) (on the sweep)")
+
+
+@pytest.mark.benchmark(group=FORCES)
+def test_forces_dynamics_numpy_reference(benchmark, jansen):
+    sc, _, sw = jansen
+    r = benchmark(sc.dynamics, sw, engine="numpy")
+    assert r.check < 1e-10
+    record(benchmark, "forces_dynamics_numpy", "NumPy reference sc.dynamics(sw, engine='numpy')")
 
 
 def _both(sc, theta):

@@ -33,6 +33,7 @@ __all__ = [
     "TOL",
     "TRACE_MAX_POINTS",
     "TRACE_STEP",
+    "ForceModel",
     "FourBar",
     "Plan",
     "Scene",
@@ -49,6 +50,51 @@ __all__ = [
 ]
 
 _F64: TypeAlias = npt.NDArray[np.float64]
+
+_Table: TypeAlias = tuple[list[float], list[float]]
+_Element: TypeAlias = tuple[int, int, int, int, float, float, float]
+_Run: TypeAlias = tuple[
+    _F64, npt.NDArray[np.int8], _F64, _F64, _F64, _F64, _F64, _F64 | None, float, float | None
+]
+
+@final
+class ForceModel:
+    def __new__(
+        cls,
+        points: int,
+        moving: int,
+        size: float,
+        refs: list[int],
+        forces: list[tuple[int, int, float, int, int, int]],
+        couples: list[tuple[int, int, float]],
+        lines: list[tuple[int, int, int]],
+        blocks: list[tuple[list[int], list[int], list[int]]],
+        point_forces: list[tuple[int, int, _Table]],
+        line_forces: list[tuple[int, int, int, _Table]],
+        torques: list[tuple[int, _Table]],
+        springs: list[_Element],
+        dampers: list[_Element],
+        gravity: tuple[float, float] | None,
+        masses: list[tuple[int, int, int, tuple[float, float], tuple[float, float], float, float]],
+        period: float | None,
+        output: tuple[bool, int, int] | None,
+    ) -> ForceModel: ...
+    def run(
+        self,
+        theta: _F64,
+        status: npt.NDArray[np.int8],
+        det: _F64,
+        coords: _F64,
+        velocity: _F64,
+        acceleration: _F64 | None,
+        angular_velocity: _F64,
+        angular_acceleration: _F64 | None,
+        point_map: list[int],
+        link_map: list[int],
+        rate: float,
+        omega: _F64 | None = None,
+        alpha: _F64 | None = None,
+    ) -> _Run: ...
 
 @final
 class FourBar:

@@ -11,7 +11,7 @@ import math
 import numpy as np
 import planarkin as pk
 import pytest
-from forces_cases import FOURBAR, pendulum
+from forces_cases import FOURBAR, pendulum, random_loads
 
 G = 9.81
 K, L0, TR = 30.0, 3.0, -1.5
@@ -215,42 +215,11 @@ def test_dynamics_needs_a_rate():
         sc.dynamics(omega=[1.0, 2.0])
 
 
-def _random_loads(sc: pk.Scene, rng: np.random.Generator) -> dict:
-    """Loads of every kind on a scene: a force at each moving point, a torque on each
-    moving link, a spring and a damper between two points of different links, a mass on
-    every moving link (centre at drawn coordinates), gravity, and a force along every slot
-    and prismatic pair."""
-    pts = sc.points
-    size = float(np.ptp(np.array(list(pts.values())), axis=0).max())
-    moving = [k for k in sc.links if k != sc.ground]
-    ground_pts = set(sc.links[sc.ground])
-    free = [p for p in pts if p not in ground_pts]
-    a, b = sc.links[moving[0]][-1], sc.links[moving[-1]][-1]
-    loads = {
-        "forces": [{"point": p, "force": rng.normal(size=2).tolist()} for p in free]
-        + [{"slot": s, "force": float(rng.normal())} for s in sc.slots]
-        + [{"prismatic": s, "force": float(rng.normal())} for s in sc.prismatic],
-        "torques": [{"link": k, "torque": float(rng.normal()) * size} for k in moving],
-        "springs": [{"between": [a, b], "k": 3.0 / size, "free_length": 0.5 * size,
-                     "preload": 0.3}] if a != b else [],
-        "dampers": [{"between": [a, b], "c": 0.2 / size}] if a != b else [],
-        "gravity": [0.3, -1.0],
-        "masses": {
-            k: {"mass": float(rng.uniform(0.5, 2)),
-                "center": (np.mean([pts[p] for p in sc.links[k]], axis=0)
-                           + 0.1 * size * rng.normal(size=2)).tolist(),
-                "inertia": float(rng.uniform(0.01, 0.1)) * size**2}
-            for k in moving
-        },
-    }  # fmt: skip
-    return loads
-
-
 @pytest.mark.parametrize("name", pk.scenes.names())
 def test_every_builtin_closes_its_checks_under_every_kind_of_load(name):
     rng = np.random.default_rng(sum(map(ord, name)))
     sc = pk.scenes.load(name)
-    loaded = pk.Scene.from_dict({**sc.to_dict(), "loads": _random_loads(sc, rng)})
+    loaded = pk.Scene.from_dict({**sc.to_dict(), "loads": random_loads(sc, rng)})
     sw = loaded.sweep(outputs="all", rate=1.7)
     for r in (loaded.statics(sw), loaded.dynamics(sw, alpha=0.4)):
         # every point the sweep solved, but those within 1e-5 of a dead point

@@ -70,6 +70,8 @@ class Structure:
     #: columns those rows read), solved one block after another (a dyad's two links are
     #: one block of 6, the input link's one of 3).
     blocks: tuple[tuple[np.ndarray, np.ndarray, np.ndarray], ...] = ()
+    #: What the Rust kernel was given for this structure (``_native``), made on first use.
+    cache: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
     @classmethod
     def of(cls, data: Mapping[str, Any]) -> Structure:

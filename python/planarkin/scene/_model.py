@@ -570,17 +570,22 @@ class Scene:
         return self._forces, sweep, chosen
 
     def statics(
-        self, sweep: SceneSweep | None = None, loads: Mapping[str, Any] | None = None
+        self,
+        sweep: SceneSweep | None = None,
+        loads: Mapping[str, Any] | None = None,
+        *,
+        engine: str = "rust",
     ) -> Any:
         """The input effort that holds the scene in equilibrium under its loads (or
         ``loads``, in the file format's ``loads`` form) at every input value of ``sweep``
         (default: the default sweep), with every joint reaction, by Newton-Euler, checked
         by virtual work. A sweep that lacks points or velocities is solved again at its
-        input values. Returns :class:`planarkin.forces.Forces`."""
+        input values. ``engine="numpy"`` solves with the NumPy reference instead of the
+        core's kernel. Returns :class:`planarkin.forces.Forces`."""
         from ..forces import analyse
 
         st, sw, chosen = self._force_args(sweep, loads, None)
-        return analyse(st, self._data, sw, chosen)
+        return analyse(st, self._data, sw, chosen, engine=engine)
 
     def dynamics(
         self,
@@ -589,12 +594,14 @@ class Scene:
         omega: object = None,
         alpha: object = None,
         loads: Mapping[str, Any] | None = None,
+        engine: str = "rust",
     ) -> Any:
         """Inverse dynamics: :meth:`statics` with the links' inertia (d'Alembert forces
         from the sweep's accelerations) at input rate ``omega`` (rad/s, or length units per
         second for a linear input; a number or one per point; default the sweep's rate)
         and its rate of change ``alpha`` (default 0), with the shaking force and moment
-        and the kinetic and potential energy, checked by the energy balance."""
+        and the kinetic and potential energy, checked by the energy balance. ``engine`` as
+        for :meth:`statics`."""
         from ..forces import analyse
 
         if omega is None:
@@ -603,7 +610,7 @@ class Scene:
             omega = sweep.rate
         w = np.asarray(omega, dtype=np.float64)
         st, sw, chosen = self._force_args(sweep, loads, float(w) if w.ndim == 0 else None)
-        return analyse(st, self._data, sw, chosen, omega=omega, alpha=alpha)
+        return analyse(st, self._data, sw, chosen, omega=omega, alpha=alpha, engine=engine)
 
     def effort_gradient(
         self,

@@ -2,7 +2,9 @@
 and path generation with branch and order constraints on the real linkage) and the
 defect-free synthesis of double butterfly linkages (seed 003): the seed's loop choice and
 generated output in closed form, SLSQP multistarts on the true linkage (the Rust scene
-solver), verification, and the Ackermann steering example.
+solver), verification, and the Ackermann steering example; a torque objective
+(``minimise_effort``: the peak or RMS input effort of a loaded scene, exact gradient) with
+its template (``balanced_arm``).
 
 >>> from planarkin.synthesis import admissible_loop_choices, TYPE_I_LINKS
 >>> len(admissible_loop_choices(TYPE_I_LINKS, "1", "2", "5"))
@@ -11,6 +13,7 @@ solver), verification, and the Ackermann steering example.
 
 from . import ackermann
 from .driver import synthesize
+from .effort import EffortDesign, balanced_arm, minimise_effort
 from .generated import SIGN_COMBINATIONS, Generated, SeedPlan, half_angle
 from .pool import process_pool, stop_pool
 from .problem import (
@@ -40,6 +43,8 @@ from .topology import (
 from .verify import linear_sensitivity, tolerance_sensitivity, true_error, verify, verify_scene
 
 __all__ = [
+    "balanced_arm",
+    "minimise_effort",
     "OBJECTIVES",
     "SIGN_COMBINATIONS",
     "STEERING_KNUCKLE",
@@ -48,6 +53,7 @@ __all__ = [
     "TYPE_I",
     "TYPE_I_LINKS",
     "DesignSpace",
+    "EffortDesign",
     "FunctionTarget",
     "Generated",
     "LoopChoice",

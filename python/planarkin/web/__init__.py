@@ -20,6 +20,7 @@ FILES = (
     "js/draw.js",
     "js/fourbar.js",
     "js/scene.js",
+    "js/forces.js",
     "js/ui.js",
     "js/toml.js",
     "js/input.js",

@@ -14,6 +14,7 @@
 //! polynomial sin/cos/atan2), and [`wrap_angle`].
 
 pub mod error;
+pub mod forces;
 pub mod fourbar;
 pub mod interrupt;
 pub mod parallel;

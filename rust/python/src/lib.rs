@@ -1,5 +1,5 @@
 //! Python bindings of planarkin-core, the extension module `planarkin._core`: one module
-//! per subject of the core, laid out as the core lays it out (`fourbar`, `simd`, and the
+//! per subject of the core, laid out as the core lays it out (`forces`, `fourbar`, `simd`, and the
 //! `scene/` folder: `format`, `sweep`, `branches`, `gradient`), plus the error map
 //! (`errors`) and the output buffers (`buffers`). This crate only converts arguments,
 //! releases the GIL around kernel calls and maps core errors; every number is computed in
@@ -12,6 +12,7 @@ use pyo3::prelude::*;
 
 mod buffers;
 mod errors;
+mod forces;
 mod fourbar;
 mod scene;
 mod simd;
@@ -22,6 +23,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // Load NumPy's C API now: rust-numpy loads it on the first array made, by running
     // Python code, and a Ctrl-C pending at that moment would turn into a panic.
     PyArray1::<f64>::zeros(m.py(), 0, false);
+    forces::register(m)?;
     fourbar::register(m)?;
     scene::register(m)?;
     simd::register(m)?;

@@ -15,6 +15,8 @@
 //!   for a scene driven by a slot or prismatic pair, the displacement from the drawn pose
 //!   (scene units), and the default values span one turn or that input's stroke;
 //! - `assemblies`, `circuits`: every assembly at an input value, and their circuits;
+//! - `forces`: a scene with loads: the statics input effort and every pin reaction over
+//!   the default 361 input values (the core's `forces`, as `Scene.statics()`);
 //! - `fourbar`: a four-bar by its lengths: pose, coupler path, Grashof and Barker class,
 //!   limit positions.
 //!
@@ -112,7 +114,7 @@ fn request(s: &mut State, text: &str) -> Result<Value, String> {
             Ok(info)
         }
         "fourbar" => fourbar::solve(&req, nums),
-        "pose" | "path" | "frame" | "assemblies" | "circuits" => {
+        "pose" | "path" | "frame" | "assemblies" | "circuits" | "forces" => {
             let sc = kept.as_ref().ok_or("no scene: send a \"scene\" request first")?;
             match op {
                 "pose" => sc.pose(json::number(&req, "theta")?),
@@ -122,6 +124,7 @@ fn request(s: &mut State, text: &str) -> Result<Value, String> {
                     Ok(json!({ "pose": pose, "path": sc.path(nums)? }))
                 }
                 "assemblies" => sc.assemblies(json::number(&req, "theta")?),
+                "forces" => sc.forces(nums),
                 _ => sc.circuits(json::number(&req, "theta")?, nums),
             }
         }
@@ -310,5 +313,29 @@ mod tests {
         assert_eq!(r["limits"]["dead_points"].as_array().unwrap().len(), 2);
         let bad = ask(&mut s, r#"{"op": "fourbar", "r": [4, 3, -2, 1.5], "theta2": 0, "p": 1, "delta": 0}"#);
         assert_eq!(bad["error"], "r3 must be finite and > 0, got -2.0");
+    }
+
+    /// A pendulum under gravity: the torque that holds it is m g (l cos t) at every angle,
+    /// by hand; a scene without loads has none.
+    #[test]
+    fn forces_of_a_loaded_scene() {
+        let mut s = State::default();
+        let arm = r#"{"points": {"O": [0, 0], "X": [1, 0], "G": [0.4, 0.3]},
+            "links": {"ground": ["O", "X"], "arm": ["O", "G"]}, "ground": "ground",
+            "input": {"link": "arm", "pivot": "O"}, "units": {"length": "m"},
+            "loads": {"gravity": [0, -9.81], "masses": {"arm": {"mass": 2.0, "center": "G", "inertia": 0.1}}}}"#;
+        let info = ask(&mut s, &format!(r#"{{"op": "scene", "scene": {arm}}}"#));
+        assert_eq!(info["loads"], true);
+        let f = ask(&mut s, r#"{"op": "forces"}"#);
+        assert_eq!(f["error"], Value::Null);
+        assert_eq!((f["n"].as_u64(), f["unit"].as_str()), (Some(361), Some("N*m")));
+        let at = f["effort"].as_u64().unwrap() as usize;
+        for (i, t) in f["theta"].as_array().unwrap().iter().enumerate() {
+            let want = 2.0 * 9.81 * 0.5 * t.as_f64().unwrap().cos();
+            assert!((s.nums[at + i] - want).abs() < 1e-12, "{i}");
+        }
+        assert_eq!(f["pins"], json!([{"point": 0, "link": 1, "offset": at + 361}]));
+        ask(&mut s, &format!(r#"{{"op": "scene", "scene": {FOURBAR}}}"#));
+        assert_eq!(ask(&mut s, r#"{"op": "forces"}"#), json!({"loads": false}));
     }
 }

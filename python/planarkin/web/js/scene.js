@@ -34,6 +34,8 @@
     const [path, nums] = call({ op: "path" });
     const np = info.names.length;
     S.path = { ...path, pts: nums.subarray(path.offset, path.offset + path.n * np * 2) };
+    // forces.js loads after this script: looked up when a scene loads
+    P.loadForces();
     return true;
   }
 
@@ -241,6 +243,8 @@
       named.push([sx(x), sy(y)]);
       label(n, x, y);
     });
+    P.drawArrows(pts);
+    P.drawEffort();
     if (info && $("labels").checked) {
       const where = info.input ? info.input.pivot : tip;
       if (where >= 0 && finiteXY(pts[where])) label(sym() + " = " + fmtIn(S.theta), ...pts[where], 10, 22);

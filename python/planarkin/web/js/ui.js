@@ -94,6 +94,9 @@
         slots: S.joints.slots,
         prismatic: S.joints.prismatic,
         pivots: S.joints.pivots || [],
+        // the effort curve drawn (a scene with loads): input values, effort (null where
+        // not solved), its unit
+        effort: S.forces ? { theta: S.forces.theta, input: S.forces.effort.map((v) => (isFinite(v) ? v : null)), unit: S.forces.unit } : null,
       };
     }
     // where each point is on the canvas (CSS pixels from its top left), for tests

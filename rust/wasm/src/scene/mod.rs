@@ -14,9 +14,11 @@ use serde_json::{json, Value};
 
 use crate::json::pair;
 
-// As in the core: this entry (the kept scene) calls `sweep` for its stroke; `sweep` and
-// `branches` answer the requests on it; `format` converts the page's JSON for the format.
+// As in the core: this entry (the kept scene) calls `sweep` for its stroke; `sweep`,
+// `branches` and `forces` answer the requests on it; `format` converts the page's JSON for
+// the format.
 mod branches;
+mod forces;
 mod format;
 mod sweep;
 
@@ -31,6 +33,12 @@ pub(crate) struct Kept {
     size: f64,
     /// A linear input's reachable interval (`Scene.stroke()`); None for an angle input.
     stroke: Option<(f64, f64)>,
+    /// The input as the file declares it, the loads (None without) and the units' inertia
+    /// factor and names (length, force), for the forces.
+    input: Drive,
+    loads: Option<core_format::Loads>,
+    factor: f64,
+    unit_names: (Option<String>, String),
 }
 
 impl Kept {
@@ -39,7 +47,12 @@ impl Kept {
         let mut parsed = core_format::parse(&format::value(data)).map_err(|e| e.to_string())?;
         // a sketch: the core assembles the exact pose, which is what is drawn and saved
         parsed.assemble(&Never).map_err(|e| e.to_string())?;
-        let Parsed { spec, output, outputs, limits, .. } = parsed;
+        let Parsed { spec, output, outputs, input, loads, units, unit_table, limits, .. } = parsed;
+        let factor = planarkin_core::forces::inertia_factor(units.as_deref(), unit_table.as_ref());
+        let unit_names = (
+            unit_table.as_ref().and_then(|t| t.length.clone()).or(units),
+            unit_table.and_then(|t| t.force).unwrap_or_else(|| "N".into()),
+        );
         let scene = Scene::new(spec).and_then(|s| s.with_limits(&limits)).map_err(|e| e.to_string())?;
         // names checked, as Python does; the stroke is found on this plan, as Python's is
         let outputs_plan = match outputs {
@@ -50,7 +63,7 @@ impl Kept {
         let size = core_format::size(scene.drawn());
         let linear = scene.linear_input().is_some();
         let opts = core_format::sweep_options(linear, size).map_err(|e| e.to_string())?;
-        let mut kept = Kept { scene, plan, opts, output, size, stroke: None };
+        let mut kept = Kept { scene, plan, opts, output, size, stroke: None, input, loads, factor, unit_names };
         if linear {
             kept.stroke = Some(kept.find_stroke(outputs_plan.as_ref().unwrap_or(&kept.plan))?);
         }
@@ -106,6 +119,7 @@ impl Kept {
             "prismatic": prismatic,
             "links_per_point": on,
             "steps": self.plan.steps().iter().map(|s| s.kind.name()).collect::<Vec<_>>(),
+            "loads": self.loads.is_some(),
         })
     }
 
