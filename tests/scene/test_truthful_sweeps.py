@@ -415,3 +415,31 @@ def test_a_cylinder_pushing_a_coupler_point_is_solved_as_a_held_group():
     np.testing.assert_allclose(
         sw.accelerations["E"][k], (e[2] - 2 * e[1] + e[0]) / h**2, rtol=0, atol=1e-5
     )
+
+
+def test_a_cylinder_at_zero_length_is_singular_with_its_conditioning_going_to_zero():
+    # a boom whose cylinder pin E can meet the barrel's pivot C1 (|O E| = |O C1|): at zero
+    # length the barrel's direction is undefined; the conditioning falls as the length
+    c1 = np.array([600.0, -400.0])
+    g = np.hypot(*c1)
+    e = g * np.array([np.cos(np.radians(30.0)), np.sin(np.radians(30.0))])
+    ax = unit(e - c1)
+    pts = {"O": [0.0, 0.0], "C1": c1, "E": e, "C2": c1 + 100 * ax, "R": e - 100 * ax}
+    links = {"ground": ["O", "C1"], "boom": ["O", "E"], "barrel": ["C1", "C2"], "rod": ["R", "E"]}
+    sc = scene(
+        pts,
+        links,
+        input={"prismatic": "cyl"},
+        prismatic={"cyl": {"link": "rod", "guide": "barrel", "line": ["C1", "C2"]}},
+    )
+    rho0 = np.hypot(*(e - c1))
+    gaps = np.array([1.0, 1e-1, 1e-2, 1e-9, 0.0])
+    sw = sc.sweep(-rho0 + gaps, outputs="all")
+    det = np.abs(sw.step_det[:, 0])
+    # proportional to the length left (the dyad itself stays well conditioned)
+    np.testing.assert_allclose(det[:3] / gaps[:3], det[0] / gaps[0], rtol=1e-3)
+    assert (sw.status[:2] == pk.Status.CONVERGED).all()
+    assert (sw.status[3:] == pk.Status.SINGULAR).all()
+    # where solved, E is at the cylinder's length from C1 and at |O C1| from O
+    ok = sw.success
+    np.testing.assert_allclose(np.hypot(*(sw.points["E"][ok] - c1).T), gaps[ok], atol=1e-9)

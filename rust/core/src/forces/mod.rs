@@ -1,7 +1,7 @@
 //! Forces on a scene along a sweep: statics (the input effort that holds every pose and
 //! every joint reaction) and inverse dynamics (the same with the links' inertia), from a
 //! plain-data description of the Newton-Euler system and its loads ([`model`]), solved
-//! row by row ([`solve`]). The Python layer builds the description itself; the browser
+//! row by row ([`solve()`]). The Python layer builds the description itself; the browser
 //! takes it from the core's scene ([`build`]).
 
 pub mod build;

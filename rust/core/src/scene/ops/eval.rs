@@ -79,7 +79,7 @@ impl Op {
             Op::StrokeDyad(d, arms) => {
                 let (ra, rb) = (radius(&arms[0], s).0, radius(&arms[1], s).0);
                 match d.solve_radii(at(d.k1), at(d.k2), side, ra, rb) {
-                    DyadOut::Solved(p, det) => Some((p, det)),
+                    DyadOut::Solved(p, det) => Some((p, stroke_det(det, arms, [ra, rb]))),
                     _ => None,
                 }
             }
@@ -106,7 +106,7 @@ impl Op {
         match self {
             Op::StrokeDyad(d, arms) => {
                 let (r1, r2) = (radius(&arms[0], s).0, radius(&arms[1], s).0);
-                cross(sub(pos[d.k1], pos[d.p]), sub(pos[d.k2], pos[d.p])) / (r1 * r2)
+                stroke_det(cross(sub(pos[d.k1], pos[d.p]), sub(pos[d.k2], pos[d.p])) / (r1 * r2), arms, [r1, r2])
             }
             Op::Rrp(r) => r.det_at(pos[r.p], pos[r.k], &r.line.at(k)),
             Op::Pp(pp) => {
@@ -128,6 +128,19 @@ pub(crate) fn stroke_ratio(num: &[Xy; 2], den: &[Xy; 2], s: f64) -> Xy {
 
 /// An arm's length |e0 + s e1| and its first and second derivatives by s.
 #[inline]
+/// A stroke dyad's conditioning: the dyad's, times how far each stroked arm is from zero
+/// length relative to its drawn length (at zero length the cylinder's direction, and the
+/// fused body's rotation with it, is undefined: a degenerate case, 0 there).
+fn stroke_det(det: f64, arms: &[[Xy; 2]; 2], radii: [f64; 2]) -> f64 {
+    let mut det = det;
+    for (arm, r) in arms.iter().zip(radii) {
+        if arm[1] != [0.0; 2] {
+            det *= (r / dot(arm[0], arm[0]).sqrt()).min(1.0);
+        }
+    }
+    det
+}
+
 pub(crate) fn radius(arm: &[Xy; 2], s: f64) -> (f64, f64, f64) {
     let e = add(arm[0], scale(arm[1], s));
     let r = dot(e, e).sqrt();
@@ -140,6 +153,7 @@ fn stroke_dyad(d: &Dyad, arms: &[[Xy; 2]; 2], s: f64, k: Known<'_>, side: f64, r
     let (ra, rb) = (radius(&arms[0], s), radius(&arms[1], s));
     let (a, b) = (k[0][d.k1], k[0][d.k2]);
     let DyadOut::Solved(p, det) = d.solve_radii(a, b, side, ra.0, rb.0) else { return None };
+    let det = stroke_det(det, arms, [ra.0, rb.0]);
     let mut x = [p, [f64::NAN; 2], [f64::NAN; 2]];
     if rates {
         // (p - k_i) . (v - v_i) = r_i r_i' and, one order up,

@@ -24,7 +24,7 @@ impl Plan {
     /// Solves the plan at every input value of `theta` (radians, or a linear input's
     /// displacements; any order, any number of turns): each value's pose is the one
     /// reached from the drawn pose by moving the input straight to it, or where a dead
-    /// point stops that, for an angle, the other way round ([`ways`]); a value neither
+    /// point stops that, for an angle, the other way round (see `ways`); a value neither
     /// way reaches is LIMIT, and names the dead point met on the shorter way. The answer at
     /// a value does not depend on the other values in the array. What stays LIMIT is
     /// NOT_ASSEMBLABLE where the linkage has no assembly at all.

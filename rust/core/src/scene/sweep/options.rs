@@ -8,7 +8,7 @@ use crate::solve::newton::NewtonOptions;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SceneSweepOptions {
     /// Newton stopping criteria for groups; its singular threshold applies to closed forms
-    /// too, raised to [`CLOSED_FORM_FLOOR`].
+    /// too, raised to `CLOSED_FORM_FLOOR` (1e-5).
     pub newton: NewtonOptions,
     /// Largest continuation step of a group (radians of input angle).
     pub max_step: f64,
@@ -28,7 +28,7 @@ pub(crate) const CLOSED_FORM_FLOOR: f64 = 1e-5;
 
 impl SceneSweepOptions {
     /// The conditioning below which a closed-form step is SINGULAR: the Newton threshold,
-    /// raised to [`CLOSED_FORM_FLOOR`].
+    /// raised to `CLOSED_FORM_FLOOR` (1e-5).
     pub fn closed_form_singular(&self) -> f64 {
         self.newton.singular.max(CLOSED_FORM_FLOOR)
     }
