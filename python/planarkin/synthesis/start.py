@@ -34,6 +34,13 @@ GRADIENTS = ("exact", "fd")
 #: default Ackermann run kept it in 2 of 12 starts). In these units a joint move of about
 #: 1e-3 wheelbase weighs like that drop: the polish stays near the design it polishes.
 MINIMAX_STEP = 1.5e-3
+#: the least-squares phase hands over to the minimax polish once its best feasible
+#: objective has fallen by less than STALL_DROP over the last STALL_ITER iterations. SLSQP's
+#: own test (a change of the objective below ftol, absolute, with every constraint within
+#: ftol) cannot trigger there: the objective, 1 at the start, ends near 1e-7 still falling
+#: about 1% an iteration on an ill-conditioned fit (singular values over nine decades), so
+#: the default Ackermann run ended every start at the 200-iteration limit
+STALL_ITER, STALL_DROP = 20, 0.1
 #: the most iterations of the minimax polish (its error falls by half to a tenth in the
 #: first few tens; SLSQP's own test rarely stops it on the nonsmooth largest-error rows)
 MINIMAX_ITER = 60
@@ -192,6 +199,20 @@ def run_start(
         jr = cache.jac(x).r
         return 2.0 * w * w * (r @ jr) / r.size
 
+    best: list[float] = []  # the best feasible objective after each iteration
+    stalled = False
+
+    def stop_when_stalled(intermediate_result: Any) -> None:
+        nonlocal stalled
+        stop_at_deadline(intermediate_result)
+        xk = np.clip(intermediate_result.x, lo, hi)
+        fk = float(intermediate_result.fun) if np.all(cache.cons(xk) >= -1e-6) else math.inf
+        best.append(min(fk, best[-1] if best else math.inf))
+        before = best[-1 - STALL_ITER] if len(best) > STALL_ITER else math.inf
+        if math.isfinite(before) and best[-1] > (1.0 - STALL_DROP) * before:
+            stalled = True
+            raise StopIteration
+
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         res = minimize(
@@ -202,12 +223,18 @@ def run_start(
             bounds=bounds,
             constraints=[{"type": "ineq", "fun": cache.cons, "jac": cache.cons_jac}],
             options={"maxiter": maxiter, "ftol": ftol},
-            callback=stop_at_deadline if deadline is not None else None,
+            callback=stop_when_stalled,
         )
     x = np.clip(res.x, lo, hi)
     phases.append(_phase("least-squares", res))
     status, message, nit, success = int(res.status), str(res.message), int(res.nit), res.success
-    stopped = TIME_LIMIT if int(res.status) == 99 else ""
+    stopped = TIME_LIMIT if int(res.status) == 99 and not stalled else ""
+    if stalled:
+        phases[-1]["stalled"] = True
+        message = (
+            f"{message} (least squares stalled: its best feasible objective fell by less than "
+            f"{STALL_DROP:.0%} in {STALL_ITER} iterations)"
+        )
     if (
         minimax
         and not stopped
