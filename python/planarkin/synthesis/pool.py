@@ -13,7 +13,6 @@ from collections.abc import Sequence
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from typing import Any
 
-
 #: the thread-count setters of the OpenBLAS builds NumPy and SciPy bundle (and a system one)
 _BLAS_SETTERS = (
     "openblas_set_num_threads",
