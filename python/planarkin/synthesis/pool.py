@@ -6,6 +6,7 @@ work is submitted."""
 from __future__ import annotations
 
 import ctypes
+import importlib
 import os
 import signal
 import threading
@@ -30,8 +31,9 @@ def one_blas_thread() -> int:
     on two cores ran the default Ackermann search 3 to 4 times slower on a loaded
     machine. Linux only (the loaded libraries are read from /proc/self/maps); elsewhere
     nothing is changed."""
-    import numpy  # noqa: F401 - loads NumPy's OpenBLAS
-    import scipy.linalg  # noqa: F401 - and SciPy's (SLSQP's)
+    # NumPy's OpenBLAS and SciPy's (SLSQP's) loaded first, so that both are told
+    for name in ("numpy", "scipy.linalg"):
+        importlib.import_module(name)
 
     try:
         with open("/proc/self/maps", encoding="utf-8", errors="replace") as f:
