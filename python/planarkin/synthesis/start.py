@@ -153,12 +153,15 @@ def run_start(
     index: int = 0,
     gradient: str = "auto",
     polish_maxiter: int = MINIMAX_ITER,
+    stall_iter: int | None = STALL_ITER,
 ) -> StartResult:
     """SLSQP from ``x0``: least squares on the objective's residuals at the design points
     (at most ``maxiter`` iterations), then (``minimax``) the largest true residual on the
     dense grid (at most ``polish_maxiter`` and ``maxiter`` iterations, in steps scaled by
     :data:`MINIMAX_STEP`), both under the branch, closed-form assemblability and
-    link-length constraints and the box bounds. At
+    link-length constraints and the box bounds. The least squares hand over once their
+    best feasible objective falls by less than :data:`STALL_DROP` in ``stall_iter``
+    iterations (None: they run to SLSQP's own end). At
     ``deadline`` (``time.time()`` seconds: it holds across processes) SLSQP stops at its
     next iteration (status 99) and the iterate it reached is returned, verified like any
     other (``stopped``); the minimax phase is skipped once it has passed. ``gradient``:
@@ -208,7 +211,8 @@ def run_start(
         xk = np.clip(intermediate_result.x, lo, hi)
         fk = float(intermediate_result.fun) if np.all(cache.cons(xk) >= -1e-6) else math.inf
         best.append(min(fk, best[-1] if best else math.inf))
-        before = best[-1 - STALL_ITER] if len(best) > STALL_ITER else math.inf
+        w = stall_iter or 0
+        before = best[-1 - w] if w and len(best) > w else math.inf
         if math.isfinite(before) and best[-1] > (1.0 - STALL_DROP) * before:
             stalled = True
             raise StopIteration
