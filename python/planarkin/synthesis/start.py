@@ -40,7 +40,7 @@ MINIMAX_STEP = 1.5e-3
 #: ftol) cannot trigger there: the objective, 1 at the start, ends near 1e-7 still falling
 #: about 1% an iteration on an ill-conditioned fit (singular values over nine decades), so
 #: the default Ackermann run ended every start at the 200-iteration limit
-STALL_ITER, STALL_DROP = 20, 0.1
+STALL_ITER, STALL_DROP = 30, 0.1
 #: the most iterations of the minimax polish (its error falls by half to a tenth in the
 #: first few tens; SLSQP's own test rarely stops it on the nonsmooth largest-error rows)
 MINIMAX_ITER = 60
