@@ -1,7 +1,8 @@
 """Synthesis with exact gradients against forward differences (issue 19), side by side in
 one run: the derivatives of one steering design's residuals (the rows SLSQP sees), one
 SLSQP start of the steering problem (least squares, 60 iterations), and the whole
-``planarkin synthesize ackermann --starts 2`` command. Both ends are checked outside the
+``planarkin synthesize ackermann --starts 2`` command; and the default command (12 starts,
+figures and tolerance study included) against its time target. Both ends are checked outside the
 timed calls (tests/synthesis/test_synthesis_gradient.py compares the rows)."""
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from planarkin.synthesis.start import FD_STEP, run_start
 ROWS = "synthesis: the residuals' derivatives at one steering design (16 coordinates)"
 START = "synthesis: one SLSQP start of the steering problem (least squares, 60 iterations)"
 CLI = "synthesis: planarkin synthesize ackermann --starts 2 (whole command)"
+DEFAULT = "synthesis: planarkin synthesize ackermann, the default run (12 starts, whole command)"
 
 
 @pytest.fixture(scope="module")
@@ -56,8 +58,10 @@ def test_rows_fd(benchmark, steering):
 @pytest.mark.benchmark(group=START)
 def test_one_start(benchmark, steering, gradient):
     p, x0 = steering
+    # the stall test off: both run the same 60 iterations
     r = benchmark.pedantic(
-        run_start, args=(p, x0), kwargs={"maxiter": 60, "minimax": False, "gradient": gradient},
+        run_start, args=(p, x0),
+        kwargs={"maxiter": 60, "minimax": False, "gradient": gradient, "stall_iter": None},
         rounds=2, iterations=1,
     )  # fmt: skip
     assert r.nit == 60 or r.success
@@ -72,3 +76,11 @@ def test_cli_two_starts(benchmark, tmp_path, gradient):
     code = benchmark.pedantic(main, args=(args,), rounds=1, iterations=1)
     assert code == 0
     record(benchmark, f"synth_cli_{gradient}", f"--starts 2 --gradient {gradient}")
+
+
+@pytest.mark.benchmark(group=DEFAULT)
+def test_cli_default(benchmark, tmp_path):
+    args = ["synthesize", "ackermann", "--out", str(tmp_path), "--quiet"]
+    code = benchmark.pedantic(main, args=(args,), rounds=1, iterations=1)
+    assert code == 0
+    record(benchmark, "synth_cli_default", "planarkin synthesize ackermann (defaults)")

@@ -259,6 +259,8 @@ TARGETS = (
            "synth_start_exact", "synth_start_fd", "speedup", None, None, ratio="{:.1f}x faster"),
     Target("planarkin synthesize ackermann --starts 2: exact {target} faster than fd",
            "synth_cli_exact", "synth_cli_fd", "speedup", ">=", 8, "x", ratio="{:.1f}x faster"),
+    Target("planarkin synthesize ackermann, the default run (12 starts, 2 workers): {target}",
+           "synth_cli_default", None, "value", "<=", 15, " s", ratio=None),
     Target("Watt II: one requested dyad measurably cheaper than the whole plan",
            "scene_plan_first_dyad", "scene_plan_all", "ratio", "<", 0.8, ratio="{:.2f}"),
     Target("seed sweep from Python vs NumPy vectorized closed form (ratio {target})",

@@ -149,9 +149,17 @@ def robust_start(
     if not math.isfinite(f0):
         raise ValueError("x0 does not move through the range (no tolerance objective)")
 
+    # SLSQP, the differences and keep() ask at one iterate up to three times
+    seen: dict[bytes, float] = {}
+
     def fun(x: np.ndarray) -> float:
-        v = f(x)
-        return v / f0 if math.isfinite(v) else 1e3
+        k = np.asarray(x, dtype=np.float64).tobytes()
+        if k not in seen:
+            if len(seen) > 4 * x.size:
+                seen.clear()
+            v = f(x)
+            seen[k] = v / f0 if math.isfinite(v) else 1e3
+        return seen[k]
 
     def jac(x: np.ndarray) -> np.ndarray:
         v = fun(x)

@@ -89,6 +89,8 @@ def _draw(
 def _rms(lite: Problem, grid: tuple, x: np.ndarray) -> float | None:
     """The RMS residual of a candidate that passes the screen (one branch over the grid,
     the extra constraints not far off, the link lengths valid); None: rejected."""
+    if not np.all(lite.lengths(x) >= 0):
+        return None  # a link too short: rejected before its sweep (a fifth of the draws)
     r, _, br, extra, lc, _ = lite.residuals(x, grid)
     ok = np.all(br > -1.0) and np.all(extra > -1.0) and np.all(lc >= 0)
     return float(np.sqrt(np.mean(r**2))) if ok else None

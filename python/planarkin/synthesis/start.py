@@ -26,6 +26,24 @@ SUBGRID, K_DENSE = 41, 64
 #: how the optimizer differentiates: the solver's exact derivatives, or forward
 #: differences of whole sweeps (the check)
 GRADIENTS = ("exact", "fd")
+#: the minimax polish's unit of design steps, relative to the box size. SLSQP's first
+#: quadratic model has the identity for Hessian: in the joint coordinates it weighed a move
+#: of a whole box like a unit drop of the bound t (the error's largest at the polish's
+#: start, whose rows have slopes of 1e5 there), so its first step left the least-squares
+#: design for a 10-20 deg error and the polish wandered until its line search failed (the
+#: default Ackermann run kept it in 2 of 12 starts). In these units a joint move of about
+#: 1e-3 wheelbase weighs like that drop: the polish stays near the design it polishes.
+MINIMAX_STEP = 1.5e-3
+#: the least-squares phase hands over to the minimax polish once its best feasible
+#: objective has fallen by less than STALL_DROP over the last STALL_ITER iterations. SLSQP's
+#: own test (a change of the objective below ftol, absolute, with every constraint within
+#: ftol) cannot trigger there: the objective, 1 at the start, ends near 1e-7 still falling
+#: about 1% an iteration on an ill-conditioned fit (singular values over nine decades), so
+#: the default Ackermann run ended every start at the 200-iteration limit
+STALL_ITER, STALL_DROP = 30, 0.1
+#: the most iterations of the minimax polish (its error falls by half to a tenth in the
+#: first few tens; SLSQP's own test rarely stops it on the nonsmooth largest-error rows)
+MINIMAX_ITER = 60
 
 
 class Cache:
@@ -134,10 +152,16 @@ def run_start(
     deadline: float | None = None,
     index: int = 0,
     gradient: str = "auto",
+    polish_maxiter: int = MINIMAX_ITER,
+    stall_iter: int | None = STALL_ITER,
 ) -> StartResult:
-    """SLSQP from ``x0``: least squares on the objective's residuals at the design points,
-    then (``minimax``) the largest true residual on the dense grid, both under the branch,
-    closed-form assemblability and link-length constraints and the box bounds. At
+    """SLSQP from ``x0``: least squares on the objective's residuals at the design points
+    (at most ``maxiter`` iterations), then (``minimax``) the largest true residual on the
+    dense grid (at most ``polish_maxiter`` and ``maxiter`` iterations, in steps scaled by
+    :data:`MINIMAX_STEP`), both under the branch, closed-form assemblability and
+    link-length constraints and the box bounds. The least squares hand over once their
+    best feasible objective falls by less than :data:`STALL_DROP` in ``stall_iter``
+    iterations (None: they run to SLSQP's own end). At
     ``deadline`` (``time.time()`` seconds: it holds across processes) SLSQP stops at its
     next iteration (status 99) and the iterate it reached is returned, verified like any
     other (``stopped``); the minimax phase is skipped once it has passed. ``gradient``:
@@ -178,6 +202,21 @@ def run_start(
         jr = cache.jac(x).r
         return 2.0 * w * w * (r @ jr) / r.size
 
+    best: list[float] = []  # the best feasible objective after each iteration
+    stalled = False
+
+    def stop_when_stalled(intermediate_result: Any) -> None:
+        nonlocal stalled
+        stop_at_deadline(intermediate_result)
+        xk = np.clip(intermediate_result.x, lo, hi)
+        fk = float(intermediate_result.fun) if np.all(cache.cons(xk) >= -1e-6) else math.inf
+        best.append(min(fk, best[-1] if best else math.inf))
+        w = stall_iter or 0
+        before = best[-1 - w] if w and len(best) > w else math.inf
+        if math.isfinite(before) and best[-1] > (1.0 - STALL_DROP) * before:
+            stalled = True
+            raise StopIteration
+
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         res = minimize(
@@ -188,12 +227,18 @@ def run_start(
             bounds=bounds,
             constraints=[{"type": "ineq", "fun": cache.cons, "jac": cache.cons_jac}],
             options={"maxiter": maxiter, "ftol": ftol},
-            callback=stop_at_deadline if deadline is not None else None,
+            callback=stop_when_stalled,
         )
     x = np.clip(res.x, lo, hi)
     phases.append(_phase("least-squares", res))
     status, message, nit, success = int(res.status), str(res.message), int(res.nit), res.success
-    stopped = TIME_LIMIT if int(res.status) == 99 else ""
+    stopped = TIME_LIMIT if int(res.status) == 99 and not stalled else ""
+    if stalled:
+        phases[-1]["stalled"] = True
+        message = (
+            f"{message} (least squares stalled: its best feasible objective fell by less than "
+            f"{STALL_DROP:.0%} in {STALL_ITER} iterations)"
+        )
     if (
         minimax
         and not stopped
@@ -205,20 +250,22 @@ def run_start(
         cache.fix_dense(x)
         d0 = cache.values(x).dense
         t0 = max(float(np.max(np.abs(d0))), 1e-15)
-        z0 = np.concatenate([x, [1.0]])
+        # z = ((x - xc) / step, t): the joints in units of MINIMAX_STEP of the box
+        xc, step = x.copy(), MINIMAX_STEP * box
+        z0 = np.concatenate([np.zeros_like(x), [1.0]])
 
         def mm_cons(z: np.ndarray) -> np.ndarray:
             # t >= |e| on the fixed set (two rows each) and at the largest |e| (one row)
-            xx, t = z[:-1], z[-1]
+            xx, t = xc + step * z[:-1], z[-1]
             d = cache.dense(xx) / t0
             return np.concatenate([t - d[:-1], t + d[:-1], [t - abs(d[-1])], cache.cons(xx)])
 
         def mm_jac(z: np.ndarray) -> np.ndarray:
-            xx = z[:-1]
+            xx = xc + step * z[:-1]
             d = cache.dense(xx)
-            jd = cache.jac(xx, dense=True).dense / t0
+            jd = cache.jac(xx, dense=True).dense * (step / t0)
             one = np.ones((jd.shape[0] - 1, 1))
-            jc = cache.cons_jac(xx)
+            jc = cache.cons_jac(xx) * step
             rows = [
                 np.hstack([-jd[:-1], one]),
                 np.hstack([jd[:-1], one]),
@@ -234,12 +281,12 @@ def run_start(
                 z0,
                 jac=lambda z: np.concatenate([np.zeros(z.size - 1), [1.0]]),
                 method="SLSQP",
-                bounds=[*bounds, (0.0, 10.0)],
+                bounds=[*zip((lo - xc) / step, (hi - xc) / step, strict=True), (0.0, 10.0)],
                 constraints=[{"type": "ineq", "fun": mm_cons, "jac": mm_jac}],
-                options={"maxiter": maxiter, "ftol": ftol},
+                options={"maxiter": min(maxiter, polish_maxiter), "ftol": ftol},
                 callback=stop_at_deadline if deadline is not None else None,
             )
-        x2 = np.clip(r2.x[:-1], lo, hi)
+        x2 = np.clip(xc + step * r2.x[:-1], lo, hi)
         phases.append(_phase("minimax", r2))
         f1, f2 = figures(problem, x), figures(problem, x2)
         phases[-1]["kept"] = bool(

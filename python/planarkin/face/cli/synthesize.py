@@ -25,6 +25,7 @@ from ...synthesis import ackermann as ak
 from ...synthesis import ackermann_report as rep
 from ...synthesis import driver
 from ...synthesis.problem import OBJECTIVES, FunctionTarget, Problem
+from ...synthesis.start import MINIMAX_ITER
 from ..figures import synthesis as synthesis_figures
 from ..progress import bar, shown
 from ._common import figure_file, format_argument, json_text, quiet_argument
@@ -145,7 +146,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         type=int,
         default=200,
         metavar="N",
-        help="SLSQP iterations per phase (default: %(default)s)",
+        help="SLSQP iterations per phase: least squares, then the minimax polish (at most "
+        f"{MINIMAX_ITER}) (default: %(default)s)",
     )
     p.add_argument(
         "--time-limit",
