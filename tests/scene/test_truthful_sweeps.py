@@ -443,3 +443,32 @@ def test_a_cylinder_at_zero_length_is_singular_with_its_conditioning_going_to_ze
     # where solved, E is at the cylinder's length from C1 and at |O C1| from O
     ok = sw.success
     np.testing.assert_allclose(np.hypot(*(sw.points["E"][ok] - c1).T), gaps[ok], atol=1e-9)
+
+
+@pytest.mark.parametrize("drawn", [20.0, 90.0])
+def test_a_pose_does_not_depend_on_the_outputs_at_an_exact_kite_change_point(drawn):
+    # a kite four-bar (crank = ground = 2, coupler = rocker = 3) whose crank pin meets the
+    # rocker's pivot at theta = 0 (sampled exactly), driving a dyad to E
+    a, b = 2.0, 3.0
+    t = np.radians(drawn)
+    pa = a * np.array([np.cos(t), np.sin(t)])
+    pb = circle_circle(pa, b, np.array([a, 0.0]), b, 1.0)
+    o6 = np.array([a + 2.5, 3.5])
+    pe = circle_circle(pb, 2.0, o6, 2.5, 1.0)
+    pts = {"O2": [0, 0], "O4": [a, 0], "O6": o6, "A": pa, "B": pb, "E": pe}
+    links = {
+        "ground": ["O2", "O4", "O6"],
+        "crank": ["O2", "A"],
+        "coupler": ["A", "B"],
+        "rocker": ["O4", "B"],
+        "be": ["B", "E"],
+        "ge": ["O6", "E"],
+    }
+    sc = scene(pts, links, input={"link": "crank", "pivot": "O2"})
+    theta = np.radians(np.arange(0.0, 360.5, 1.0))
+    every, one = sc.sweep(theta, outputs="all"), sc.sweep(theta, outputs=["E"])
+    np.testing.assert_array_equal(every.status, one.status)
+    ok = every.success
+    np.testing.assert_array_equal(every.points["E"][ok], one.points["E"][ok])
+    # and E where solved satisfies its two links exactly
+    np.testing.assert_allclose(np.hypot(*(every.points["E"][ok] - o6).T), 2.5, atol=1e-12)
