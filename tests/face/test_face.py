@@ -131,8 +131,7 @@ def test_ctrl_c_stops_synthesis_workers_at_once(tmp_path):
     """Ctrl-C while two worker processes run synthesis starts: within 5 s one line and exit
     code 130, nothing written, and no worker left alive (read from /proc), rather than the
     pool finishing its running and queued starts (some 20 s here) first."""
-    # (24 starts: with starts that stop once they stall, 6 ran to the end in about 4 s, and
-    # the interrupt could land while the results were being written)
+    # (24 starts: with starts that stop once they stall, 6 ran to the end in about 4 s)
     p = _start(["synthesize", "ackermann", "--starts", "24", "--samples", "300",
                 "--maxiter", "200", "--workers", "2", "--no-tolerance", "--no-figures",
                 "--out", str(tmp_path / "syn")])  # fmt: skip
@@ -147,9 +146,14 @@ def test_ctrl_c_stops_synthesis_workers_at_once(tmp_path):
         assert p.poll() is None
         out, err, _ = _interrupt(p, within=5.0)
         assert p.returncode == 130
-        # one line: that it was interrupted, and what (if anything) was written
+        # one line: that it was interrupted, and what (if anything) was written: nothing,
+        # or where starts had finished (they stop once they stall: under a second each on
+        # an idle machine), the best feasible design so far, complete
         assert err.startswith("planarkin: interrupted") and err.count("\n") == 1, err
-        assert not (tmp_path / "syn").exists()
+        if "wrote the best feasible design so far" in err:
+            assert (tmp_path / "syn" / "design.json").is_file()
+        else:
+            assert not (tmp_path / "syn").exists()
         deadline = time.monotonic() + 5
         while time.monotonic() < deadline and any(_alive(w) for w in workers):
             time.sleep(0.05)
