@@ -211,8 +211,9 @@ impl Plan {
             return Ok(());
         }
         let mut s = Solver::new(self, *opts);
-        s.eval(self.theta0); // tangents at the drawn pose
-                             // rows past a limit's stop: a solver that solved nothing writes them
+        // tangents at the drawn pose
+        s.eval(self.theta0);
+        // rows past a limit's stop: a solver that solved nothing writes them
         let mut idle: Option<Solver<'_>> = None;
         for &(k, t) in run {
             poll.tick()?;
