@@ -1,5 +1,6 @@
 """The Scene: parsing, validation (in the Rust core), file round trips, plans, sweeps,
-assemblies, circuits and traces; ``as_fourbar`` recognises a four-bar scene."""
+assemblies, circuits and traces; a four-bar scene is recognised in ``_fourbar_view``, a
+pose given as data checked in ``_poses``."""
 
 from __future__ import annotations
 
@@ -9,16 +10,17 @@ import math
 from collections.abc import Iterable, Mapping
 from functools import partial
 from pathlib import Path
-from typing import Any, ClassVar, NamedTuple, NoReturn
+from typing import Any, ClassVar
 
 import numpy as np
 
 from .. import _kernel
-from .._angles import wrap
 from .._args import as_angles, as_float, as_i64, as_str, as_u64
 from .._svg import picture, png
-from ..fourbar import LINKS, POINTS, FourBar
+from ..fourbar import FourBar
+from ._fourbar_view import FourBarView, fourbar_view
 from ._parse import parse
+from ._poses import pose_array, redrawn
 from ._results import (
     Assemblies,
     Assembly,
@@ -48,40 +50,6 @@ MAX_ITER = _kernel.MAX_ITER
 def _entry(cond: bool, entry: str, message: str) -> None:
     if not cond:
         raise ValueError(f"{entry}: {message}")
-
-
-def _xy(name: str, v: object) -> tuple[float, float]:
-    ok = isinstance(v, (list, tuple, np.ndarray)) and len(v) == 2
-    _entry(ok, f"points.{name}", f"must be a pair [x, y], got {v!r}")
-    seq: Any = v
-    return as_float(f"points.{name}[0]", seq[0]), as_float(f"points.{name}[1]", seq[1])
-
-
-class FourBarView(NamedTuple):
-    """A four-bar scene seen as a :class:`planarkin.FourBar` (``Scene.as_fourbar()``).
-
-    A four-bar measures its angles from the ground line O2 -> O4 with O2 at the origin; a
-    scene's are absolute. So for the same motion, scene input angle = ``theta2`` +
-    ``ground_angle``; a scene link angle = the four-bar's + ``ground_angle``; a scene
-    point = ``origin`` + the four-bar's point rotated by ``ground_angle``.
-    """
-
-    #: The equivalent linkage: r1 = |O2 O4|, r2 = |O2 A|, r3 = |A B|, r4 = |O4 B|.
-    fourbar: FourBar
-    #: The assembly mode it is drawn in: "open" (sin(theta4 - theta3) > 0) or "crossed".
-    mode: str
-    #: Direction of the ground line O2 -> O4 (radians, absolute).
-    ground_angle: float
-    #: Where the crank's ground pivot O2 is drawn.
-    origin: tuple[float, float]
-    #: The drawn crank angle, measured from the ground line (radians, in (-pi, pi]).
-    theta2: float
-    #: Four-bar name -> the scene's: points O2, O4, A, B; links ground, crank, coupler,
-    #: rocker (the names ``Sweep.points``, ``Sweep.angles`` and ``FourBar.to_scene`` use).
-    names: dict[str, str]
-    #: Tracer points on the coupler -> (p, delta): distance from A and angle (radians)
-    #: from the line A -> B, as ``FourBar.coupler_point`` takes them.
-    coupler: dict[str, tuple[float, float]]
 
 
 class Scene:
@@ -787,43 +755,12 @@ class Scene:
         return out
 
     def _pose(self, pose: Mapping[str, Any], what: str) -> np.ndarray:
-        names = list(self._data["points"])
-        missing = [n for n in names if n not in pose]
-        _entry(isinstance(pose, Mapping) and not missing, what,
-               f"must give every point of the scene; missing {missing}")  # fmt: skip
-        arr = np.array([_xy(n, pose[n]) for n in names], dtype=np.float64)
-        # the pose must be this linkage: every link's distances as drawn
-        drawn = self._data["points"]
-        size = max(np.ptp(np.array(list(drawn.values())), axis=0).max(), 1e-300)
-        for link, pts in self._data["links"].items():
-            for i, a in enumerate(pts):
-                for b in pts[i + 1 :]:
-                    d0 = math.dist(drawn[a], drawn[b])
-                    d1 = math.dist(arr[names.index(a)], arr[names.index(b)])
-                    _entry(abs(d1 - d0) <= 1e-9 * size, what,
-                           f"is not an assembly of this scene: link {link!r} has |{a}{b}| = "
-                           f"{d1!r}, drawn {d0!r}")  # fmt: skip
-        return arr
+        return pose_array(self._data, pose, what)
 
     def at(self, assembly: Mapping[str, Any]) -> Scene:
         """A new scene drawn in ``assembly`` (e.g. one of :meth:`assemblies`): its sweeps
         follow that assembly's circuit."""
-        arr = self._pose(assembly, "assembly")
-        d = self.to_dict()
-        old = {n: np.asarray(v, dtype=np.float64) for n, v in d["points"].items()}
-        d["points"] = {n: [float(x), float(y)] for n, (x, y) in zip(d["points"], arr, strict=True)}
-        for link, m in d.get("loads", {}).get("masses", {}).items():
-            if not isinstance(m["center"], str):
-                # a centre given in the drawing moves with its link
-                a, b = self._data["links"][link][:2]
-                u0, u1 = old[b] - old[a], np.subtract(d["points"][b], d["points"][a])
-                c, s_ = np.dot(u0, u1), u0[0] * u1[1] - u0[1] * u1[0]
-                r = np.hypot(c, s_)
-                c, s_ = c / r, s_ / r
-                v = np.asarray(m["center"], dtype=np.float64) - old[a]
-                turned = np.array([c * v[0] - s_ * v[1], s_ * v[0] + c * v[1]])
-                m["center"] = (np.array(d["points"][a]) + turned).tolist()
-        return Scene(d)
+        return Scene(redrawn(self._data, self.to_dict(), self._pose(assembly, "assembly")))
 
     def as_fourbar(self) -> FourBarView:
         """This scene as a four-bar, when it is one: four links, the input and the output
@@ -832,72 +769,7 @@ class Scene:
         what relates the two frames (see :class:`FourBarView`). ValueError naming why for
         a scene that is not a four-bar, or one drawn at a dead point.
         :meth:`planarkin.FourBar.to_scene` goes the other way."""
-        links, pts = self._data["links"], self._data["points"]
-
-        def refuse(why: str) -> NoReturn:
-            raise ValueError(f"scene {self.name or '(unnamed)'!r} is not a four-bar: {why}")
-
-        if len(links) != 4:
-            refuse(f"it has {len(links)} links (a four-bar has 4: ground, crank, coupler, rocker)")
-        ground = self.ground
-        crank, o2 = self.input
-        on_ground = list(dict.fromkeys(links[ground]))
-        if len(on_ground) != 2:
-            refuse(f"its ground {ground!r} carries {len(on_ground)} points, not its 2 pivots")
-        o4 = on_ground[1] if on_ground[0] == o2 else on_ground[0]
-        carriers = {p: [k for k, v in links.items() if p in v] for p in pts}
-        if self.output is not None:
-            rocker, pivot = self.output
-            if pivot != o4:
-                refuse(f"its output {rocker!r} is not pinned at the other ground pivot {o4!r}")
-        else:
-            pinned = [k for k in carriers[o4] if k != ground]
-            if len(pinned) != 1:
-                refuse(f"{len(pinned)} links are pinned to ground at {o4!r}, not one rocker")
-            rocker = pinned[0]
-        if rocker in (ground, crank):
-            refuse(f"its output {rocker!r} is its {'ground' if rocker == ground else 'input'}")
-        (coupler,) = (k for k in links if k not in (ground, crank, rocker))
-        ends = {}
-        for link, pivot in ((crank, o2), (rocker, o4)):
-            others = [p for p in dict.fromkeys(links[link]) if p != pivot]
-            if len(others) != 1 or others[0] not in links[coupler]:
-                refuse(f"{link!r} must carry its ground pivot {pivot!r} and one joint with "
-                       f"the coupler {coupler!r}, got {list(links[link])}")  # fmt: skip
-            ends[link] = others[0]
-        a, b = ends[crank], ends[rocker]
-        tracers = [p for p in dict.fromkeys(links[coupler]) if p not in (a, b)]
-        shared = [p for p in tracers if carriers[p] != [coupler]]
-        if a == b or shared:
-            refuse(f"the coupler {coupler!r} must join {a!r} and {b!r} and carry only tracers "
-                   "besides")  # fmt: skip
-        xy = pts
-        (x2, y2), (x4, y4), (xa, ya), (xb, yb) = xy[o2], xy[o4], xy[a], xy[b]
-        fb = FourBar(
-            math.dist(xy[o2], xy[o4]), math.dist(xy[o2], xy[a]),
-            math.dist(xy[a], xy[b]), math.dist(xy[o4], xy[b]),
-        )  # fmt: skip
-        # the mode is the sign of sin(theta4 - theta3): of the cross product A->B x O4->B
-        cross = (xb - xa) * (yb - y4) - (yb - ya) * (xb - x4)
-        if cross == 0:
-            refuse("it is drawn at a dead point (coupler and rocker in line)")
-        ground_angle = math.atan2(y4 - y2, x4 - x2)
-        t3 = math.atan2(yb - ya, xb - xa)
-        coupler_points = {
-            p: (math.dist(xy[a], xy[p]), wrap(math.atan2(xy[p][1] - ya, xy[p][0] - xa) - t3))
-            for p in tracers
-        }
-        names = dict(zip(POINTS, (o2, o4, a, b), strict=True))
-        names.update(zip(LINKS, (ground, crank, coupler, rocker), strict=True))
-        return FourBarView(
-            fourbar=fb,
-            mode="open" if cross > 0 else "crossed",
-            ground_angle=ground_angle,
-            origin=(x2, y2),
-            theta2=wrap(math.atan2(ya - y2, xa - x2) - ground_angle),
-            names=names,
-            coupler=coupler_points,
-        )
+        return fourbar_view(self._data, self.name)
 
 
 # the bridge back from the four-bar (FourBar.to_scene) goes through this hook: the four-bar
