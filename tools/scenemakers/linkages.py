@@ -11,6 +11,25 @@ from planarkin.reference import scene as ref
 from .geometry import DEG, circles, dist, pick, rot
 
 
+def _coupler_fourbar(o2, o4, a, b, p) -> dict:
+    """The keys of a four-bar O2-A-B-O4 with a tracer P on its coupler (crank input,
+    rocker output, P requested)."""
+    return {
+        "units": "arbitrary length units",
+        "points": {"O2": o2, "O4": o4, "A": a, "B": b, "P": p},
+        "links": {
+            "ground": ["O2", "O4"],
+            "crank": ["O2", "A"],
+            "coupler": ["A", "B", "P"],
+            "rocker": ["O4", "B"],
+        },
+        "ground": "ground",
+        "input": {"link": "crank", "pivot": "O2"},
+        "output": {"link": "rocker", "pivot": "O4"},
+        "outputs": ["P"],
+    }
+
+
 def fourbar():
     o2, o4 = np.array([0.0, 0.0]), np.array([6.0, 0.0])
     a = np.array([2.0, 0.0])
@@ -25,18 +44,7 @@ def fourbar():
             "mode (B = (4, sqrt 21)). Coupler point P at distance 3 from A, 30 deg "
             "counter-clockwise from the line A -> B. The crank turns fully."
         ),
-        "units": "arbitrary length units",
-        "points": {"O2": o2, "O4": o4, "A": a, "B": b, "P": p},
-        "links": {
-            "ground": ["O2", "O4"],
-            "crank": ["O2", "A"],
-            "coupler": ["A", "B", "P"],
-            "rocker": ["O4", "B"],
-        },
-        "ground": "ground",
-        "input": {"link": "crank", "pivot": "O2"},
-        "output": {"link": "rocker", "pivot": "O4"},
-        "outputs": ["P"],
+        **_coupler_fourbar(o2, o4, a, b, p),
     }
 
 
@@ -244,18 +252,7 @@ def chebyshev_lambda():
             "line while the crank is on the far side from O4. Drawn at crank angle 0, B "
             "above the ground."
         ),
-        "units": "arbitrary length units",
-        "points": {"O2": o2, "O4": o4, "A": a, "B": b, "P": p},
-        "links": {
-            "ground": ["O2", "O4"],
-            "crank": ["O2", "A"],
-            "coupler": ["A", "B", "P"],
-            "rocker": ["O4", "B"],
-        },
-        "ground": "ground",
-        "input": {"link": "crank", "pivot": "O2"},
-        "output": {"link": "rocker", "pivot": "O4"},
-        "outputs": ["P"],
+        **_coupler_fourbar(o2, o4, a, b, p),
     }
     # the straight stretch, measured by the reference: crank angles 90 to 270 deg
     sw = ref.scene_sweep(sc, np.arange(90, 271) * DEG)
