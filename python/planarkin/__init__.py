@@ -11,7 +11,7 @@ synthesis of double butterflies, a NumPy reference of it all, figures and a comm
 (361, 2)
 """
 
-from . import forces, interop, reference
+from . import atlas, forces, interop, reference
 from ._angles import DEFAULT_THETA2
 from ._kernel import BUILD_PROFILE
 from ._kernel import __version__ as __version__
@@ -32,6 +32,7 @@ from .scene import builtin as scenes
 from .simd import set_simd, simd_available, simd_enabled, use_simd
 
 __all__ = [
+    "atlas",
     "BUILD_PROFILE",
     "DEFAULT_THETA2",
     "SINGULAR_THRESHOLD",

@@ -260,3 +260,27 @@ class Plan:
 def set_simd(enabled: bool) -> bool: ...
 def simd_enabled() -> bool: ...
 def simd_available() -> bool: ...
+
+ATLAS_DESCRIPTOR: int
+ATLAS_HARMONICS: int
+ATLAS_SAMPLES: int
+ATLAS_TOPOLOGIES: list[tuple[str, int, int]]
+
+def atlas_shard(
+    topology_name: str, seed: int, start: int, count: int
+) -> tuple[_F64, npt.NDArray[np.int8], npt.NDArray[np.bool_], _F64, npt.NDArray[np.float32]]: ...
+def atlas_describe(points: _F64, closed: bool) -> npt.NDArray[np.float32] | None: ...
+def atlas_curve(
+    topology_name: str, params: _F64, signs: _F64, samples: int
+) -> tuple[_F64, _F64, bool, float] | None: ...
+def atlas_pose(
+    topology_name: str, params: _F64, signs: _F64, theta: float
+) -> tuple[list[str], _F64, float] | None: ...
+def atlas_match(
+    topology_name: str,
+    params: _F64,
+    signs: _F64,
+    target: _F64,
+    closed: bool,
+    offsets: int,
+) -> tuple[_F64, _F64, _F64, _F64, npt.NDArray[np.bool_], _F64]: ...

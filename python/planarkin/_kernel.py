@@ -6,6 +6,10 @@ import contracts in pyproject.toml say who may reach the kernel (the reference m
 """
 
 from ._core import (
+    ATLAS_DESCRIPTOR,
+    ATLAS_HARMONICS,
+    ATLAS_SAMPLES,
+    ATLAS_TOPOLOGIES,
     BUILD_PROFILE,
     MAX_ITER,
     MAX_STEP,
@@ -22,6 +26,11 @@ from ._core import (
     FourBar,
     Scene,
     __version__,
+    atlas_curve,
+    atlas_describe,
+    atlas_match,
+    atlas_pose,
+    atlas_shard,
     closed_form_batch,
     load_scene,
     set_simd,
@@ -32,6 +41,15 @@ from ._core import (
 )
 
 __all__ = [
+    "ATLAS_DESCRIPTOR",
+    "ATLAS_HARMONICS",
+    "ATLAS_SAMPLES",
+    "ATLAS_TOPOLOGIES",
+    "atlas_curve",
+    "atlas_describe",
+    "atlas_match",
+    "atlas_pose",
+    "atlas_shard",
     "BUILD_PROFILE",
     "MAX_ITER",
     "MAX_STEP",

@@ -80,6 +80,7 @@ pub unsafe trait Zeroed: Copy {}
 // SAFETY: all zero bits are 0 (or 0.0) for each of these, and for a pair of them.
 unsafe impl Zeroed for f64 {}
 unsafe impl Zeroed for i8 {}
+unsafe impl Zeroed for f32 {}
 unsafe impl Zeroed for u32 {}
 unsafe impl Zeroed for (f64, f64) {}
 

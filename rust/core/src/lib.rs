@@ -13,6 +13,7 @@
 //! [`status`], [`interrupt`], [`parallel`] (thread pools), [`simd`] (the SIMD switch and
 //! polynomial sin/cos/atan2), and [`wrap_angle`].
 
+pub mod atlas;
 pub mod error;
 pub mod forces;
 pub mod fourbar;

@@ -10,6 +10,7 @@ use planarkin_core::solve::newton::SINGULAR_THRESHOLD;
 use planarkin_core::Status;
 use pyo3::prelude::*;
 
+mod atlas;
 mod buffers;
 mod errors;
 mod forces;
@@ -23,6 +24,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // Load NumPy's C API now: rust-numpy loads it on the first array made, by running
     // Python code, and a Ctrl-C pending at that moment would turn into a panic.
     PyArray1::<f64>::zeros(m.py(), 0, false);
+    atlas::register(m)?;
     forces::register(m)?;
     fourbar::register(m)?;
     scene::register(m)?;

@@ -1,0 +1,108 @@
+//! Random linkages of a topology, each a function of (seed, index) alone: a SplitMix64
+//! stream keyed by both, redrawn until the linkage has a coupler curve with extent.
+//!
+//! The ranges cover every Grashof and Barker class of the four-bar: link ratios
+//! log-uniform in [1/5, 5] against the ground, the coupler point anywhere within a plate
+//! three coupler lengths wide, both assemblies.
+
+use std::f64::consts::TAU;
+
+use super::curve::{coupler_curve, Curve, SAMPLES};
+use super::descriptor::{describe, DESCRIPTOR};
+use super::{Topology, MAX_PARAMS};
+
+/// Draws tried for one entry before it is given up (never met in practice: about half
+/// of all draws assemble somewhere).
+const MAX_DRAWS: u32 = 10_000;
+
+/// One atlas entry.
+#[derive(Clone, Debug)]
+pub struct Entry {
+    /// The parameters ([`Topology`] says which); unused ones are NaN.
+    pub params: [f64; MAX_PARAMS],
+    /// The assembly signs (+1 or -1); unused ones are 0.
+    pub signs: [f64; 2],
+    /// Its coupler curve.
+    pub curve: Curve,
+    /// The curve's descriptor.
+    pub descriptor: [f32; DESCRIPTOR],
+    /// How many draws it took.
+    pub draws: u32,
+}
+
+/// SplitMix64 (Steele, Lea and Flood 2014): a tiny generator, good enough for drawing
+/// geometry and the same on every platform.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [lo, hi).
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.uniform(lo.ln(), hi.ln()).exp()
+    }
+    fn sign(&mut self) -> f64 {
+        if self.next() >> 63 == 0 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+}
+
+/// Entry `index` of the atlas of `topology` drawn from `seed`; None only if
+/// [`MAX_DRAWS`] draws all failed.
+pub fn draw(topology: Topology, seed: u64, index: u64) -> Option<Entry> {
+    let mut rng = Rng(seed ^ Rng(index ^ 0xD1B5_4A32_D192_ED03).next());
+    for draws in 1..=MAX_DRAWS {
+        let mut params = [f64::NAN; MAX_PARAMS];
+        let mut signs = [0.0; 2];
+        let ratio = |r: &mut Rng| r.log_uniform(0.2, 5.0);
+        match topology {
+            Topology::FourBar => {
+                let v = [ratio(&mut rng), ratio(&mut rng), ratio(&mut rng), 0.0, 0.0];
+                params[..5].copy_from_slice(&v);
+                params[3] = rng.uniform(-1.0, 2.0);
+                params[4] = rng.uniform(-1.5, 1.5);
+                signs[0] = rng.sign();
+            }
+            Topology::SliderCrank => {
+                params[0] = rng.log_uniform(1.05, 6.0);
+                params[1] = rng.uniform(-1.5, 1.5);
+                params[2] = rng.uniform(-1.0, 2.0);
+                params[3] = rng.uniform(-1.5, 1.5);
+                signs[0] = rng.sign();
+            }
+            Topology::Watt2 => {
+                for slot in params.iter_mut().take(4) {
+                    *slot = ratio(&mut rng);
+                }
+                params[4] = rng.uniform(0.0, TAU);
+                params[5] = rng.uniform(-1.0, 3.0);
+                params[6] = rng.uniform(-2.0, 2.0);
+                params[7] = ratio(&mut rng);
+                params[8] = ratio(&mut rng);
+                params[9] = rng.uniform(-1.0, 2.0);
+                params[10] = rng.uniform(-1.5, 1.5);
+                signs = [rng.sign(), rng.sign()];
+            }
+        }
+        let n = topology.params();
+        let Some(curve) = coupler_curve(topology, &params[..n], &signs, SAMPLES) else {
+            continue;
+        };
+        let mut descriptor = [0.0f32; DESCRIPTOR];
+        if describe(&curve.points, curve.closed, &mut descriptor) {
+            return Some(Entry { params, signs, curve, descriptor, draws });
+        }
+    }
+    None
+}
