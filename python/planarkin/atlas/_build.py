@@ -153,7 +153,10 @@ def build(
         stale.unlink()
     (out / MANIFEST).write_text(json.dumps(manifest, indent=1))
     t0 = time.perf_counter()
-    todo = [(str(out), topology, int(seed), s["start"], s["count"], s["file"]) for s in manifest["shards"]]
+    todo = [
+        (str(out), topology, int(seed), s["start"], s["count"], s["file"])
+        for s in manifest["shards"]
+    ]
     total = len(todo)
     done: dict[str, dict] = {}
     if progress:
@@ -169,7 +172,9 @@ def build(
         client, cluster = _client(scheduler, workers)
         futures = []
         try:
-            futures = [client.submit(make_shard, *a, key=f"atlas-{a[-1]}", pure=False) for a in todo]
+            futures = [
+                client.submit(make_shard, *a, key=f"atlas-{a[-1]}", pure=False) for a in todo
+            ]
             for f in as_completed(futures):
                 info = f.result()
                 done[info["file"]] = info

@@ -49,7 +49,10 @@ def default(topology: str = "four-bar", *, size: int | None = None, progress=Non
         "complete": True,
         "default": True,
     }
-    file = cache_dir() / f"atlas-{topology}-{size}-seed{DEFAULT_SEED}-v{FORMAT_VERSION}-{__version__}.npz"
+    file = (
+        cache_dir()
+        / f"atlas-{topology}-{size}-seed{DEFAULT_SEED}-v{FORMAT_VERSION}-{__version__}.npz"
+    )
     if file.is_file():
         try:
             with np.load(file) as z:

@@ -10,7 +10,6 @@ from typing import Any
 import numpy as np
 
 from .._kernel import atlas_describe
-from ._store import Atlas
 
 #: entries from which an approximate index pays (below, the exact scan takes < 20 ms)
 APPROXIMATE_FROM = 2_000_000
@@ -24,7 +23,8 @@ class Candidates:
     ``distance`` is the Euclidean distance between descriptors (over the normalisation's
     variants, the nearest)."""
 
-    atlas: Atlas
+    #: the Atlas they come from
+    atlas: Any
     rows: np.ndarray
     distance: np.ndarray
 
@@ -57,7 +57,7 @@ def descriptor_variants(points: np.ndarray, closed: bool) -> np.ndarray:
     return np.unique(np.asarray(out, dtype=np.float32), axis=0)
 
 
-def _subset(atlas: Atlas, closed: bool) -> tuple[np.ndarray, np.ndarray]:
+def _subset(atlas: Any, closed: bool) -> tuple[np.ndarray, np.ndarray]:
     """The rows a target may use and their descriptors (kept with the atlas): a closed
     target needs an input that turns fully; an open one may use any."""
     key = f"rows-{closed}"
@@ -86,11 +86,13 @@ def require_faiss() -> Any:
     try:
         import faiss
     except ImportError:
-        raise ImportError('an approximate atlas index needs faiss: pip install "planarkin[index]"') from None
+        raise ImportError(
+            'an approximate atlas index needs faiss: pip install "planarkin[index]"'
+        ) from None
     return faiss
 
 
-def ivf_index(atlas: Atlas, closed: bool, nlist: int | None = None) -> Any:
+def ivf_index(atlas: Any, closed: bool, nlist: int | None = None) -> Any:
     """The IVF-Flat index of the atlas's (closed: full-turn) entries, built once per atlas
     (kept in memory, and beside an atlas on disk as index-*.faiss)."""
     faiss = require_faiss()
@@ -116,7 +118,7 @@ def ivf_index(atlas: Atlas, closed: bool, nlist: int | None = None) -> Any:
 
 
 def query(
-    atlas: Atlas,
+    atlas: Any,
     target: Any,
     k: int = 100,
     *,

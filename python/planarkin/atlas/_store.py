@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 
 from .._kernel import ATLAS_DESCRIPTOR, ATLAS_HARMONICS, ATLAS_SAMPLES, ATLAS_TOPOLOGIES
+from ._query import query
 
 #: the manifest's file name inside an atlas directory
 MANIFEST = "manifest.json"
@@ -41,9 +42,7 @@ def require_pyarrow() -> Any:
         import pyarrow
         import pyarrow.parquet  # noqa: F401
     except ImportError:
-        raise ImportError(
-            'atlas files need pyarrow: pip install "planarkin[atlas]"'
-        ) from None
+        raise ImportError('atlas files need pyarrow: pip install "planarkin[atlas]"') from None
     return pyarrow
 
 
@@ -92,8 +91,6 @@ class Atlas:
 
     def query(self, target: Any, k: int = 100, **options: Any) -> Any:
         """The k entries nearest the target (see :func:`planarkin.atlas.query`)."""
-        from ._query import query
-
         return query(self, target, k, **options)
 
 
@@ -129,9 +126,7 @@ def read_manifest(path: Path) -> dict[str, Any]:
         raise FileNotFoundError(f"atlas: no {MANIFEST} in {path} (is it an atlas directory?)")
     m = json.loads(f.read_text())
     if m.get("format") != "planarkin-atlas" or m.get("version") != FORMAT_VERSION:
-        raise ValueError(
-            f"atlas: {f} is not a planarkin atlas of format version {FORMAT_VERSION}"
-        )
+        raise ValueError(f"atlas: {f} is not a planarkin atlas of format version {FORMAT_VERSION}")
     return m
 
 

@@ -9,15 +9,20 @@ from typing import Any
 
 import numpy as np
 
-from ...scene import Scene
 from ..._kernel import atlas_pose
+from ...scene import Scene
 
 #: the tracer point of every topology's scene
 TRACER = "P"
 #: topology -> (links, extra entries of the scene)
 _SHAPES: dict[str, tuple[dict[str, list[str]], dict[str, Any]]] = {
     "four-bar": (
-        {"ground": ["O2", "O4"], "crank": ["O2", "A"], "coupler": ["A", "B", "P"], "rocker": ["O4", "B"]},
+        {
+            "ground": ["O2", "O4"],
+            "crank": ["O2", "A"],
+            "coupler": ["A", "B", "P"],
+            "rocker": ["O4", "B"],
+        },
         {"output": {"link": "rocker", "pivot": "O4"}},
     ),
     "slider-crank": (

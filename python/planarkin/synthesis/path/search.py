@@ -1,0 +1,274 @@
+"""The path synthesis pipeline: retrieve atlas entries whose curves look like the target,
+place each onto it (similarity, start, direction, input per point), refine the best by
+SLSQP on the real linkage with exact gradients and the defect constraints, re-verify each
+on a dense sweep, and rank by true error (defect-free designs first)."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ... import atlas as atlases
+from ..._kernel import atlas_match
+from .refine import refine
+from .results import Design, PathResult
+from .targets import CurveTarget, load_target
+from .templates import TRACER, input_offset, scene_of
+from .verify import verify
+
+#: the topologies a path synthesis can return ("auto" tries each)
+TOPOLOGIES = ("four-bar", "slider-crank", "watt2")
+#: descriptor neighbours placed onto the target
+RETRIEVE = 300
+#: atlas entries placed onto an open or partial target besides the neighbours (the
+#: descriptors of a whole curve do not see a part of it)
+SCAN = 30_000
+#: starts per direction when an arc is placed onto an open or partial target
+OFFSETS = 48
+
+
+@dataclass(frozen=True)
+class Placed:
+    """An atlas entry placed onto the target: ``a`` z + ``b`` carries its frame onto the
+    target's, ``theta`` (n,) the entry's input angle at each target point, ``cost`` the
+    residual of the fit over the target's spread."""
+
+    topology: str
+    row: int
+    entry: int
+    params: np.ndarray
+    signs: np.ndarray
+    cost: float
+    a: complex
+    b: complex
+    theta: np.ndarray
+    reversed: bool
+    fraction: float
+
+    def scene(self, index: int = 1) -> Any:
+        """The entry as a scene in the target's frame, drawn at the first point."""
+        return scene_of(
+            self.topology,
+            self.params,
+            self.signs,
+            self.a,
+            self.b,
+            float(self.theta[0]),
+            name=f"path design {index} ({self.topology})",
+            description=f"from atlas entry {self.entry} of the {self.topology} atlas, "
+            "placed onto the target and refined",
+        )
+
+    @property
+    def inputs(self) -> np.ndarray:
+        """The scene's input value at each target point."""
+        return self.theta + input_offset(self.a)
+
+
+def place(atlas: atlases.Atlas, target: CurveTarget, rows: np.ndarray) -> list[Placed]:
+    """The atlas rows placed onto the target, best fit first (those with no fit left out)."""
+    if rows.size == 0:
+        return []
+    closed = target.kind == "closed"
+    params = np.ascontiguousarray(atlas.params[rows])
+    signs = np.ascontiguousarray(atlas.signs[rows], dtype=np.float64)
+    pts = np.ascontiguousarray(target.points, dtype=np.float64)
+    cost, a, b, frac, rev, theta = atlas_match(atlas.topology, params, signs, pts, closed, OFFSETS)
+    out = [
+        Placed(
+            topology=atlas.topology,
+            row=int(r),
+            entry=int(atlas.ids[r]),
+            params=params[i],
+            signs=atlas.signs[r],
+            cost=float(cost[i]),
+            a=complex(*a[i]),
+            b=complex(*b[i]),
+            theta=theta[i],
+            reversed=bool(rev[i]),
+            fraction=float(frac[i]),
+        )
+        for i, r in enumerate(rows)
+        if math.isfinite(cost[i])
+    ]
+    return sorted(out, key=lambda p: p.cost)
+
+
+def retrieve(atlas: atlases.Atlas, target: CurveTarget, k: int = RETRIEVE) -> list[Placed]:
+    """The atlas entries placed onto the target, best first: the descriptor neighbours of a
+    closed target; for an open or partial one, those of the curve traced there and back
+    and the first :data:`SCAN` entries, each placed on its best arc."""
+    if target.kind == "closed":
+        rows = atlases.query(atlas, target.points, k, closed=True).rows
+    else:
+        near = atlases.query(atlas, target.points, k, closed=False).rows
+        rows = np.unique(np.concatenate([near, np.arange(min(SCAN, len(atlas)))]))
+    return place(atlas, target, rows)
+
+
+@dataclass
+class _Clock:
+    limit: float | None
+    start: float = field(default_factory=time.perf_counter)
+
+    def over(self) -> bool:
+        return self.limit is not None and time.perf_counter() - self.start > self.limit
+
+
+def _same(d: Design, others: list[Design], tol: float) -> bool:
+    # two starts that refine to one linkage give one design
+    pts = np.array(list(d.scene.points.values()))
+    for o in others:
+        if o.topology != d.topology:
+            continue
+        q = np.array(list(o.scene.points.values()))
+        if q.shape == pts.shape and np.abs(q - pts).max() < tol:
+            return True
+    return False
+
+
+def path(
+    target: Any,
+    *,
+    kind: str | None = None,
+    topology: str = "four-bar",
+    designs: int = 5,
+    min_transmission: float | None = None,
+    atlas: Any = None,
+    refine_count: int | None = None,
+    box: Any = None,
+    max_link_ratio: float | None = None,
+    full_turn: bool | None = None,
+    time_limit: float | None = None,
+    seed: int = 0,
+    progress: Callable[[str, int, int], None] | None = None,
+) -> PathResult:
+    """Linkages whose tracer point follows ``target`` (a CurveTarget, an (n, 2) array, or
+    a CSV, JSON or SVG file; ``kind`` "closed", "open" or "partial"), best first: up to
+    ``designs`` of them, each refined and verified (see the module). ``topology``: one of
+    :data:`TOPOLOGIES` or "auto" (each). ``atlas``: an Atlas or an atlas directory (default:
+    the topology's default atlas, built into the user cache on first use).
+    ``min_transmission`` (degrees), ``box`` ((xmin, xmax), (ymin, ymax)) for the fixed
+    pivots, ``max_link_ratio`` and ``full_turn`` constrain the refinement;
+    ``refine_count`` candidates are refined (default 3 x designs, at least 8);
+    ``time_limit`` (seconds) stops refining and returns what is verified so far.
+    ``progress(stage, done, total)`` is told each stage's advance."""
+    clock = _Clock(time_limit)
+    tgt = target if isinstance(target, CurveTarget) else load_target(target, kind=kind)
+    if kind is not None and tgt.kind != kind:
+        tgt = CurveTarget(tgt.points, kind, tgt.inputs)
+    if topology != "auto" and topology not in TOPOLOGIES:
+        raise ValueError(
+            f"topology must be one of {', '.join(TOPOLOGIES)} or 'auto', got {topology!r}"
+        )
+    if int(designs) != designs or designs < 1:
+        raise ValueError(f"designs must be an integer >= 1, got {designs!r}")
+    if time_limit is not None and not (time_limit > 0):
+        raise ValueError(f"time_limit must be > 0 seconds, got {time_limit!r}")
+    if min_transmission is not None and not (0 <= min_transmission < 90):
+        raise ValueError(f"min_transmission must be in [0, 90) degrees, got {min_transmission!r}")
+    n_refine = refine_count if refine_count is not None else max(8, 3 * designs)
+    if int(n_refine) != n_refine or n_refine < 1:
+        raise ValueError(f"refine_count must be an integer >= 1, got {refine_count!r}")
+    say = progress or (lambda stage, done, total: None)
+    timings: dict[str, float] = {}
+    tops = TOPOLOGIES if topology == "auto" else (topology,)
+    if atlas is not None and topology == "auto":
+        raise ValueError("atlas: give a topology with an atlas (auto uses the default atlases)")
+    placed: list[Placed] = []
+    manifests = []
+    for top in tops:
+        t0 = time.perf_counter()
+        if atlas is None:
+            at = atlases.default(top, progress=lambda d, t, top=top: say(f"atlas {top}", d, t))
+        elif isinstance(atlas, atlases.Atlas):
+            at = atlas
+        else:
+            at = atlases.open_atlas(atlas)
+        if at.topology != top:
+            raise ValueError(f"atlas: holds {at.topology} linkages, not {top}")
+        manifests.append(at.manifest)
+        timings[f"atlas {top}"] = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        say("retrieval", 0, 1)
+        placed += retrieve(at, tgt)
+        timings["retrieval"] = timings.get("retrieval", 0.0) + time.perf_counter() - t0
+    placed.sort(key=lambda p: p.cost)
+    say("retrieval", 1, 1)
+    found: list[Design] = []
+    stopped = "done"
+    t0 = time.perf_counter()
+    tol = 1e-6 * tgt.size
+    todo = placed[:n_refine]
+    for i, cand in enumerate(todo):
+        if clock.over():
+            stopped = "time limit"
+            break
+        say("refinement", i, len(todo))
+        try:
+            sc = cand.scene(len(found) + 1)
+            inputs = cand.inputs
+        except ValueError:
+            continue
+        r = refine(
+            sc,
+            TRACER,
+            tgt,
+            inputs,
+            min_transmission=min_transmission,
+            box=box,
+            max_link_ratio=max_link_ratio,
+            full_turn=bool(full_turn) if full_turn is not None else tgt.kind != "open",
+        )
+        v = verify(r.scene, TRACER, tgt, r.inputs, min_transmission=min_transmission)
+        d = Design(
+            scene=r.scene,
+            tracer=TRACER,
+            error=v.error,
+            defects=v.defects,
+            inputs=v.inputs,
+            topology=cand.topology,
+            min_transmission=v.min_transmission,
+            full_turn=v.full_turn,
+            verified=v.ok,
+            source={
+                "atlas_entry": cand.entry,
+                "atlas_seed": int(
+                    manifests[TOPOLOGIES.index(cand.topology) if topology == "auto" else 0]["seed"]
+                ),
+                "placement_cost": cand.cost,
+                "reversed": cand.reversed,
+                "arc_fraction": cand.fraction,
+            },
+        )
+        if not _same(d, found, tol):
+            found.append(d)
+    say("refinement", len(todo), len(todo))
+    timings["refinement"] = time.perf_counter() - t0
+    found.sort(key=lambda d: (not d.verified, d.error.max))
+    timings["total"] = time.perf_counter() - clock.start
+    return PathResult(
+        designs=found[:designs],
+        target=tgt,
+        options={
+            "kind": tgt.kind,
+            "topology": topology,
+            "designs": designs,
+            "min_transmission": min_transmission,
+            "refine_count": n_refine,
+            "box": box,
+            "max_link_ratio": max_link_ratio,
+            "full_turn": full_turn,
+            "time_limit": time_limit,
+            "timing": tgt.inputs is not None,
+        },
+        timings=timings,
+        seed=seed,
+        stopped=stopped,
+        atlas=manifests[0] if len(manifests) == 1 else {"atlases": manifests},
+    )
