@@ -13,8 +13,8 @@ from .._kernel import atlas_describe
 
 #: entries from which an approximate index pays (below, the exact scan takes < 20 ms)
 APPROXIMATE_FROM = 2_000_000
-#: inverted lists probed per query (recall@100 >= 0.95 measured on 10 million four-bars)
-NPROBE = 48
+#: inverted lists probed per query (recall@100 on 10 million four-bars: see BENCHMARKS.md)
+NPROBE = 128
 
 
 @dataclass(frozen=True)
@@ -57,25 +57,32 @@ def descriptor_variants(points: np.ndarray, closed: bool) -> np.ndarray:
     return np.unique(np.asarray(out, dtype=np.float32), axis=0)
 
 
-def _subset(atlas: Any, closed: bool) -> tuple[np.ndarray, np.ndarray]:
-    """The rows a target may use and their descriptors (kept with the atlas): a closed
+def _subset(atlas: Any, closed: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The rows a target may use, their descriptors and those's squared norms (kept with
+    the atlas): a closed
     target needs an input that turns fully; an open one may use any."""
     key = f"rows-{closed}"
     if key not in atlas._indexes:
         rows = np.flatnonzero(atlas.full_turn) if closed else np.arange(len(atlas))
-        atlas._indexes[key] = (rows, np.ascontiguousarray(atlas.descriptor[rows]))
+        base = np.ascontiguousarray(atlas.descriptor[rows])
+        atlas._indexes[key] = (rows, base, np.einsum("ij,ij->i", base, base))
     return atlas._indexes[key]
 
 
-def exact_search(base: np.ndarray, queries: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+def exact_search(
+    base: np.ndarray, queries: np.ndarray, k: int, norms: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """The k nearest rows of ``base`` (N, D) to each query (V, D): (distances, rows), both
-    (V, k), by one matrix product."""
+    (V, k), by one matrix product; ``norms`` (N,) the rows' squared norms if known."""
     k = min(k, base.shape[0])
-    norms = np.einsum("ij,ij->i", base, base, dtype=np.float64)
-    d2 = norms[:, None] - 2.0 * (base @ queries.T).astype(np.float64)
-    d2 += np.einsum("ij,ij->i", queries, queries, dtype=np.float64)[None, :]
-    part = np.argpartition(d2, k - 1, axis=0)[:k].T
-    dist = np.take_along_axis(d2.T, part, axis=1)
+    if norms is None:
+        norms = np.einsum("ij,ij->i", base, base)
+    # |x - q|^2 up to the query's own norm, which does not change the order
+    d2 = np.ascontiguousarray((base @ (-2.0 * queries.T)).T)
+    d2 += norms[None, :]
+    part = np.argpartition(d2, k - 1, axis=1)[:, :k]
+    dist = np.take_along_axis(d2, part, axis=1).astype(np.float64)
+    dist += np.einsum("ij,ij->i", queries, queries)[:, None]
     order = np.argsort(dist, axis=1)
     rows = np.take_along_axis(part, order, axis=1)
     return np.sqrt(np.maximum(np.take_along_axis(dist, order, axis=1), 0.0)), rows
@@ -141,7 +148,7 @@ def query(
     if points.ndim != 2 or points.shape[1] != 2 or points.shape[0] < 3:
         raise ValueError(f"target must be >= 3 points of shape (n, 2), got {points.shape}")
     q = descriptor_variants(points, closed)
-    sub, base = _subset(atlas, closed)
+    sub, base, norms = _subset(atlas, closed)
     if sub.size == 0:
         return Candidates(atlas, np.zeros(0, np.int64), np.zeros(0))
     if method == "auto":
@@ -158,7 +165,7 @@ def query(
         d2, rows = index.search(q, int(min(k, sub.size)))
         dist = np.sqrt(np.maximum(d2, 0.0))
     else:
-        dist, rows = exact_search(base, q, int(k))
+        dist, rows = exact_search(base, q, int(k), norms)
     dist, rows = dist.ravel(), rows.ravel()
     ok = rows >= 0
     dist, rows = dist[ok], sub[rows[ok]]
