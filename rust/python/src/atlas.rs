@@ -4,8 +4,10 @@
 
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use planarkin_core::atlas::{
-    build_shard, coupler_curve, describe, match_many, pose, pose_names, Topology, DESCRIPTOR, HARMONICS, SAMPLES,
+    build_shard, coupler_curve, describe, match_curves, match_many, pose, pose_names, Curve, Placement, Topology,
+    DESCRIPTOR, HARMONICS, SAMPLES,
 };
+use planarkin_core::scene::Xy;
 use planarkin_core::Error;
 use pyo3::prelude::*;
 
@@ -140,6 +142,11 @@ fn atlas_match<'py>(
     let n = params.shape()[0];
     let m = pts.len();
     let found = Signals::detach(py, |signals| match_many(t, p, s, SAMPLES, &pts, closed, offsets, signals))?;
+    Ok(placements(py, found, n, m))
+}
+
+/// The placements as columns (NaN and false where a candidate has none).
+fn placements(py: Python<'_>, found: Vec<Option<Placement>>, n: usize, m: usize) -> MatchOut<'_> {
     let (mut cost, mut a, mut b) = (vec![f64::NAN; n], vec![f64::NAN; 2 * n], vec![f64::NAN; 2 * n]);
     let (mut frac, mut rev, mut theta) = (vec![f64::NAN; n], vec![false; n], vec![f64::NAN; n * m]);
     for (i, f) in found.into_iter().enumerate() {
@@ -152,14 +159,52 @@ fn atlas_match<'py>(
             theta[i * m..(i + 1) * m].copy_from_slice(&pl.theta);
         }
     }
-    Ok((
+    (
         cost.into_pyarray(py),
         grid(py, n, 2, a),
         grid(py, n, 2, b),
         frac.into_pyarray(py),
         rev.into_pyarray(py),
         grid(py, n, m, theta),
-    ))
+    )
+}
+
+/// Places curves already made onto the target: `points` (N, M, 2) flattened to (N * M, 2),
+/// `theta` (N, M) their input angles (NaN past a curve's end), `closed` (N,) whether each
+/// turns fully. Columns as `atlas_match`.
+#[pyfunction]
+fn atlas_match_curves<'py>(
+    py: Python<'py>,
+    points: PyReadonlyArray2<'py, f64>,
+    theta: PyReadonlyArray2<'py, f64>,
+    closed: Vec<bool>,
+    target: PyReadonlyArray2<'py, f64>,
+    target_closed: bool,
+    offsets: usize,
+) -> PyResult<MatchOut<'py>> {
+    let pts = points_of("points", &points)?;
+    let tgt = points_of("target", &target)?;
+    let th = theta.as_array();
+    let (n, m) = (th.nrows(), th.ncols());
+    if closed.len() != n || pts.len() != n * m {
+        return Err(err(Error::Shape { name: "points".into(), got: pts.len(), expected: n * m }));
+    }
+    let curves: Vec<Curve> = (0..n)
+        .map(|i| {
+            let row: Vec<(Xy, f64)> = (0..m)
+                .map(|j| (pts[i * m + j], th[[i, j]]))
+                .filter(|(p, t)| t.is_finite() && p[0].is_finite() && p[1].is_finite())
+                .collect();
+            Curve {
+                points: row.iter().map(|r| r.0).collect(),
+                theta: row.iter().map(|r| r.1).collect(),
+                closed: closed[i],
+                conditioning: f64::NAN,
+            }
+        })
+        .collect();
+    let found = Signals::detach(py, |signals| match_curves(&curves, &tgt, target_closed, offsets, signals))?;
+    Ok(placements(py, found, n, tgt.len()))
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -168,6 +213,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(atlas_curve, m)?)?;
     m.add_function(wrap_pyfunction!(atlas_pose, m)?)?;
     m.add_function(wrap_pyfunction!(atlas_match, m)?)?;
+    m.add_function(wrap_pyfunction!(atlas_match_curves, m)?)?;
     m.add("ATLAS_DESCRIPTOR", DESCRIPTOR)?;
     m.add("ATLAS_HARMONICS", HARMONICS)?;
     m.add("ATLAS_SAMPLES", SAMPLES)?;

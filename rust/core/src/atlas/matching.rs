@@ -254,3 +254,21 @@ pub fn match_many(
     }
     Ok(out)
 }
+
+/// [`match_curve`] for curves already made (a scene's sweep), in parallel.
+pub fn match_curves(
+    curves: &[Curve],
+    target: &[Xy],
+    closed: bool,
+    offsets: usize,
+    interrupt: &dyn Interrupt,
+) -> Result<Vec<Option<Placement>>, Error> {
+    let mut out = Vec::with_capacity(curves.len());
+    for chunk in curves.chunks(256) {
+        if interrupt.interrupted() {
+            return Err(Error::Interrupted);
+        }
+        out.extend(chunk.par_iter().map(|c| match_curve(c, target, closed, &FRACTIONS, offsets)).collect::<Vec<_>>());
+    }
+    Ok(out)
+}

@@ -19,7 +19,7 @@ pub use chain::{pose, pose_names, Pose, MAX_POINTS};
 pub use curve::{coupler_curve, Curve, COARSE, SAMPLES};
 pub use descriptor::{describe, resample, DESCRIPTOR, HARMONICS, RESAMPLED};
 pub use draw::{draw, Entry};
-pub use matching::{match_curve, match_many, Placement, FRACTIONS};
+pub use matching::{match_curve, match_curves, match_many, Placement, FRACTIONS};
 pub use shard::{build_shard, Shard};
 
 use crate::error::Error;
