@@ -103,7 +103,8 @@
     $("drawpath-btn").textContent = on ? "Leave path drawing" : "Draw a path";
     for (const id of ["fourbar-panel", "scene-panel", "forces-panel"]) if (on) $(id).classList.add("hidden");
     if (on) { startWorker(); $("auto").checked = false; }
-    P.update();
+    // leaving: the linkage's own view again
+    P.update({ refit: !on });
     refreshPanel();
   }
 
