@@ -24,6 +24,8 @@ FILES = (
     "js/ui.js",
     "js/toml.js",
     "js/input.js",
+    "js/atlas-worker.js",
+    "js/drawpath.js",
     "app.js",
     "wasm.js",
     "scenes.js",

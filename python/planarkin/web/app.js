@@ -2,7 +2,8 @@
 // WebAssembly (planarkin.wasm, here as wasm.js), computes everything it shows.
 //
 // URL parameters (docs/site/web.rst): scene=NAME (a built-in scene) or fourbar=r1,r2,r3,r4
-// (the four-bar by its lengths, the default); file=URL (a JSON or TOML scene file, served
+// (the four-bar by its lengths, the default); draw=1 (the "draw a path" mode), atlas=N
+// (that mode's atlas size, default 100000); file=URL (a JSON or TOML scene file, served
 // pages only); theta=DEGREES (the input angle; for a scene driven by a slot
 // or prismatic pair, the displacement from the drawn pose in scene units); mode=open|crossed,
 // p, delta=DEGREES (four-bar); auto=1 (auto-rotate, or for a linear input auto-advance
@@ -13,7 +14,8 @@
 // The page's scripts (index.html loads them in order, classic scripts so that file:// works)
 // share window.PK_PAGE: js/core.js (the module, the state), js/view.js, js/draw.js,
 // js/fourbar.js, js/scene.js, js/ui.js (a frame, the readout, #state), js/toml.js (TOML
-// scene files), js/input.js (the controls); this one starts the page and sets the hooks
+// scene files), js/input.js (the controls), js/atlas-worker.js and js/drawpath.js ("draw
+// a path": the path atlas in a Web Worker); this one starts the page and sets the hooks
 // of window.pk.
 "use strict";
 
@@ -26,6 +28,7 @@
   async function start() {
     await loadModule();
     bind();
+    P.bindDraw();
     const q = new URLSearchParams(location.search);
     if (q.has("fourbar")) {
       const r = q.get("fourbar").split(",").map(Number);
@@ -49,6 +52,7 @@
       const text = await (await fetch(url)).text();
       openText(text, url.split("/").pop());
     }
+    P.configure(q);
     if (q.has("theta")) {
       S.theta = Number(q.get("theta")) * (linear() ? 1 : DEG);
       update();
@@ -74,6 +78,10 @@
       return { median_ms: per[reps >> 1], min_ms: per[0], n, reps };
     },
     fps: P.fps,
+    // "draw a path": set the drawing (points in scene units, closed or open), then find
+    // the linkages (resolves with #state's "draw" once they are shown)
+    drawPath: (points, closed) => P.setPath(points, closed),
+    findPaths: () => P.findPaths().then(() => JSON.parse(document.getElementById("state").textContent).draw),
   };
 
   start().catch((e) => { setMessage("could not start: " + e); throw e; });

@@ -18,12 +18,17 @@
 //! - `forces`: a scene with loads: the statics input effort and every pin reaction over
 //!   the default 361 input values (the core's `forces`, as `Scene.statics()`);
 //! - `fourbar`: a four-bar by its lengths: pose, coupler path, Grashof and Barker class,
-//!   limit positions.
+//!   limit positions;
+//! - `atlas_shard`, `atlas_describe`, `atlas_match`, `atlas_pose`: the path atlas (the
+//!   core's `atlas`, for the page's "draw a path" mode): a shard of entries (its columns
+//!   in the numbers), a curve's descriptor, candidates placed onto a target, an entry's
+//!   pose.
 //!
-//! Inside, laid out as the core and the Python bindings are: `fourbar` and the `scene/`
-//! folder (`format`, `sweep`, `branches`) convert one subject each; `json` holds the
-//! shared conversions (status names, numbers).
+//! Inside, laid out as the core and the Python bindings are: `fourbar`, `atlas` and the
+//! `scene/` folder (`format`, `sweep`, `branches`) convert one subject each; `json` holds
+//! the shared conversions (status names, numbers).
 
+mod atlas;
 mod fourbar;
 mod json;
 mod scene;
@@ -114,6 +119,10 @@ fn request(s: &mut State, text: &str) -> Result<Value, String> {
             Ok(info)
         }
         "fourbar" => fourbar::solve(&req, nums),
+        "atlas_shard" => atlas::shard(&req, nums),
+        "atlas_describe" => atlas::descriptor(&req),
+        "atlas_match" => atlas::placements(&req),
+        "atlas_pose" => atlas::entry_pose(&req),
         "pose" | "path" | "frame" | "assemblies" | "circuits" | "forces" => {
             let sc = kept.as_ref().ok_or("no scene: send a \"scene\" request first")?;
             match op {
@@ -313,6 +322,82 @@ mod tests {
         assert_eq!(r["limits"]["dead_points"].as_array().unwrap().len(), 2);
         let bad = ask(&mut s, r#"{"op": "fourbar", "r": [4, 3, -2, 1.5], "theta2": 0, "p": 1, "delta": 0}"#);
         assert_eq!(bad["error"], "r3 must be finite and > 0, got -2.0");
+    }
+
+    /// A rhombus four-bar (every link 1) at a right crank angle: A (0, 1), B (1, 1) on the
+    /// left of A -> O4, P half along A-B and half its length across, by hand.
+    #[test]
+    fn an_atlas_entrys_pose_by_hand() {
+        let mut s = State::default();
+        let r = ask(
+            &mut s,
+            &format!(
+                r#"{{"op": "atlas_pose", "params": [1, 1, 1, 0.5, 0.5], "signs": [1], "theta": {}}}"#,
+                std::f64::consts::FRAC_PI_2
+            ),
+        );
+        assert_eq!(r["names"], json!(["O2", "O4", "A", "B", "P"]));
+        let want = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0], [0.5, 1.5]];
+        for (k, w) in want.iter().enumerate() {
+            for c in 0..2 {
+                assert!((r["points"][k][c].as_f64().unwrap() - w[c]).abs() < 1e-12, "{k} {r}");
+            }
+        }
+        // |A - O4| = 3 > r3 + r4: no assembly
+        let none =
+            ask(&mut s, r#"{"op": "atlas_pose", "params": [2, 1, 1, 0.5, 0.5], "signs": [1], "theta": 3.14159}"#);
+        assert_eq!(none["points"], Value::Null);
+        let bad = ask(&mut s, r#"{"op": "atlas_pose", "params": [1, 1, 1], "signs": [1], "theta": 0}"#);
+        assert_eq!(bad["error"], "params has length 3, expected 5");
+        let bad = ask(&mut s, r#"{"op": "atlas_shard", "topology": "five-bar", "seed": 0, "start": 0, "count": 1}"#);
+        assert!(bad["error"].as_str().unwrap().starts_with("topology"), "{bad}");
+    }
+
+    /// A crank-rocker's coupler curve (circle intersections written here), turned a
+    /// quarter, doubled and shifted: the placement finds that similarity and the input
+    /// angle of the first point (to the placement's grid: 128 samples of the curve, 256
+    /// starts, so about 1% of the size).
+    #[test]
+    fn an_atlas_placement_finds_the_similarity() {
+        let (r2, r3, r4, u, v) = (0.3, 1.0, 0.8, 0.5, 0.3);
+        let coupler = |t: f64| {
+            let a = [r2 * t.cos(), r2 * t.sin()];
+            let (dx, dy) = (1.0 - a[0], -a[1]);
+            let d = dx.hypot(dy);
+            let along = (r3 * r3 - r4 * r4 + d * d) / (2.0 * d);
+            let h = (r3 * r3 - along * along).sqrt();
+            let b = [a[0] + (along * dx - h * dy) / d, a[1] + (along * dy + h * dx) / d];
+            let (bx, by) = (b[0] - a[0], b[1] - a[1]);
+            [a[0] + u * bx - v * by, a[1] + u * by + v * bx]
+        };
+        let t0 = 0.4;
+        let target: Vec<[f64; 2]> = (0..60)
+            .map(|k| coupler(t0 + std::f64::consts::TAU * k as f64 / 60.0))
+            .map(|[x, y]| [3.0 - 2.0 * y, 1.0 + 2.0 * x])
+            .collect();
+        let mut s = State::default();
+        let req = json!({"op": "atlas_match", "params": [r2, r3, r4, u, v], "signs": [1], "target": target,
+                         "closed": true, "offsets": 16});
+        let r = ask(&mut s, &req.to_string());
+        let p = &r["placements"][0];
+        let got = |v: &Value, k: usize| v[k].as_f64().unwrap();
+        assert!(p["cost"].as_f64().unwrap() < 1e-4, "{p}");
+        assert!(got(&p["a"], 0).abs() < 0.03 && (got(&p["a"], 1) - 2.0).abs() < 0.03, "{p}");
+        assert!((got(&p["b"], 0) - 3.0).abs() < 0.03 && (got(&p["b"], 1) - 1.0).abs() < 0.03, "{p}");
+        assert_eq!(p["reversed"], false);
+        let th = got(&p["theta"], 0);
+        assert!(
+            ((th - t0 + 3.0 * std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI).abs()
+                < 2e-2,
+            "{th}"
+        );
+        let desc = ask(&mut s, r#"{"op": "atlas_describe", "points": [[1, 1], [1, "x"]], "closed": true}"#);
+        assert_eq!(desc["error"], "points must be a list of [x, y] pairs of real numbers");
+        let desc = ask(&mut s, r#"{"op": "atlas_describe", "points": [[0, 0], [1, 0], [0, 1]], "closed": true}"#);
+        assert_eq!(desc["descriptor"].as_array().map(Vec::len), Some(32));
+        let shard = ask(&mut s, r#"{"op": "atlas_shard", "seed": 0, "start": 5, "count": 3}"#);
+        assert_eq!(shard["descriptor"], json!({"offset": 3 * 8, "cols": 32}));
+        assert_eq!(s.nums.len(), 3 * (5 + 1 + 1 + 1 + 32));
     }
 
     /// A pendulum under gravity: the torque that holds it is m g (l cos t) at every angle,

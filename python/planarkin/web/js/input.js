@@ -127,11 +127,14 @@
       pts.forEach(([x, y], i) => { const d = Math.hypot(sx(x) - mx, sy(y) - my); if (d < bd) { bd = d; best = i; } });
       return best;
     };
+    // (drawing a path, the pointer draws: js/drawpath.js)
     canvas.addEventListener("pointerdown", (ev) => {
+      if (S.drawMode) return;
       S.drag = hit(ev);
       if (S.drag >= 0) { canvas.setPointerCapture(ev.pointerId); draw(); }
     });
     canvas.addEventListener("pointermove", (ev) => {
+      if (S.drawMode) return;
       if (S.drag < 0) { canvas.style.cursor = hit(ev) >= 0 ? "grab" : "default"; return; }
       const r = canvas.getBoundingClientRect();
       movePoint(S.drag, wx(ev.clientX - r.left), wy(ev.clientY - r.top));

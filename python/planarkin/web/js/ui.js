@@ -14,7 +14,8 @@
     ctx.clearRect(0, 0, w, h);
     if (!S.view) return;
     if ($("grid").checked) grid();
-    if (S.kind === "fourbar") drawFourbar(); else if (S.sceneData) drawScene();
+    if (S.drawMode) P.drawMode();
+    else if (S.kind === "fourbar") drawFourbar(); else if (S.sceneData) drawScene();
   }
 
   // --- the readout and the exposed state ---------------------------------------------------------
@@ -104,11 +105,13 @@
       Object.keys(S.sceneData.points).map((n, i) => [n, shownPoints()[i]]);
     st.screen = Object.fromEntries(shown.filter(([, v]) => v && isFinite(num(v[0]))).map(([n, v]) => [n, [sx(v[0]), sy(v[1])]]));
     st.fps = fps;
+    // drawing a path: the drawing, the atlas and the linkages found (js/drawpath.js)
+    st.draw = P.drawState ? P.drawState() : null;
     $("state").textContent = JSON.stringify(st);
   }
 
   function refreshText() {
-    $("info").innerHTML = infoText();
+    $("info").innerHTML = S.drawMode ? "" : infoText();
     const th = $("theta");
     if (linear()) {
       // the slider spans the stroke, in scene units
@@ -132,8 +135,8 @@
       $(k).value = String(v); $(k + "-v").textContent = v.toFixed(2);
     }
     $("delta").value = String(S.delta / DEG); $("delta-v").textContent = (S.delta / DEG).toFixed(1) + "\u00b0";
-    $("fourbar-panel").classList.toggle("hidden", S.kind !== "fourbar");
-    $("scene-panel").classList.toggle("hidden", S.kind !== "scene");
+    $("fourbar-panel").classList.toggle("hidden", S.kind !== "fourbar" || !!S.drawMode);
+    $("scene-panel").classList.toggle("hidden", S.kind !== "scene" || !!S.drawMode);
     $("mode-" + S.mode).checked = true;
   }
 
@@ -178,7 +181,8 @@
   function frame(now) {
     frames++;
     if (now - since >= 1000) { fps = (frames * 1000) / (now - since); frames = 0; since = now; $("hud").textContent = fps.toFixed(0) + " fps"; }
-    if ($("auto").checked && S.drag < 0) {
+    if (S.drawMode) P.animate();
+    else if ($("auto").checked && S.drag < 0) {
       step();
       refreshText();
       draw();

@@ -53,6 +53,8 @@
   }
 
   function fitNow() {
+    // drawing a path: the drawing and the linkage shown on it (js/drawpath.js)
+    if (S.drawMode && P.fitDrawing && P.fitDrawing()) return;
     const pts = [];
     if (S.kind === "fourbar") {
       if (!S.fb) return;
@@ -89,7 +91,7 @@
   }
 
   Object.assign(P, {
-    canvas, ctx, sx, sy, wx, wy, frame2, along, across, at, pathAt, finiteXY, slotTravel, fitNow,
+    canvas, ctx, fit, sx, sy, wx, wy, frame2, along, across, at, pathAt, finiteXY, slotTravel, fitNow,
     resize,
   });
 })(window.PK_PAGE);
