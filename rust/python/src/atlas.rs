@@ -98,6 +98,8 @@ fn atlas_curve<'py>(
     }))
 }
 
+type PoseOut<'py> = (Vec<&'static str>, Arr2<'py, f64>, f64);
+
 /// The pose of one entry at input angle `theta`: (names, points (k, 2), conditioning);
 /// None where it does not assemble.
 #[pyfunction]
@@ -107,7 +109,7 @@ fn atlas_pose<'py>(
     params: PyReadonlyArray1<'py, f64>,
     signs: PyReadonlyArray1<'py, f64>,
     theta: f64,
-) -> PyResult<Option<(Vec<&'static str>, Arr2<'py, f64>, f64)>> {
+) -> PyResult<Option<PoseOut<'py>>> {
     let t = topology(topology_name)?;
     let (p, s) = row(t, &params, &signs)?;
     Ok(pose(t, p, s, theta).map(|q| {

@@ -33,6 +33,7 @@ pub fn pose_names(topology: Topology) -> &'static [&'static str] {
         Topology::FourBar => &["O2", "O4", "A", "B", "P"],
         Topology::SliderCrank => &["O2", "A", "B", "P"],
         Topology::Watt2 => &["O2", "O4", "O6", "A", "B", "C", "D", "P"],
+        Topology::Stephenson3 => &super::scene_chain::STEPHENSON3_POINTS,
     }
 }
 
@@ -63,8 +64,12 @@ fn on_link(a: Xy, b: Xy, u: f64, v: f64) -> Xy {
 
 /// The pose of `topology` with parameters `p` and assembly signs `s` at input angle
 /// `theta` (the crank's angle from the ground line O2 -> O4, or from +x for the
-/// slider-crank); None where it does not assemble.
+/// slider-crank); None where it does not assemble. The Stephenson III has no closed
+/// form: its pose is the scene solver's, reached from its drawing.
 pub fn pose(topology: Topology, p: &[f64], s: &[f64], theta: f64) -> Option<Pose> {
+    if topology == Topology::Stephenson3 {
+        return super::scene_chain::stephenson3_pose(p, theta);
+    }
     let (sn, cs) = theta.sin_cos();
     let mut out = Pose { points: [[0.0; 2]; MAX_POINTS], count: 0, conditioning: 1.0 };
     let mut put = |pts: &[Xy], cond: f64| {
@@ -99,6 +104,7 @@ pub fn pose(topology: Topology, p: &[f64], s: &[f64], theta: f64) -> Option<Pose
             let (d, c2) = dyad(c, p[7], o6, p[8], s[1])?;
             put(&[o2, o4, o6, a, b, c, d, on_link(c, d, p[9], p[10])], c1.min(c2));
         }
+        Topology::Stephenson3 => unreachable!("solved by the scene solver above"),
     }
     Some(out)
 }

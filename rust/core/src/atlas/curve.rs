@@ -32,6 +32,9 @@ pub struct Curve {
 /// The coupler curve of `topology` with parameters `p` and signs `s` at `samples` input
 /// angles; None where no two neighbouring coarse angles assemble.
 pub fn coupler_curve(topology: Topology, p: &[f64], s: &[f64], samples: usize) -> Option<Curve> {
+    if topology == Topology::Stephenson3 {
+        return super::scene_chain::stephenson3_curve(p, samples);
+    }
     let at = |t: f64| pose(topology, p, s, t);
     let step = TAU / COARSE as f64;
     let ok: Vec<bool> = (0..COARSE).map(|k| at(k as f64 * step).is_some()).collect();

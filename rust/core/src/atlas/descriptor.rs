@@ -92,7 +92,9 @@ pub fn describe(points: &[Xy], closed: bool, out: &mut [f32; DESCRIPTOR]) -> boo
         zk.reverse();
     }
     let energy: f64 = zk.iter().map(|&v| norm2(v)).sum();
-    if !(energy > 0.0) || !energy.is_finite() {
+    // a curve with no extent has only rounding left in its harmonics
+    let size = z.iter().fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    if !(energy > (1e-12 * size.max(f64::MIN_POSITIVE)).powi(2)) || !energy.is_finite() {
         return false;
     }
     let scale = 1.0 / energy.sqrt();

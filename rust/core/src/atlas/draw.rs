@@ -94,6 +94,16 @@ pub fn draw(topology: Topology, seed: u64, index: u64) -> Option<Entry> {
                 params[10] = rng.uniform(-1.5, 1.5);
                 signs = [rng.sign(), rng.sign()];
             }
+            Topology::Stephenson3 => {
+                // the crank tip near its pivot j7 (1, 0), the other points on a plate
+                let (r, phi) = (rng.log_uniform(0.15, 0.8), rng.uniform(0.0, TAU));
+                params[0] = 1.0 + r * phi.cos();
+                params[1] = r * phi.sin();
+                for k in 1..6 {
+                    params[2 * k] = rng.uniform(-1.0, 2.5);
+                    params[2 * k + 1] = rng.uniform(-1.5, 2.0);
+                }
+            }
         }
         let n = topology.params();
         let Some(curve) = coupler_curve(topology, &params[..n], &signs, SAMPLES) else {

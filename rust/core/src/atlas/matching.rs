@@ -233,7 +233,7 @@ pub fn match_many(
     interrupt: &dyn Interrupt,
 ) -> Result<Vec<Option<Placement>>, Error> {
     let (np, ns) = (topology.params(), topology.signs());
-    if params.len() % np != 0 || signs.len() != params.len() / np * ns {
+    if !params.len().is_multiple_of(np) || signs.len() != params.len() / np * ns {
         return Err(Error::Shape { name: "signs".into(), got: signs.len(), expected: params.len() / np * ns });
     }
     let n = params.len() / np;

@@ -13,6 +13,7 @@ mod curve;
 mod descriptor;
 mod draw;
 mod matching;
+mod scene_chain;
 mod shard;
 
 pub use chain::{pose, pose_names, Pose, MAX_POINTS};
@@ -20,6 +21,7 @@ pub use curve::{coupler_curve, Curve, COARSE, SAMPLES};
 pub use descriptor::{describe, resample, DESCRIPTOR, HARMONICS, RESAMPLED};
 pub use draw::{draw, Entry};
 pub use matching::{match_curve, match_curves, match_many, Placement, FRACTIONS};
+pub use scene_chain::{stephenson3_spec, STEPHENSON3_POINTS};
 pub use shard::{build_shard, Shard};
 
 use crate::error::Error;
@@ -39,11 +41,17 @@ pub enum Topology {
     /// four-bar O4-C-D-O6 (O6 at (x6, y6)); the tracer P on the coupler C-D. Parameters:
     /// r2, r3, r4, r4c, beta, x6, y6, r5 (C-D), r6 (O6-D), u, v; two assembly signs.
     Watt2,
+    /// Stephenson III: ground j3 (0, 0) - j7 (1, 0), the input crank j7-j6 on the ternary
+    /// T2 {j4, j5, j6, P}, which two binaries (j1-j4, j2-j5) join to the ternary T1
+    /// {j1, j2, j3} pivoted at j3: T1, T2 and the binaries form one Newton group, solved by
+    /// the scene solver. Parameters: the drawn j6, j1, j2, j4, j5 and the tracer P (x, y
+    /// each); no signs (the drawing is the assembly).
+    Stephenson3,
 }
 
 impl Topology {
     /// Every topology, in the order of their codes.
-    pub const ALL: [Topology; 3] = [Topology::FourBar, Topology::SliderCrank, Topology::Watt2];
+    pub const ALL: [Topology; 4] = [Topology::FourBar, Topology::SliderCrank, Topology::Watt2, Topology::Stephenson3];
 
     /// The name used in files and on the command line.
     pub fn name(self) -> &'static str {
@@ -51,6 +59,7 @@ impl Topology {
             Topology::FourBar => "four-bar",
             Topology::SliderCrank => "slider-crank",
             Topology::Watt2 => "watt2",
+            Topology::Stephenson3 => "stephenson3",
         }
     }
 
@@ -59,7 +68,7 @@ impl Topology {
         Topology::ALL
             .into_iter()
             .find(|t| t.name() == name)
-            .ok_or_else(|| Error::invalid("topology", "must be one of four-bar, slider-crank, watt2", name))
+            .ok_or_else(|| Error::invalid("topology", "must be one of four-bar, slider-crank, watt2, stephenson3", name))
     }
 
     /// Number of parameters.
@@ -68,6 +77,7 @@ impl Topology {
             Topology::FourBar => 5,
             Topology::SliderCrank => 4,
             Topology::Watt2 => 11,
+            Topology::Stephenson3 => 12,
         }
     }
 
@@ -76,12 +86,13 @@ impl Topology {
         match self {
             Topology::FourBar | Topology::SliderCrank => 1,
             Topology::Watt2 => 2,
+            Topology::Stephenson3 => 0,
         }
     }
 }
 
 /// Most parameters of any topology.
-pub const MAX_PARAMS: usize = 11;
+pub const MAX_PARAMS: usize = 12;
 
 #[cfg(test)]
 mod tests;

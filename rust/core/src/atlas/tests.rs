@@ -121,3 +121,47 @@ fn matching_finds_the_similarity_the_start_and_the_inputs() {
         assert!(crate::wrap_angle(t - u).abs() < 0.1, "{t} vs {u}");
     }
 }
+
+#[test]
+fn a_curve_with_no_extent_has_no_descriptor() {
+    let mut d = [0.0f32; DESCRIPTOR];
+    assert!(!describe(&[[3.0, 4.0]; 20], true, &mut d));
+    assert!(!describe(&[[1e6, -2e6]; 20], false, &mut d));
+    // a tiny curve far from the origin still has one
+    let tiny: Vec<_> = (0..20).map(|k| [1e3 + 1e-6 * (k as f64).cos(), 1e-6 * (k as f64).sin()]).collect();
+    assert!(describe(&tiny, true, &mut d));
+}
+
+#[test]
+fn stephenson3_poses_keep_every_link_rigid() {
+    // the built-in Stephenson III (python/planarkin/scene/builtin/stephenson3.json) scaled
+    // by 1/5, its crank tip j6, j1, j2, j4, j5 and the tracer P = j4 + (0.1, 0.2)
+    let drawn: [[f64; 2]; 6] = [
+        [5.564345617061239, 0.4371950482264578],
+        [0.35387676334036855, 2.213893501387662],
+        [2.259021654080528, 1.4462003297361068],
+        [3.020627139940088, 4.335523731482693],
+        [4.746459539263316, 4.457062944011273],
+        [3.520627139940088, 5.335523731482693],
+    ];
+    let p: Vec<f64> = drawn.iter().flat_map(|q| [q[0] / 5.0, q[1] / 5.0]).collect();
+    let c = coupler_curve(Topology::Stephenson3, &p, &[], 32).expect("its crank turns fully");
+    assert!(c.closed && c.points.len() == 32);
+    let at0 = pose(Topology::Stephenson3, &p, &[], c.theta[0]).unwrap();
+    let len = |q: &Pose, i: usize, j: usize| {
+        let (a, b) = (q.points[i], q.points[j]);
+        (a[0] - b[0]).hypot(a[1] - b[1])
+    };
+    // every pair on one link: ground, crank, T1, T2 (with P), B1, B2
+    let pairs = [(0, 1), (1, 2), (3, 4), (3, 0), (4, 0), (5, 6), (5, 2), (6, 2), (7, 5), (7, 6), (3, 5), (4, 6)];
+    for k in [0, 5, 13, 22, 31] {
+        let q = pose(Topology::Stephenson3, &p, &[], c.theta[k]).unwrap();
+        for &(i, j) in &pairs {
+            assert!((len(&q, i, j) - len(&at0, i, j)).abs() < 1e-9, "{k}: {i}-{j}");
+        }
+        assert!((q.tracer()[0] - c.points[k][0]).abs() < 1e-12);
+        // the crank is at the asked angle
+        let d = [q.points[2][0] - 1.0, q.points[2][1]];
+        assert!(crate::wrap_angle(d[1].atan2(d[0]) - c.theta[k]).abs() < 1e-12);
+    }
+}
