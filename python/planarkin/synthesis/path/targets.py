@@ -364,7 +364,10 @@ def _svg_d(d: str, m: int) -> tuple[np.ndarray, str | None]:
 def _svg_file(path: Path, m: int) -> tuple[np.ndarray, str | None]:
     text = path.read_text(encoding="utf-8")
     if not text.lstrip().startswith("<"):
-        return _svg_d(text, m)
+        try:
+            return _svg_d(text, m)
+        except ValueError as e:
+            raise ValueError(f"{path}: {e}") from None
     try:
         root = ET.fromstring(text)
     except ET.ParseError as e:
