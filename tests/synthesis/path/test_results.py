@@ -48,7 +48,11 @@ def test_write_gives_scene_files_and_a_strict_report(tmp_path):
     assert rep["target"] == {"points": [[0, 0], [3, 0], [3, 4]], "kind": "open",
                              "inputs": None, "size": 5.0, "length": 7.0}  # fmt: skip
     assert (rep["seed"], rep["stopped"], rep["timings"], rep["atlas"]) == (
-        3, "time limit", {"refine": 1.25}, {"size": 10})
+        3,
+        "time limit",
+        {"refine": 1.25},
+        {"size": 10},
+    )
     assert rep["command"] == "planarkin synthesize path t.csv"
     assert rep["versions"]["planarkin"] == pk.__version__
     assert res.best is res.designs[0] and res.verified == []

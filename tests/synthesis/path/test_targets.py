@@ -308,7 +308,7 @@ def test_svg_smooth_cubic_reflects_the_control_point():
     second = [(1, 0), (1, -1), (2, -1), (2, 0)]
     for x, y in t.points * [1, -1]:
         if x > 1 + 1e-9:
-            u = brentq(lambda s: _bezier(second, s)[0] - x, 0, 1, xtol=1e-15)
+            u = brentq(lambda s, x=x: _bezier(second, s)[0] - x, 0, 1, xtol=1e-15)
             assert y == pytest.approx(_bezier(second, u)[1], abs=1e-10)
 
 

@@ -37,8 +37,8 @@ def build_parser() -> argparse.ArgumentParser:
         prog="planarkin",
         description="Planar linkage kinematics with a Rust core: four-bars (--links), any "
         "planar linkage as a scene (a file or a built-in: 'planarkin scenes'), its circuits, "
-        "the synthesis of double butterflies and of linkages tracing a path. Run 'planarkin analyze' for the textbook "
-        "four-bar, 'planarkin analyze jansen' for a scene.",
+        "the synthesis of double butterflies and of linkages tracing a path. Run 'planarkin "
+        "analyze' for the textbook four-bar, 'planarkin analyze jansen' for a scene.",
     )
     parser.add_argument("--version", action="version", version=f"planarkin {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")

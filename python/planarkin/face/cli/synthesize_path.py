@@ -96,16 +96,14 @@ def add_parser(problems: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "--scheduler",
         default=None,
         metavar="ADDRESS",
-        help="a Dask scheduler to run on (default: this machine); the designs do not "
-        "depend on it",
+        help="a Dask scheduler to run on (default: this machine); the designs do not depend on it",
     )
     p.add_argument(
         "--time-limit",
         type=float,
         default=None,
         metavar="SECONDS",
-        help="stop refining after SECONDS and keep the designs verified by then "
-        "(default: none)",
+        help="stop refining after SECONDS and keep the designs verified by then (default: none)",
     )
     p.add_argument("--seed", type=int, default=0, help="random seed (default: %(default)s)")
     p.add_argument(
@@ -217,14 +215,11 @@ def run(args: argparse.Namespace) -> int:
     target = load_target(
         args.target, kind=args.kind, timing=args.timing, svg_samples=args.svg_samples
     )
-    try:
-        from ...synthesis.path import path as synthesize
-    except ImportError as e:
-        if e.name != "planarkin.synthesis.path":
-            raise  # a missing extra: its own message, with its pip command
-        raise ImportError(
-            "planarkin.synthesis.path.path is not in this build of planarkin"
-        ) from None
+    from ...synthesis import path as path_api
+
+    synthesize = getattr(path_api, "path", None)  # the pipeline, where this build has it
+    if synthesize is None:
+        raise ImportError("planarkin.synthesis.path.path is not in this build of planarkin")
     bars = _Stages(args.quiet)
     try:
         res = synthesize(

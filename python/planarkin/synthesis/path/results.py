@@ -190,9 +190,7 @@ class PathResult:
         ``min_transmission_deg``, ``full_turn``, ``verified``, ``source``), then
         ``target``, ``options``, ``seed``, ``versions``, ``timings``, ``stopped``,
         ``atlas`` and (given) the ``command`` that reproduces the run."""
-        rows = [
-            {"file": f"design_{k}.json", **d.to_dict()} for k, d in enumerate(self.designs, 1)
-        ]
+        rows = [{"file": f"design_{k}.json", **d.to_dict()} for k, d in enumerate(self.designs, 1)]
         rep: dict[str, Any] = {
             "designs": rows,
             "target": self.target.to_dict(),

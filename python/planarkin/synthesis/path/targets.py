@@ -82,9 +82,7 @@ class CurveTarget:
             except (TypeError, ValueError) as e:
                 raise ValueError(f"inputs must be numbers: {e}") from None
             if t.shape != (n,):
-                raise ValueError(
-                    f"inputs must hold one value per point ({n}), got shape {t.shape}"
-                )
+                raise ValueError(f"inputs must hold one value per point ({n}), got shape {t.shape}")
             bad = np.flatnonzero(~np.isfinite(t))
             if len(bad):
                 raise ValueError(f"inputs must be finite: inputs[{int(bad[0])}] is {t[bad[0]]}")
