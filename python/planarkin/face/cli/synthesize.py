@@ -4,7 +4,8 @@ with progress bars on a terminal. Ctrl-C stops the worker processes at once and
 ``--time-limit`` stops the search; either way the best feasible design found so far is
 written and the report says why it stopped. A search with no feasible design writes
 nothing and exits 1. report.json records every option, the command that reproduces the
-run, and the versions it ran with."""
+run, and the versions it ran with. ``synthesize path`` is registered here too; it lives in
+:mod:`.synthesize_path`."""
 
 from __future__ import annotations
 
