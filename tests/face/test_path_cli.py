@@ -400,3 +400,30 @@ def test_the_error_along_the_target_is_the_distance_to_the_tracer():
     # the design figure: the whole coupler curve is the hand-worked one
     curve = figures.coupler_curve(d, 73)
     np.testing.assert_allclose(curve, coupler_point(np.linspace(0, math.tau, 73)), atol=1e-9)
+
+
+@pytest.mark.slow  # a child process (about 1 s)
+def test_a_real_ctrl_c_exits_130_with_one_line(tmp_path, target_csv):
+    import signal
+    import subprocess
+    import textwrap
+
+    out = tmp_path / "out"
+    code = textwrap.dedent(f"""
+        import sys, time
+        import planarkin.synthesis.path as api
+        from planarkin.face.cli import main
+
+        def slow(target, **kw):
+            sys.stderr.write("ready\\n"); sys.stderr.flush()
+            time.sleep(60)
+
+        api.path = slow
+        sys.exit(main(["synthesize", "path", {str(target_csv)!r}, "--out", {str(out)!r}]))
+    """)
+    p = subprocess.Popen([sys.executable, "-c", code], stderr=subprocess.PIPE, text=True)
+    assert p.stderr.readline() == "ready\n"
+    p.send_signal(signal.SIGINT)
+    err = p.communicate(timeout=30)[1]
+    assert p.returncode == 130 and err == "planarkin: interrupted; nothing written\n"
+    assert not out.exists()

@@ -363,3 +363,18 @@ def test_svg_files_refused(tmp_path):
         load_target(p)
     with pytest.raises(ValueError, match="svg_samples must be >= 3"):
         load_target("M 0 0 L 1 1", svg_samples=2)
+
+
+def test_svg_rotated_elliptical_arcs_stay_on_the_ellipse():
+    # an ellipse of radii 3 and 1 turned 30 deg about the origin, as two half arcs
+    c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+    x0, y0 = 3 * c, 3 * s
+    d = f"M {x0} {y0} A 3 1 30 0 1 {-x0} {-y0} a 3 1 30 1 1 {2 * x0} {2 * y0} z"
+    t = load_target(d, svg_samples=40)
+    x, y = t.points[:, 0], -t.points[:, 1]  # back to SVG coordinates
+    u, v = (x * c + y * s) / 3, (-x * s + y * c) / 1  # in the ellipse's own axes
+    np.testing.assert_allclose(u * u + v * v, 1.0, rtol=0, atol=1e-12)
+    assert t.kind == "closed" and len(t) == 40
+    # the arc is swept one way round: the angle in the ellipse's axes moves monotonically
+    a = np.unwrap(np.arctan2(v, u))
+    assert np.all(np.diff(a) > 0) or np.all(np.diff(a) < 0)

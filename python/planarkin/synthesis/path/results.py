@@ -17,12 +17,14 @@ import threading
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ...scene import Scene
 from .targets import CurveTarget
+
+if TYPE_CHECKING:  # a design holds a Scene; its class is the scene's own at run time
+    from ...scene import Scene
 
 __all__ = ["REPORT_JSON", "Defects", "Design", "PathError", "PathResult", "staged", "versions"]
 
@@ -126,7 +128,7 @@ def versions() -> dict[str, str]:
     """What the run ran with: planarkin, NumPy, SciPy, Python and the platform."""
     import scipy
 
-    from ... import __version__
+    from ..._kernel import __version__  # the package's own, without importing the package
 
     return {
         "planarkin": __version__,
@@ -211,8 +213,9 @@ class PathResult:
         folder = Path(folder)
         paths = []
         for k, d in enumerate(self.designs, 1):
-            # through Scene: the file is the scene format, checked as it is read
-            paths.append(Scene.from_dict(d.scene_file_dict(k)).save(folder / f"design_{k}.json"))
+            # through the Scene class: the file is the scene format, checked as it is read
+            sc = type(d.scene).from_dict(d.scene_file_dict(k))
+            paths.append(sc.save(folder / f"design_{k}.json"))
         p = folder / REPORT_JSON
         p.write_text(_json(self.report(command=command)), encoding="utf-8")
         return [*paths, p]
