@@ -352,8 +352,12 @@ def test_bad_svg_path_data_is_refused_in_one_line(tmp_path, d, words):
 
 def test_svg_files_refused(tmp_path):
     p = tmp_path / "t.svg"
-    p.write_text('<svg><path transform="scale(2)" d="M 0 0 L 1 1 L 2 0"/></svg>', "utf-8")
-    with pytest.raises(ValueError, match="has a transform"):
+    p.write_text('<svg><path transform="scale(2) wobble(3)" d="M 0 0 L 1 1 L 2 0"/></svg>',
+                 "utf-8")  # fmt: skip
+    with pytest.raises(ValueError, match="t.svg: SVG transform: cannot read 'wobble"):
+        load_target(p)
+    p.write_text('<svg><path transform="rotate(1, 2)" d="M 0 0 L 1 1 L 2 0"/></svg>', "utf-8")
+    with pytest.raises(ValueError, match="rotate takes 1 or 3 numbers, got 2"):
         load_target(p)
     p.write_text("<svg><rect/></svg>", "utf-8")
     with pytest.raises(ValueError, match="no <path> with a 'd' attribute"):
@@ -378,3 +382,30 @@ def test_svg_rotated_elliptical_arcs_stay_on_the_ellipse():
     # the arc is swept one way round: the angle in the ellipse's axes moves monotonically
     a = np.unwrap(np.arctan2(v, u))
     assert np.all(np.diff(a) > 0) or np.all(np.diff(a) < 0)
+
+
+def test_svg_transforms_on_the_path_and_its_groups_are_applied(tmp_path):
+    # the triangle (0,0) (3,0) (3,4) rotated 90 deg about (1, 1), then scaled by 2 and
+    # moved by (10, 20): each vertex by hand
+    p = tmp_path / "t.svg"
+    p.write_text(
+        '<svg xmlns="http://www.w3.org/2000/svg"><g transform="translate(10 20) scale(2)">'
+        '<path transform="rotate(90 1 1)" d="M 0 0 L 3 0 L 3 4 Z"/></g></svg>',
+        encoding="utf-8",
+    )
+    t = load_target(p, svg_samples=12)  # the perimeter stays 12 units before the scale
+
+    def by_hand(x, y):  # noqa: ANN001, ANN202
+        rx, ry = 1 - (y - 1), 1 + (x - 1)  # rotate(90) about (1, 1)
+        return 10 + 2 * rx, -(20 + 2 * ry)  # scale(2), translate(10, 20); y negated
+
+    for k, (x, y) in {0: (0, 0), 3: (3, 0), 7: (3, 4)}.items():
+        np.testing.assert_allclose(t.points[k], by_hand(x, y), atol=1e-12)
+    step = np.hypot(*np.diff(np.vstack([t.points, t.points[:1]]), axis=0).T)
+    np.testing.assert_allclose(step, 2.0, atol=1e-12)  # 24 units round, 12 equal steps
+    # skews and a matrix: the matrix (2, 0, 0, 3, 1, 1) maps (x, y) to (2x + 1, 3y + 1)
+    p.write_text('<svg><path transform="matrix(2 0 0 3 1 1) skewX(0)" '
+                 'd="M 0 0 L 1 0 L 1 1"/></svg>', "utf-8")  # fmt: skip
+    t = load_target(p, svg_samples=6)  # 2 + 3 units long: one point per unit
+    want = [[1, 1], [2, 1], [3, 1], [3, 2], [3, 3], [3, 4]]
+    np.testing.assert_allclose(t.points, np.array(want) * [1, -1], atol=1e-12)

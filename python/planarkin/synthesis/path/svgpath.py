@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SvgCurve", "parse", "sample"]
+__all__ = ["SvgCurve", "parse", "sample", "transform", "transformed"]
 
 #: Gauss-Legendre nodes and weights on [0, 1] (7 points): arc lengths of the segments.
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(7)
@@ -113,6 +113,66 @@ def _arc(
         return da * np.stack([-rx * np.sin(a), ry * np.cos(a)], axis=1) @ rot.T
 
     return _Segment(at, d)
+
+
+_TRANSFORM = re.compile(r"\s*(matrix|translate|scale|rotate|skewX|skewY)\s*\(([^)]*)\)\s*,?")
+
+
+def transform(text: str) -> np.ndarray:
+    """The 2 x 3 affine matrix [[a, c, e], [b, d, f]] of an SVG ``transform`` attribute
+    (matrix, translate, scale, rotate (about a point too), skewX, skewY; applied right to
+    left as SVG says)."""
+    m = np.eye(3)
+    pos = 0
+    for found in _TRANSFORM.finditer(text):
+        if text[pos : found.start()].strip(" ,"):
+            break
+        pos = found.end()
+        name = found.group(1)
+        try:
+            v = [float(x) for x in re.split(r"[\s,]+", found.group(2).strip()) if x]
+        except ValueError:
+            raise ValueError(f"SVG transform: cannot read {found.group(0).strip()!r}") from None
+        counts = {"matrix": (6,), "translate": (1, 2), "scale": (1, 2), "rotate": (1, 3),
+                  "skewX": (1,), "skewY": (1,)}  # fmt: skip
+        if len(v) not in counts[name]:
+            raise ValueError(f"SVG transform: {name} takes {' or '.join(map(str, counts[name]))} "
+                             f"numbers, got {len(v)}")  # fmt: skip
+        if name == "matrix":
+            a, b, c, d, e, f = v
+            step = np.array([[a, c, e], [b, d, f], [0, 0, 1]])
+        elif name == "translate":
+            step = np.array([[1, 0, v[0]], [0, 1, v[1] if len(v) > 1 else 0.0], [0, 0, 1]])
+        elif name == "scale":
+            sy = v[1] if len(v) > 1 else v[0]
+            step = np.diag([v[0], sy, 1.0])
+        elif name == "rotate":
+            r = math.radians(v[0])
+            cx, cy = (v[1], v[2]) if len(v) == 3 else (0.0, 0.0)
+            c, s = math.cos(r), math.sin(r)
+            rot = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+            to = np.array([[1, 0, cx], [0, 1, cy], [0, 0, 1]])
+            back = np.array([[1, 0, -cx], [0, 1, -cy], [0, 0, 1]])
+            step = to @ rot @ back
+        else:
+            k = math.tan(math.radians(v[0]))
+            step = np.array([[1, k, 0], [0, 1, 0], [0, 0, 1]]) if name == "skewX" else (
+                np.array([[1, 0, 0], [k, 1, 0], [0, 0, 1]]))  # fmt: skip
+        m = m @ step
+    if text[pos:].strip(" ,"):
+        raise ValueError(f"SVG transform: cannot read {text[pos:].strip()!r}")
+    return m[:2]
+
+
+def transformed(curve: SvgCurve, m: np.ndarray) -> SvgCurve:
+    """The curve under the affine map ``m`` (2 x 3): each piece's points and derivatives
+    mapped (exact for every kind of piece; arc lengths are then measured on the map)."""
+    lin, off = m[:, :2], m[:, 2]
+
+    def piece(seg: _Segment) -> _Segment:
+        return _Segment(lambda t: seg.at(t) @ lin.T + off, lambda t: seg.d(t) @ lin.T)
+
+    return SvgCurve(tuple(piece(s) for s in curve.segments), curve.closed)
 
 
 def _tokens(d: str) -> list[str | float]:

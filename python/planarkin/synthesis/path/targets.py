@@ -179,8 +179,9 @@ def load_target(
     (radians) or ``input_deg`` (degrees); ``#`` starts a comment), ``.json`` (an array of
     ``[x, y]`` or ``[x, y, input]``, or an object ``{"points": ..., "kind": ...,
     "inputs": ...}`` with ``inputs`` in radians or ``inputs_deg`` in degrees), ``.svg``
-    (the ``d`` of the first ``<path>``, or a file holding only path data). A string that
-    is not a file and starts with ``M``/``m`` is read as SVG path data.
+    (the ``d`` of the first ``<path>``, under the transforms on it and round it, or a file
+    holding only path data). A string that is not a file and starts with ``M``/``m`` is
+    read as SVG path data.
 
     An SVG path is sampled into ``svg_samples`` points at equal arc length (lines, Béziers
     and arcs; ``Z`` makes it closed); SVG's y axis points down, so y is negated: the target
@@ -349,11 +350,15 @@ def _json(path: Path) -> tuple[np.ndarray, np.ndarray | None, str | None]:
     return pts, inputs, kind
 
 
-def _svg_d(d: str, m: int) -> tuple[np.ndarray, str | None]:
+def _svg_d(d: str, m: int, where: np.ndarray | None = None) -> tuple[np.ndarray, str | None]:
+    """Path data ``d`` sampled into ``m`` points, under the affine map ``where`` (2 x 3;
+    the transforms round the path) when given, y negated."""
     m = int(m)
     if m < 3:
         raise ValueError(f"svg_samples must be >= 3, got {m}")
     curve = svgpath.parse(d)
+    if where is not None:
+        curve = svgpath.transformed(curve, where)
     pts = svgpath.sample(curve, m)
     pts[:, 1] = 0.0 - pts[:, 1]  # SVG's y points down: the target as the drawing is seen
     return pts, ("closed" if curve.closed else None)
@@ -361,36 +366,32 @@ def _svg_d(d: str, m: int) -> tuple[np.ndarray, str | None]:
 
 def _svg_file(path: Path, m: int) -> tuple[np.ndarray, str | None]:
     text = path.read_text(encoding="utf-8")
-    if not text.lstrip().startswith("<"):
-        try:
+    try:
+        if not text.lstrip().startswith("<"):
             return _svg_d(text, m)
-        except ValueError as e:
-            raise ValueError(f"{path}: {e}") from None
-    try:
-        root = ET.fromstring(text)
-    except ET.ParseError as e:
-        raise ValueError(f"{path}: not an SVG file ({e})") from None
-    found = _first_path(root, False)
-    if found is None:
-        raise ValueError(f"{path}: no <path> with a 'd' attribute")
-    d, moved = found
-    if moved:
-        raise ValueError(f"{path}: the first <path> (or a group round it) has a transform, "
-                         "which is not applied; apply it in the drawing program first")  # fmt: skip
-    try:
-        return _svg_d(d, m)
+        try:
+            root = ET.fromstring(text)
+        except ET.ParseError as e:
+            raise ValueError(f"not an SVG file ({e})") from None
+        found = _first_path(root, np.eye(3)[:2])
+        if found is None:
+            raise ValueError("no <path> with a 'd' attribute")
+        d, where = found
+        return _svg_d(d, m, None if np.array_equal(where, np.eye(3)[:2]) else where)
     except ValueError as e:
         raise ValueError(f"{path}: {e}") from None
 
 
-def _first_path(el: ET.Element, moved: bool) -> tuple[str, bool] | None:
-    """The ``d`` of the first <path> in document order, and whether it or an element
-    round it has a ``transform``."""
-    moved = moved or bool(el.get("transform"))
+def _first_path(el: ET.Element, where: np.ndarray) -> tuple[str, np.ndarray] | None:
+    """The ``d`` of the first <path> in document order, and the affine map of the
+    transforms on it and the elements round it (outermost first)."""
+    if el.get("transform"):
+        step = np.vstack([svgpath.transform(el.get("transform", "")), [0.0, 0.0, 1.0]])
+        where = where @ step
     if el.tag.rsplit("}", 1)[-1] == "path" and el.get("d"):
-        return el.get("d", ""), moved
+        return el.get("d", ""), where
     for child in el:
-        found = _first_path(child, moved)
+        found = _first_path(child, where)
         if found is not None:
             return found
     return None
