@@ -9,6 +9,7 @@ from collections.abc import Sequence
 
 import numpy as np
 from matplotlib import colormaps
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ...synthesis.path.results import Design
@@ -105,11 +106,14 @@ def error(target: CurveTarget, designs: Sequence[Design]) -> Figure:
     ax = fig.subplots()
     s = target.arc_fractions()
     cmap = colormaps["viridis"]
+    shown: list[np.ndarray] = []
     for k, d in enumerate(designs):
         e = distances(target, d)
+        shown.append(e)
         c = cmap(0.85 * k / max(1, len(designs) - 1))
         top = float(np.nanmax(e)) if np.isfinite(e).any() else math.nan
         ax.plot(s, e, "-o", color=c, ms=3, lw=1.2, label=f"design {k + 1} (max {top:.3g})")
+    _error_axis(ax, shown)
     ax.set_xlabel("position along the target (arc length, fraction of its length)")
     ax.set_ylabel("distance / target size [-]")
     ax.set_title(f"error along the target ({len(target)} points, size {target.size:.4g})")
@@ -117,3 +121,15 @@ def error(target: CurveTarget, designs: Sequence[Design]) -> Figure:
     if designs:
         ax.legend(loc="best", fontsize="small")
     return fit_titles(fig)
+
+
+def _error_axis(ax: Axes, values: list[np.ndarray]) -> None:
+    """A log axis where the errors span more than two decades (designs near exact beside
+    rough ones), else a linear one from 0 without an offset."""
+    v = np.concatenate([np.ravel(x) for x in values]) if values else np.zeros(0)
+    v = v[np.isfinite(v) & (v > 0)]
+    if len(v) and float(v.max()) > 100.0 * float(v.min()):
+        ax.set_yscale("log")
+        return
+    ax.ticklabel_format(axis="y", useOffset=False)
+    ax.set_ylim(bottom=0.0, top=1.1 * float(v.max()) if len(v) else 1.0)

@@ -159,7 +159,8 @@ def _plain(x: object) -> object:
 
 
 def _json(data: object) -> str:
-    return json.dumps(_plain(data), indent=2, allow_nan=False) + "\n"
+    # default=str: an option given as an object (an Atlas) is written as its text
+    return json.dumps(_plain(data), indent=2, allow_nan=False, default=str) + "\n"
 
 
 @dataclass(frozen=True, eq=False)
