@@ -337,7 +337,7 @@ def test_svg_file_with_xml_and_a_file_of_path_data(tmp_path):
         ("M 0 0 L 1", "'L' needs 2 numbers"),
         ("M 0 0 L 1 1 M 2 2 L 3 3", "a second subpath"),
         ("M 0 0 L 1 1 Z L 2 2", "after Z"),
-        ("M 0 0 L 1 1 X 2 2", "d.svg: SVG path: cannot read 'X' at character 11"),
+        ("M 0 0 L 1 1 X 2 2", "d.svg: SVG path: cannot read 'X' at character 12"),
         ("M 0 0 A 1 1 0 2 0 1 1", "an arc flag must be 0 or 1, got 2"),
         ("M 0 0 L 0 0", "the path has no length"),
     ],
@@ -409,3 +409,11 @@ def test_svg_transforms_on_the_path_and_its_groups_are_applied(tmp_path):
     t = load_target(p, svg_samples=6)  # 2 + 3 units long: one point per unit
     want = [[1, 1], [2, 1], [3, 1], [3, 2], [3, 3], [3, 4]]
     np.testing.assert_allclose(t.points, np.array(want) * [1, -1], atol=1e-12)
+
+
+def test_svg_compact_arc_flags_and_numbers_read_as_svg_says():
+    # "a2 2 0 011 2" is the minifiers' form of "a 2 2 0 0 1 1 2"; "1.5.5" is 1.5 then .5
+    wide = load_target("M 0 0 a 2 2 0 0 1 1 2 L 1.5 0.5 Z", svg_samples=16)
+    tight = load_target("M0 0a2 2 0 011 2L1.5.5z", svg_samples=16)
+    np.testing.assert_array_equal(tight.points, wide.points)
+    assert tight.kind == "closed"

@@ -20,7 +20,8 @@ _GL_X, _GL_W = (_GL_X + 1.0) / 2.0, _GL_W / 2.0
 #: Knots per segment of the arc-length table that Newton starts from.
 _KNOTS = 65
 
-_TOKEN = re.compile(r"([MmLlHhVvCcSsQqTtAaZz])|([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)")
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+_WORD = re.compile(r"[^\s,]+")
 #: How many numbers each command takes per repetition.
 _ARITY = {"m": 2, "l": 2, "h": 1, "v": 1, "c": 6, "s": 4, "q": 4, "t": 2, "a": 7, "z": 0}
 
@@ -176,17 +177,37 @@ def transformed(curve: SvgCurve, m: np.ndarray) -> SvgCurve:
 
 
 def _tokens(d: str) -> list[str | float]:
+    """Commands and numbers; an arc's two flags are read as one character each, so the
+    compact form that minifiers write ("a1 1 0 00 1 1") reads as SVG says."""
     out: list[str | float] = []
-    pos = 0
-    for m in _TOKEN.finditer(d):
-        gap = d[pos : m.start()]
-        if gap.strip(" \t\r\n,"):
-            raise ValueError(f"SVG path: cannot read {gap.strip()!r} at character {pos}")
-        pos = m.end()
-        out.append(m.group(1) if m.group(1) else float(m.group(2)))
-    if d[pos:].strip(" \t\r\n,"):
-        raise ValueError(f"SVG path: cannot read {d[pos:].strip()!r} at character {pos}")
-    return out
+    pos, n = 0, len(d)
+    cmd, k = "", 0
+    while True:
+        while pos < n and d[pos] in " \t\r\n,":
+            pos += 1
+        if pos >= n:
+            return out
+        c = d[pos]
+        if c in "MmLlHhVvCcSsQqTtAaZz":
+            out.append(c)
+            cmd, k = c.lower(), 0
+            pos += 1
+            continue
+        if cmd == "a" and k % 7 in (3, 4):
+            if c not in "01":
+                bad = _WORD.match(d, pos)
+                raise ValueError(f"SVG path: an arc flag must be 0 or 1, got "
+                                 f"{bad.group() if bad else c} (character {pos})")  # fmt: skip
+            out.append(float(c))
+            pos, k = pos + 1, k + 1
+            continue
+        m = _NUMBER.match(d, pos)
+        if m is None:
+            bad = _WORD.match(d, pos)
+            raise ValueError(f"SVG path: cannot read {bad.group() if bad else c!r} at "
+                             f"character {pos}")  # fmt: skip
+        out.append(float(m.group()))
+        pos, k = m.end(), k + 1
 
 
 def _flag(v: float, at: str) -> bool:
