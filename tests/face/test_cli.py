@@ -366,6 +366,7 @@ def test_subcommands_and_tradeoff_registration():
         "forces",
         "scenes",
         "synthesize",
+        "atlas",
         "tradeoff",
     }
     commands.add("web")

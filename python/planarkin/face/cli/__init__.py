@@ -1,6 +1,7 @@
 """The ``planarkin`` command: ``main()`` builds the parser from the command modules (one
-per subcommand: analyze, animate, circuits, export, forces, scenes, synthesize, tradeoff,
-web; analyze's two variants in analyze_fourbar and analyze_scene) and turns what goes wrong
+per subcommand: analyze, animate, atlas, circuits, export, forces, scenes, synthesize,
+tradeoff, web; analyze's two variants in analyze_fourbar and analyze_scene, synthesize's
+path problem in synthesize_path) and turns what goes wrong
 into one line on stderr: a bad option or input (exit 2), a file that cannot be written or a
 missing optional extra (1), Ctrl-C (130)."""
 
@@ -11,13 +12,24 @@ import sys
 
 from ... import __version__
 from ..fonts import use as use_fonts
-from . import analyze, animate, circuits, export, forces, scenes, synthesize, tradeoff, web
+from . import (
+    analyze,
+    animate,
+    atlas,
+    circuits,
+    export,
+    forces,
+    scenes,
+    synthesize,
+    tradeoff,
+    web,
+)
 from ._common import Parser
 
 __all__ = ["build_parser", "main"]
 
 #: The subcommands, in the order ``--help`` lists them.
-COMMANDS = (analyze, animate, scenes, export, circuits, forces, synthesize, tradeoff, web)
+COMMANDS = (analyze, animate, scenes, export, circuits, forces, synthesize, atlas, tradeoff, web)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -25,8 +37,8 @@ def build_parser() -> argparse.ArgumentParser:
         prog="planarkin",
         description="Planar linkage kinematics with a Rust core: four-bars (--links), any "
         "planar linkage as a scene (a file or a built-in: 'planarkin scenes'), its circuits, "
-        "and the synthesis of double butterflies. Run 'planarkin analyze' for the textbook "
-        "four-bar, 'planarkin analyze jansen' for a scene.",
+        "the synthesis of double butterflies and of linkages tracing a path. Run 'planarkin "
+        "analyze' for the textbook four-bar, 'planarkin analyze jansen' for a scene.",
     )
     parser.add_argument("--version", action="version", version=f"planarkin {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")

@@ -4,7 +4,8 @@ with progress bars on a terminal. Ctrl-C stops the worker processes at once and
 ``--time-limit`` stops the search; either way the best feasible design found so far is
 written and the report says why it stopped. A search with no feasible design writes
 nothing and exits 1. report.json records every option, the command that reproduces the
-run, and the versions it ran with."""
+run, and the versions it ran with. ``synthesize path`` is registered here too; it lives in
+:mod:`.synthesize_path`."""
 
 from __future__ import annotations
 
@@ -28,9 +29,10 @@ from ...synthesis.problem import OBJECTIVES, FunctionTarget, Problem
 from ...synthesis.start import MINIMAX_ITER
 from ..figures import synthesis as synthesis_figures
 from ..progress import bar, shown
+from . import synthesize_path
 from ._common import figure_file, format_argument, json_text, quiet_argument
 
-PROBLEMS = ("ackermann",)
+PROBLEMS = ("ackermann", "path")
 #: defaults of the full run (the shipped design in examples/ackermann/ is this run's)
 STARTS, SAMPLES, SEED = 12, 3000, 2
 DESIGN_JSON = "design.json"
@@ -44,25 +46,31 @@ FIGURES = {
 
 
 def add_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
-    """Registers ``synthesize``."""
+    """Registers ``synthesize`` and its problems: ``ackermann`` (here) and ``path``
+    (:mod:`.synthesize_path`)."""
     y = sub.add_parser(
         "synthesize",
-        help="defect-free synthesis of a double butterfly: ackermann",
+        help="synthesis: ackermann (a double butterfly), path (a linkage tracing a curve)",
+        description="Synthesize a linkage: 'ackermann' (the double butterfly of Ackermann "
+        "steering, by multistart SLSQP on the true linkage's error) or 'path' (linkages whose "
+        "point traces a given curve). 'planarkin synthesize PROBLEM --help' lists each one's "
+        "options.",
+    )
+    problems = y.add_subparsers(dest="problem", required=True, metavar="PROBLEM")
+    a = problems.add_parser(
+        "ackermann",
+        help="defect-free synthesis of a double butterfly for Ackermann steering",
         description="Synthesize a double butterfly by multistart SLSQP on the true linkage's "
         f"error, verify it, and write {DESIGN_JSON}, {REPORT_JSON} and the study's figures.",
     )
-    add_arguments(y)
-    y.set_defaults(func=run)
+    add_arguments(a)
+    a.set_defaults(func=run)
+    synthesize_path.add_parser(problems)
     return y
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    """The options of ``synthesize``."""
-    p.add_argument(
-        "problem",
-        choices=PROBLEMS,
-        help="the synthesis problem (the study's example 2: Ackermann steering)",
-    )
+    """The options of ``synthesize ackermann``."""
     p.add_argument(
         "--out",
         type=Path,
