@@ -58,7 +58,7 @@ def test_descriptors_of_different_curves_differ():
     assert np.all(dist[~np.eye(rows.size, dtype=bool)] > 1e-3)
 
 
-@pytest.mark.parametrize("topology", ["four-bar", "slider-crank", "watt2"])
+@pytest.mark.parametrize("topology", ["four-bar", "slider-crank", "watt2", "stephenson3"])
 def test_an_entry_as_a_scene_traces_the_kernels_curve(topology):
     # the template's scene, solved by the scene solver (numerical continuation), against
     # the atlas kernel's closed form, carried by the same similarity

@@ -26,6 +26,7 @@ PARAMS: dict[str, tuple[str, ...]] = {
     "four-bar": ("r2", "r3", "r4", "u", "v"),
     "slider-crank": ("r3", "e", "u", "v"),
     "watt2": ("r2", "r3", "r4", "r4c", "beta", "x6", "y6", "r5", "r6", "u", "v"),
+    "stephenson3": tuple(f"{p}{c}" for p in ("j6", "j1", "j2", "j4", "j5", "P") for c in "xy"),
 }
 
 

@@ -43,6 +43,17 @@ _SHAPES: dict[str, tuple[dict[str, list[str]], dict[str, Any]]] = {
         },
         {"output": {"link": "rocker", "pivot": "O6"}},
     ),
+    "stephenson3": (
+        {
+            "ground": ["j3", "j7"],
+            "crank": ["j7", "j6"],
+            "T1": ["j1", "j2", "j3"],
+            "T2": ["j4", "j5", "j6", "P"],
+            "B1": ["j1", "j4"],
+            "B2": ["j2", "j5"],
+        },
+        {"input": {"link": "crank", "pivot": "j7"}, "output": {"link": "T1", "pivot": "j3"}},
+    ),
 }
 
 

@@ -87,8 +87,10 @@ fn shards_are_the_same_however_they_are_cut() {
     let other = build_shard(Topology::FourBar, 8, 0, 60, &Never).unwrap();
     assert_ne!(whole.params, other.params);
     for t in Topology::ALL {
-        let s = build_shard(t, 1, 0, 40, &Never).unwrap();
-        assert_eq!(s.params.len(), 40 * t.params());
+        // the scene solver's Stephenson III is slow in a debug build: a few will do
+        let n = if t == Topology::Stephenson3 { 3 } else { 40 };
+        let s = build_shard(t, 1, 0, n, &Never).unwrap();
+        assert_eq!(s.params.len(), n * t.params());
         assert!(s.descriptor.iter().all(|v| v.is_finite()));
     }
 }

@@ -100,6 +100,9 @@ impl Plan {
         let (dx, dy) = dirs.split_at(n * nl);
         crate::simd::directions_into(dx, dy, out.angles);
         non_finite_rows(theta, &mut out);
+        if !opts.classify {
+            return Ok(());
+        }
         self.classify_limits(theta, &mut out, interrupt)
     }
 

@@ -17,6 +17,10 @@ pub struct SceneSweepOptions {
     pub omega: Option<f64>,
     /// How each input value's pose is found ([`ScenePredictor::Continuation`] unless set).
     pub predictor: ScenePredictor,
+    /// Tell NOT_ASSEMBLABLE from LIMIT where the motion from the drawn pose does not reach
+    /// (counting every assembly there: the homotopy for a group). True unless set; an
+    /// atlas, which needs only what the drawn circuit reaches, turns it off.
+    pub classify: bool,
 }
 
 /// A closed-form step (a dyad, a slider's circle-line, line-line or guide through a point)
@@ -67,7 +71,12 @@ impl SceneSweepOptions {
         if let Some(w) = omega {
             finite("omega", w)?;
         }
-        Ok(Self { newton, max_step, omega, predictor: ScenePredictor::Continuation })
+        Ok(Self { newton, max_step, omega, predictor: ScenePredictor::Continuation, classify: true })
+    }
+
+    /// The same options, telling NOT_ASSEMBLABLE from LIMIT or not (see `classify`).
+    pub fn with_classify(self, classify: bool) -> Self {
+        Self { classify, ..self }
     }
 
     /// The same options with `predictor`.
