@@ -5,10 +5,13 @@ user's constraints; then a least-squares polish kept only where the constraints 
 
 from __future__ import annotations
 
+import contextlib
+import ctypes
 import math
+import sys
 import time
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -190,6 +193,10 @@ class PathModel:
         c[n] = 2 * math.pi * self.sign
         A = W @ E
         self.at = np.array(at)
+        # each sample's segment (the last point, open, belongs to the last segment): the
+        # constraint is the segment's smallest margin, so SLSQP sees one row per segment
+        self.seg = np.minimum(np.searchsorted(self.at, np.arange(len(rows)), side="right") - 1, nseg - 1)
+        self.nseg = nseg
         self.M = A @ self.T  # samples = M tau + m0
         self.m0 = A @ self.t_fixed + W @ c
         self.nt = self.T.shape[1]
@@ -296,7 +303,13 @@ class PathModel:
 
     def _constraints(self, u: np.ndarray, val: dict[str, Any]) -> np.ndarray:
         det = val["det"]
-        out = [np.where(np.isfinite(det), self.det_sign * det - self.floor, -1.0)]
+        margin = np.where(np.isfinite(det), self.det_sign * det - self.floor, -1.0)
+        pick = np.zeros(self.nseg, dtype=int)
+        for i in range(self.nseg):
+            idx = np.flatnonzero(self.seg == i)
+            pick[i] = idx[int(np.argmin(margin[idx]))]
+        val["pick"] = pick
+        out = [margin[pick]]
         if self.free:
             t = self.inputs(u)
             out.append(self.sign * np.diff(t) - ORDER_GAP)
@@ -334,26 +347,31 @@ class PathModel:
         vel = np.zeros((m, self.np, 2))
         ddet = np.zeros((m, nu))
         if sw is not None:
-            pts = np.ascontiguousarray(sw.coords.reshape(-1, 2))
-            raw = sc._core.pose_gradient(pts, self.cols, False)
-            g = raw.reshape(m, self.np, 2, nc)
-            v = sw.velocity_array
-            good = val["ok"] & np.isfinite(g).all(axis=(1, 2, 3)) & np.isfinite(v).all(axis=(1, 2))
-            dpos[good] = g[good]
-            vel[good] = v[good]
-            if good.any():
+            # the poses SLSQP needs: the target points' and each segment's tightest sample
+            need = np.zeros(m, dtype=bool)
+            need[self.at] = need[val["pick"]] = True
+            need &= val["ok"]
+            rows_ = np.flatnonzero(need)
+            coords = np.ascontiguousarray(sw.coords[rows_])
+            pts = coords.reshape(-1, 2)
+            g = sc._core.pose_gradient(pts, self.cols, False).reshape(rows_.size, self.np, 2, nc)
+            v = sw.velocity_array[rows_]
+            good = np.isfinite(g).all(axis=(1, 2, 3)) & np.isfinite(v).all(axis=(1, 2))
+            gi = rows_[good]
+            dpos[gi], vel[gi] = g[good], v[good]
+            if gi.size:
                 # the conditioning along the exact tangent: by the coordinates, then (one
                 # more column, the first coordinate's tangent plus the motion's) by the input
-                gp = np.ascontiguousarray(pts.reshape(m, self.np, 2)[good]).reshape(-1, 2)
-                gg = np.ascontiguousarray(dpos[good])
+                gp = np.ascontiguousarray(coords[good]).reshape(-1, 2)
+                gg = np.ascontiguousarray(g[good])
                 dc = sc._core.dets_gradient(gp, gg.ravel(), self.cols, self.names)
-                g1 = np.ascontiguousarray(gg[..., :1] + vel[good][..., None])
+                g1 = np.ascontiguousarray(gg[..., :1] + v[good][..., None])
                 d1 = sc._core.dets_gradient(gp, g1.ravel(), self.cols[:1], self.names)
                 dt = d1[:, 0] - dc[:, 0]
-                rows = np.zeros((int(good.sum()), nu))
+                rows = np.zeros((gi.size, nu))
                 rows[:, :nc] = dc * self.size
-                rows[:, nc:] = dt[:, None] * self.M[good]
-                ddet[good] = np.where(np.isfinite(rows), rows, 0.0)
+                rows[:, nc:] = dt[:, None] * self.M[gi]
+                ddet[gi] = np.where(np.isfinite(rows), rows, 0.0)
         jr = np.zeros((2 * n, nu))
         jr[:, :nc] = dpos[self.at, self.k_tr].reshape(2 * n, nc)  # d(p / size) / d(x / size)
         dv = vel[self.at, self.k_tr] / self.size  # (n, 2): by each point's own input
@@ -366,7 +384,7 @@ class PathModel:
 
     def _cons_jac(self, u: np.ndarray, ddet: np.ndarray) -> np.ndarray:
         nc, nu = self.nc, self.nu
-        out = [self.det_sign * ddet]
+        out = [self.det_sign * ddet[self.values(u)["pick"]]]
         if self.free:
             n = self.n
             d = np.zeros((n - 1, nu))
@@ -414,6 +432,42 @@ class PathModel:
 _THREE = ((0, 2, 3), (2, 0, 3), (3, 0, 2))
 
 
+@contextlib.contextmanager
+def one_blas_thread() -> Iterator[None]:
+    """OpenBLAS held to one thread for the duration (restored after). SLSQP's subproblems
+    are a few dozen rows: on a busy machine OpenBLAS's threads wait on each other for
+    longer than the work (measured: 7 ms an SLSQP step against 0.3 ms single-threaded, on
+    2 shared cores). Linux only (the loaded libraries read from /proc); a no-op elsewhere."""
+    held: list[tuple[Any, int]] = []
+    if sys.platform.startswith("linux"):
+        try:
+            with open("/proc/self/maps", encoding="utf-8") as f:
+                paths = {ln.split()[-1] for ln in f if "openblas" in ln.lower() and "/" in ln}
+        except OSError:
+            paths = set()
+        for path in sorted(paths):
+            try:
+                lib = ctypes.CDLL(path)
+            except OSError:
+                continue
+            for pre in ("scipy_openblas", "openblas"):
+                for suf in ("64_", ""):
+                    get = getattr(lib, f"{pre}_get_num_threads{suf}", None)
+                    put = getattr(lib, f"{pre}_set_num_threads{suf}", None)
+                    if get is not None and put is not None:
+                        held.append((put, int(get())))
+                        put(1)
+                        break
+                else:
+                    continue
+                break
+    try:
+        yield
+    finally:
+        for put, n in held:
+            put(n)
+
+
 def _box(box: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
     if box is None:
         return None
@@ -453,6 +507,34 @@ def refine(
     ``max_link_ratio`` of each other, and for a four-bar that must turn fully, Grashof's
     sums. Then a least-squares polish (exact Jacobian) kept only if the constraints hold.
     ``time_limit`` (seconds) stops SLSQP early."""
+    with one_blas_thread():
+        return _refine(
+            scene,
+            tracer,
+            target,
+            inputs,
+            min_transmission=min_transmission,
+            box=box,
+            max_link_ratio=max_link_ratio,
+            full_turn=full_turn,
+            time_limit=time_limit,
+            max_iter=max_iter,
+        )
+
+
+def _refine(
+    scene: Scene,
+    tracer: str,
+    target: CurveTarget,
+    inputs: Any,
+    *,
+    min_transmission: float | None,
+    box: Any,
+    max_link_ratio: float | None,
+    full_turn: bool,
+    time_limit: float | None,
+    max_iter: int,
+) -> Refined:
     start = time.perf_counter()
     floor = DET_FLOOR
     if min_transmission is not None:
