@@ -197,15 +197,20 @@ def test_min_transmission_box_and_link_ratio_are_honoured() -> None:
     assert r.feasible and max(bars) / min(bars) <= 2.5 + 1e-7
 
 
-def test_refined_design_does_not_pass_a_dead_point() -> None:
-    # a rocking four-bar asked to reach points near its limit: whatever it reaches, the
-    # constraints keep the arc off the dead point (verified on the real linkage)
+def test_refined_design_keeps_off_the_dead_point_it_was_started_through() -> None:
+    # a rocking four-bar's coupler curve traced up to its crank's limit (theta_max, where
+    # A, B and O4 line up) and back on the other branch: no defect-free design of this
+    # linkage reaches it all. Started with inputs past the limit, the refinement must
+    # return a design whose arc keeps the asked transmission angle (on the real linkage)
     geo = ((0, 0), (5, 0), 3.0, 3.0, 4.0, 1.0, 1.5)
-    theta = np.linspace(1.0, 2.05, 8)
-    _, _, p = fourbar_curve(*geo, theta)
-    target = CurveTarget(p + np.array([0.05, 0.0]), "open")
-    start = pk.Scene.from_dict(fourbar_scene(*geo, 1.0))
-    r = refine(start, "P", target, theta, min_transmission=10.0)
+    tmax = math.acos(-0.5)  # |A - O4| = r3 + r4 = 7
+    up = np.linspace(1.5, tmax - 1e-3, 6)
+    p = np.vstack([fourbar_curve(*geo, up)[2], fourbar_curve(*geo, up[::-1], side=-1.0)[2][1:]])
+    target = CurveTarget(p, "open")
+    start = pk.Scene.from_dict(fourbar_scene(*geo, 1.5))
+    inputs = np.concatenate([up, up[-1] + 0.05 * np.arange(1, 6)])
+    assert verify(start, "P", target, inputs).defects.branch
+    r = refine(start, "P", target, inputs, min_transmission=10.0)
     v = verify(r.scene, "P", target, r.inputs)
     assert r.feasible
     assert not v.defects.branch and v.min_transmission >= 10.0 - 0.5

@@ -107,11 +107,40 @@ def direction(inputs: np.ndarray) -> float:
     return 1.0 if d.sum() >= 0 else -1.0
 
 
-def unwrapped(inputs: np.ndarray, sign: float) -> np.ndarray:
-    """The inputs made monotone in direction ``sign`` (each step taken modulo 2 pi the
-    ``sign`` way), from the first."""
-    steps = sign * np.mod(sign * np.diff(inputs), 2 * math.pi)
+def unwrapped(inputs: np.ndarray) -> np.ndarray:
+    """The inputs from the first, each step taken as the shorter way round (within pi):
+    a small step backwards stays one (the order constraint corrects it), never a turn."""
+    steps = np.angle(np.exp(1j * np.diff(inputs)))
     return np.concatenate([[inputs[0]], inputs[0] + np.cumsum(steps)])
+
+
+def reachable(scene: Scene, t: np.ndarray, margin: float) -> np.ndarray:
+    """The inputs ``t`` with each one the linkage does not reach (its sweep fails there, or
+    its conditioning is within ``margin`` of a dead point) moved to the nearest input it
+    reaches with that margin, on a grid a little wider than the inputs: a start whose
+    points are all solved, so that every residual has a derivative (a monotone sequence
+    stays monotone, if not strictly)."""
+    try:
+        sw = scene.sweep(t, outputs="all")
+    except ValueError:
+        return t
+    ok = (sw.status == 0) & (np.abs(sw.det) >= margin)
+    if ok.all():
+        return t
+    lo, hi = float(t.min()), float(t.max())
+    pad = 0.1 * (hi - lo) + 1e-3
+    grid = np.linspace(lo - pad, hi + pad, REACH_GRID)
+    g = scene.sweep(grid, outputs="all")
+    good = (g.status == 0) & (np.abs(g.det) >= margin)
+    if not good.any():
+        return t
+    gv = grid[good]
+    near = gv[np.argmin(np.abs(t[:, None] - gv[None, :]), axis=1)]
+    return np.where(ok, t, near)
+
+
+#: the grid :func:`reachable` looks for reachable inputs on
+REACH_GRID = 721
 
 
 class PathModel:
@@ -158,8 +187,10 @@ class PathModel:
         closed = target.kind == "closed"
         self.wrap = closed or bool(full_turn)
         self.sign = direction(t0) if n > 1 else 1.0
-        t0 = unwrapped(t0, self.sign)
+        t0 = unwrapped(t0)
         self.free = target.inputs is None
+        if self.free:
+            t0 = reachable(scene, t0, 2 * self.floor)
         if self.free:
             self.t_fixed = np.zeros(n)
             self.T = np.eye(n)
