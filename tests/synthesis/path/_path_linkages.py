@@ -56,9 +56,7 @@ def fourbar_scene(
     }
 
 
-def transmission_sines(
-    o2: Any, o4: Any, r2: float, r3: float, r4: float, theta: Any
-) -> np.ndarray:
+def transmission_sines(o2: Any, o4: Any, r2: float, r3: float, r4: float, theta: Any) -> np.ndarray:
     """|sin| of the four-bar's transmission angle (law of cosines on A, B, O4)."""
     a, _, _ = fourbar_curve(o2, o4, r2, r3, r4, 0.0, 0.0, theta)
     d2 = ((np.asarray(o4, float) - a) ** 2).sum(1)
@@ -67,9 +65,9 @@ def transmission_sines(
 
 
 def slider_curve(
-    o2: Any, gamma: float, e: float, r: float, l: float, pu: float, pv: float, theta: Any
+    o2: Any, gamma: float, e: float, r: float, rod: float, pu: float, pv: float, theta: Any
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(A, B, P) of an offset slider-crank: crank O2-A (r), rod A-B (l), B on the line
+    """(A, B, P) of an offset slider-crank: crank O2-A (r), rod A-B (``rod``), B on the line
     through O2 at angle ``gamma`` offset ``e`` to its left, ahead of A; P at (pu, pv) in
     the rod's frame."""
     o2 = np.asarray(o2, float)
@@ -78,18 +76,18 @@ def slider_curve(
     t = np.asarray(theta, float)
     a = o2 + r * np.stack([np.cos(t), np.sin(t)], -1)
     sa, ha = (a - o2) @ u, (a - o2) @ n
-    s = sa + np.sqrt(l**2 - (e - ha) ** 2)
+    s = sa + np.sqrt(rod**2 - (e - ha) ** 2)
     b = o2 + s[:, None] * u + e * n
-    w = (b - a) / l
+    w = (b - a) / rod
     wn = np.stack([-w[:, 1], w[:, 0]], -1)
     return a, b, a + pu * w + pv * wn
 
 
 def slider_scene(
-    o2: Any, gamma: float, e: float, r: float, l: float, pu: float, pv: float, theta0: float
+    o2: Any, gamma: float, e: float, r: float, rod: float, pu: float, pv: float, theta0: float
 ) -> dict[str, Any]:
     """The slider-crank drawn at ``theta0``: B in a slot on the ground line O2 -> X."""
-    a, b, p = slider_curve(o2, gamma, e, r, l, pu, pv, [theta0])
+    a, b, p = slider_curve(o2, gamma, e, r, rod, pu, pv, [theta0])
     x = np.asarray(o2, float) + 3.0 * np.array([math.cos(gamma), math.sin(gamma)])
     return {
         "points": {

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import planarkin as pk
 import pytest
 from _path_linkages import (
     WATT2,
@@ -17,8 +18,6 @@ from _path_linkages import (
     slider_curve,
     slider_scene,
 )
-
-import planarkin as pk
 from planarkin.synthesis.path.refine import PathModel, fourbar_joints, refine
 from planarkin.synthesis.path.targets import CurveTarget
 from planarkin.synthesis.path.verify import verify

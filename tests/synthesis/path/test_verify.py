@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import planarkin as pk
 import pytest
 from _path_linkages import (
     fourbar_curve,
@@ -16,8 +17,6 @@ from _path_linkages import (
     slider_scene,
     transmission_sines,
 )
-
-import planarkin as pk
 from planarkin.synthesis.path.targets import CurveTarget
 from planarkin.synthesis.path.verify import verify
 
@@ -51,7 +50,9 @@ def test_the_error_is_the_distance_to_the_curve_not_to_the_inputs_points() -> No
     theta = np.linspace(0.2, 2.6, 9)
     _, _, p = fourbar_curve(*CRANK_ROCKER, theta)
     h = 1e-6
-    tangent = (fourbar_curve(*CRANK_ROCKER, theta + h)[2] - fourbar_curve(*CRANK_ROCKER, theta - h)[2]) / (2 * h)
+    tangent = (
+        fourbar_curve(*CRANK_ROCKER, theta + h)[2] - fourbar_curve(*CRANK_ROCKER, theta - h)[2]
+    ) / (2 * h)
     normal = np.stack([-tangent[:, 1], tangent[:, 0]], -1)
     normal /= np.hypot(normal[:, 0], normal[:, 1])[:, None]
     q = p + 1e-3 * normal

@@ -226,7 +226,9 @@ class PathModel:
         self.at = np.array(at)
         # each sample's segment (the last point, open, belongs to the last segment): the
         # constraint is the segment's smallest margin, so SLSQP sees one row per segment
-        self.seg = np.minimum(np.searchsorted(self.at, np.arange(len(rows)), side="right") - 1, nseg - 1)
+        self.seg = np.minimum(
+            np.searchsorted(self.at, np.arange(len(rows)), side="right") - 1, nseg - 1
+        )
         self.nseg = nseg
         self.M = A @ self.T  # samples = M tau + m0
         self.m0 = A @ self.t_fixed + W @ c
@@ -251,7 +253,9 @@ class PathModel:
         if fb is not None and self.wrap:
             o2, a, b, o4 = (self.names.index(p) for p in fb)
             bars = [(o2, o4), (o2, a), (a, b), (o4, b)]
-            ln = [math.dist(scene.points[self.names[i]], scene.points[self.names[j]]) for i, j in bars]
+            ln = [
+                math.dist(scene.points[self.names[i]], scene.points[self.names[j]]) for i, j in bars
+            ]
             # the input turns fully when it or the ground is the shortest and s + l <= p + q
             # (crank-rocker, double crank): that one's three sums, from the start
             self.grashof = bars if ln[1] <= ln[0] else [bars[1], bars[0], bars[2], bars[3]]
@@ -298,6 +302,8 @@ class PathModel:
         s = self.samples(u)
         m = s.size
         val: dict[str, Any] = {"samples": s}
+        sc: Scene | None
+        sw: Any
         try:
             sc = self.scene_at(u)
             sw = sc.sweep(s, outputs="all", rate=1.0, tol=SWEEP_TOL)
@@ -354,7 +360,9 @@ class PathModel:
                 out.append(np.array([x - xl, xh - x, y - yl, yh - y]) / self.size)
         if self.ratio is not None:
             ln = np.array([np.hypot(*(xy[a] - xy[b])) for a, b in self.pairs])
-            out.append((self.ratio * ln[None, :] - ln[:, None])[~np.eye(ln.size, dtype=bool)] / self.size)
+            out.append(
+                (self.ratio * ln[None, :] - ln[:, None])[~np.eye(ln.size, dtype=bool)] / self.size
+            )
         if self.grashof is not None:
             ln = np.array([np.hypot(*(xy[a] - xy[b])) for a, b in self.grashof])
             short = ln[1]
@@ -594,7 +602,7 @@ def _refine(
         full_turn=full_turn,
     )
     deadline = math.inf if time_limit is None else start + float(time_limit)
-    best = {"u": model.u0, "f": math.inf}
+    best: dict[str, Any] = {"u": model.u0, "f": math.inf}
 
     def keep(u: np.ndarray) -> None:
         f = model.objective(u)

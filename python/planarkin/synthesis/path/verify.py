@@ -121,9 +121,7 @@ def verify(
     _check(
         isinstance(dense, int) and dense >= 2, "dense", f"must be an integer >= 2, got {dense!r}"
     )
-    _check(
-        math.isfinite(floor) and 0 <= floor < 1, "floor", f"must be in [0, 1), got {floor!r}"
-    )
+    _check(math.isfinite(floor) and 0 <= floor < 1, "floor", f"must be in [0, 1), got {floor!r}")
     if min_transmission is not None:
         mt = float(min_transmission)
         _check(0.0 <= mt < 90.0, "min_transmission", f"must be in [0, 90) degrees, got {mt!r}")
@@ -168,16 +166,16 @@ def verify(
     if converged:
         best = s.copy()
         for _ in range(NEWTON):
-            p, v, a, ok = _at(scene, s, sign, k)
+            p, v, a, hit = _at(scene, s, sign, k)
             e = p - q
             dn = np.hypot(e[:, 0], e[:, 1])
-            better = ok & (dn < dist)
+            better = hit & (dn < dist)
             dist = np.where(better, dn, dist)
             best = np.where(better, s, best)
             g1 = (v * e).sum(1)
             g2 = (v * v).sum(1) + (a * e).sum(1)
             g2 = np.where(g2 > 0, g2, (v * v).sum(1) + 1e-300)
-            s_new = np.where(ok, np.clip(s - g1 / g2, lo, hi), s)
+            s_new = np.where(hit, np.clip(s - g1 / g2, lo, hi), s)
             if np.all(np.abs(s_new - s) <= 1e-15 * (1 + np.abs(s))):
                 break
             s = s_new

@@ -233,9 +233,9 @@ impl Scene {
         // with its own drawing
         let point_dot = |r: usize, p: usize, l: usize, c: Xy, gx: &mut DMatrix<f64>, gxi: &mut DMatrix<f64>| {
             if l == self.ground {
-                for k in 0..2 {
-                    if let Some(f) = lay.fcol[p][k] {
-                        gxi[(r, f)] += c[k];
+                for (fc, ck) in lay.fcol[p].iter().zip(c) {
+                    if let Some(f) = *fc {
+                        gxi[(r, f)] += ck;
                     }
                 }
                 return;
@@ -262,45 +262,47 @@ impl Scene {
         // point p (read through link l) on the line (a, b) of guide g at its drawn offset:
         // cross(R_g v0, pos(p) - pos_g(a)) - cross(v0, xi_p - xi_a) = 0, v0 = xi_b - xi_a
         // (not normalised: the row is zero at the solution, so its scale does not matter)
-        let on_line = |r: usize, p: usize, l: usize, g: usize, (a, b): (usize, usize), gx: &mut DMatrix<f64>, gxi: &mut DMatrix<f64>| {
-            let v0 = sub(xi[b], xi[a]);
-            let vg = if g == self.ground { v0 } else { turn(g, v0) };
-            let d = sub(at(p), at(a));
-            let c = perp(vg); // cross(vg, y) = perp(vg) . y
-            point_dot(r, p, l, c, gx, gxi);
-            point_dot(r, a, g, [-c[0], -c[1]], gx, gxi);
-            if g != self.ground {
-                gx[(r, lay.block[g] + 2)] += cross(perp(vg), d);
-            }
-            let w0 = sub(xi[p], xi[a]);
-            for (q, sq) in [(b, 1.0), (a, -1.0)] {
-                for j in 0..2 {
-                    if let Some(f) = lay.fcol[q][j] {
-                        let mut e = [0.0; 2];
-                        e[j] = sq;
-                        let re = if g == self.ground { e } else { turn(g, e) };
-                        gxi[(r, f)] += cross(re, d) - cross(e, w0);
+        type Line = (usize, (usize, usize));
+        let on_line =
+            |r: usize, (p, l): (usize, usize), (g, (a, b)): Line, gx: &mut DMatrix<f64>, gxi: &mut DMatrix<f64>| {
+                let v0 = sub(xi[b], xi[a]);
+                let vg = if g == self.ground { v0 } else { turn(g, v0) };
+                let d = sub(at(p), at(a));
+                let c = perp(vg); // cross(vg, y) = perp(vg) . y
+                point_dot(r, p, l, c, gx, gxi);
+                point_dot(r, a, g, [-c[0], -c[1]], gx, gxi);
+                if g != self.ground {
+                    gx[(r, lay.block[g] + 2)] += cross(perp(vg), d);
+                }
+                let w0 = sub(xi[p], xi[a]);
+                for (q, sq) in [(b, 1.0), (a, -1.0)] {
+                    for j in 0..2 {
+                        if let Some(f) = lay.fcol[q][j] {
+                            let mut e = [0.0; 2];
+                            e[j] = sq;
+                            let re = if g == self.ground { e } else { turn(g, e) };
+                            gxi[(r, f)] += cross(re, d) - cross(e, w0);
+                        }
                     }
                 }
-            }
-            for (q, sq) in [(p, 1.0), (a, -1.0)] {
-                for j in 0..2 {
-                    if let Some(f) = lay.fcol[q][j] {
-                        let mut e = [0.0; 2];
-                        e[j] = sq;
-                        gxi[(r, f)] -= cross(v0, e);
+                for (q, sq) in [(p, 1.0), (a, -1.0)] {
+                    for j in 0..2 {
+                        if let Some(f) = lay.fcol[q][j] {
+                            let mut e = [0.0; 2];
+                            e[j] = sq;
+                            gxi[(r, f)] -= cross(v0, e);
+                        }
                     }
                 }
-            }
-        };
+            };
         let slot_rows = 2 * lay.rows.len();
         for (i, s) in self.slots.iter().enumerate() {
             let l = lay.owner[s.point].unwrap_or(self.ground);
-            on_line(slot_rows + i, s.point, l, s.guide, s.line, &mut gx, &mut gxi);
+            on_line(slot_rows + i, (s.point, l), (s.guide, s.line), &mut gx, &mut gxi);
         }
         for (i, pr) in self.prismatic.iter().enumerate() {
             let r = slot_rows + self.slots.len() + 2 * i;
-            on_line(r, origin(pr.link), pr.link, pr.guide, pr.line, &mut gx, &mut gxi);
+            on_line(r, (origin(pr.link), pr.link), (pr.guide, pr.line), &mut gx, &mut gxi);
             // the link keeps its drawn rotation relative to the guide
             gx[(r + 1, lay.block[pr.link] + 2)] += 1.0;
             if pr.guide != self.ground {
