@@ -23,9 +23,8 @@ DENSE = 64
 DEAD = 1e-3
 #: Newton steps refining each closest point along the input
 NEWTON = 8
-#: a target point lies on another circuit when that circuit's curve is nearer than this
-#: fraction of the design's own, and the design's own is farther than CIRCUIT_GAP (of the
-#: target's size): away from where the circuits' curves meet
+#: a target point lies on a circuit when that circuit's curve passes within CIRCUIT_GAP
+#: (of the target's size) of it and every other circuit's is 1 / CIRCUIT_RATIO times farther
 CIRCUIT_RATIO, CIRCUIT_GAP = 0.5, 1e-3
 #: the circuits' traces, this much finer than the default trace (their polylines are read
 #: as curves)
@@ -153,33 +152,22 @@ def verify(
     mind = float(np.min(np.abs(fin))) if fin.size else 0.0
     branch = not converged or not same_sign or mind <= floor
     min_mu = math.degrees(math.asin(min(mind, 1.0)))
-    # each point's closest sample, then Newton on 1/2 |p(t) - q|^2 within its neighbours
+    # each point's closest point on the arc, from two starts: its nearest sample and the
+    # sample at its given input. The given input's is kept unless the other is nearer: a
+    # curve through a point twice (a rocker's joint goes and comes back) reaches it at the
+    # input the design assigns it
     curve = np.where(solved[:, None], sw.coords[:, k], np.nan)
     d2 = ((q[:, None, :] - curve[None]) ** 2).sum(-1)
     d2 = np.where(np.isfinite(d2), d2, np.inf)
-    j = np.argmin(d2, axis=1)
-    s = grid[j].copy()
-    dist = np.sqrt(d2[np.arange(n), j])
     h = span / (m - 1)
-    lo = np.maximum(s - h, min(grid[0], grid[-1]))
-    hi = np.minimum(s + h, max(grid[0], grid[-1]))
-    if converged:
-        best = s.copy()
-        for _ in range(NEWTON):
-            p, v, a, hit = _at(scene, s, sign, k)
-            e = p - q
-            dn = np.hypot(e[:, 0], e[:, 1])
-            better = hit & (dn < dist)
-            dist = np.where(better, dn, dist)
-            best = np.where(better, s, best)
-            g1 = (v * e).sum(1)
-            g2 = (v * v).sum(1) + (a * e).sum(1)
-            g2 = np.where(g2 > 0, g2, (v * v).sum(1) + 1e-300)
-            s_new = np.where(hit, np.clip(s - g1 / g2, lo, hi), s)
-            if np.all(np.abs(s_new - s) <= 1e-15 * (1 + np.abs(s))):
-                break
-            s = s_new
-        s = best
+    at_in = sign * (t_in - t0)
+    at_in = np.mod(at_in, 2 * math.pi) if closed else np.clip(at_in, 0.0, span)
+    starts = np.concatenate([np.argmin(d2, axis=1), np.rint(at_in / h).astype(int)])
+    starts = np.clip(starts, 0, m - 1)
+    s2, d_2 = _closest(scene, np.vstack([q, q]), grid, curve, starts, sign, k, converged)
+    given = d_2[n:] <= d_2[:n] * (1 + 1e-9) + 1e-12 * size
+    s = np.where(given, s2[n:], s2[:n])
+    dist = np.where(given, d_2[n:], d_2[:n])
     # order: positions along the arc strictly increasing (cyclically, closed)
     pos = sign * (s - t0)
     if closed:
@@ -206,10 +194,53 @@ def verify(
     )
 
 
+def _closest(
+    scene: Scene,
+    q: np.ndarray,
+    grid: np.ndarray,
+    curve: np.ndarray,
+    starts: np.ndarray,
+    sign: float,
+    k: int,
+    newton: bool,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Input values and distances of the points ``q`` to the traced curve, each from the
+    grid sample ``starts`` (``curve`` its tracer positions, NaN where unsolved), refined
+    with ``newton`` by Newton's method on 1/2 |p(t) - q|^2 within one grid step of it."""
+    s = grid[starts].copy()
+    dist = np.hypot(*(curve[starts] - q).T)
+    dist = np.where(np.isfinite(dist), dist, np.inf)
+    if not newton:
+        return s, dist
+    h = abs(grid[-1] - grid[0]) / (grid.size - 1)
+    lo = np.maximum(s - h, min(grid[0], grid[-1]))
+    hi = np.minimum(s + h, max(grid[0], grid[-1]))
+    best = s.copy()
+    for _ in range(NEWTON):
+        p, v, a, hit = _at(scene, s, sign, k)
+        e = p - q
+        dn = np.hypot(e[:, 0], e[:, 1])
+        better = hit & (dn < dist)
+        dist = np.where(better, dn, dist)
+        best = np.where(better, s, best)
+        g1 = (v * e).sum(1)
+        g2 = (v * v).sum(1) + (a * e).sum(1)
+        g2 = np.where(g2 > 0, g2, (v * v).sum(1) + 1e-300)
+        s_new = np.where(hit, np.clip(s - g1 / g2, lo, hi), s)
+        if np.all(np.abs(s_new - s) <= 1e-15 * (1 + np.abs(s))):
+            break
+        s = s_new
+    return best, dist
+
+
 def _circuit_defect(
     scene: Scene, k: int, q: np.ndarray, dist: np.ndarray, t0: float, sw: Any, size: float
 ) -> bool:
-    """True where a target point is much nearer another circuit's curve than its own."""
+    """True where the target's points lie on two or more circuits: a point lies on a
+    circuit when its curve passes within CIRCUIT_GAP (of the size) of it and every other
+    circuit's is more than 1 / CIRCUIT_RATIO times farther (points near where the curves
+    cross, or near none, count for no circuit). The design's own circuit is the one
+    through the arc's first pose; its distance is the arc's where that is nearer."""
     try:
         circuits = scene.circuits(t0, step=TRACE_STEP / TRACE_REFINE)
     except ValueError:
@@ -228,14 +259,15 @@ def _circuit_defect(
         )
 
     own = int(np.argmin([gap(c) for c in circuits]))
-    d_own = np.minimum(dist, _polyline_distance(q, circuits[own].trace.coords[:, k]))
-    for i, c in enumerate(circuits):
-        if i == own:
-            continue
-        d_other = _polyline_distance(q, c.trace.coords[:, k])
-        if np.any((d_other < CIRCUIT_RATIO * d_own) & (d_own > CIRCUIT_GAP * size)):
-            return True
-    return False
+    d = np.stack([_polyline_distance(q, c.trace.coords[:, k]) for c in circuits])
+    d[own] = np.minimum(d[own], dist)
+    on = set()
+    for i in range(q.shape[0]):
+        c = int(np.argmin(d[:, i]))
+        others = np.delete(d[:, i], c)
+        if d[c, i] <= CIRCUIT_GAP * size and np.all(d[c, i] < CIRCUIT_RATIO * others):
+            on.add(c)
+    return len(on) > 1
 
 
 def _full_turn(
