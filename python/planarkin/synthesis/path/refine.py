@@ -30,11 +30,16 @@ ORDER_GAP = 1e-3
 #: conditioning samples per segment between consecutive inputs: about one per SAMPLE_STEP
 #: of the starting inputs, within MIN_SAMPLES..MAX_SAMPLES (fixed for the run: SLSQP needs
 #: a constant number of constraints)
-SAMPLE_STEP = math.radians(6.0)
-MIN_SAMPLES, MAX_SAMPLES = 2, 24
+SAMPLE_STEP = math.radians(2.0)
+MIN_SAMPLES, MAX_SAMPLES = 2, 64
 #: SLSQP's iterations and its absolute tolerance on the objective (the polish goes on)
 MAX_ITER = 100
 FTOL = 1e-13
+#: SLSQP hands over to the polish once its best feasible objective has fallen by less than
+#: STALL_DROP (relative) over STALL_ITER iterations: on a target no design traces exactly
+#: the objective levels off and SLSQP's own test (an absolute FTOL) would use every
+#: iteration
+STALL_ITER, STALL_DROP = 15, 1e-4
 #: a constraint counts as holding down to this (dimensionless) violation
 FEAS_TOL = 1e-9
 #: Newton tolerance of the model's sweeps
@@ -248,17 +253,15 @@ class PathModel:
                 f"must be a finite number >= 1, got {max_link_ratio!r}",
             )
         self.pairs = link_pairs(scene)
-        self.grashof: list[tuple[int, int]] | None = None
+        # a four-bar that turns fully: its transmission is extreme where the crank lies
+        # along the ground (|A - O4| = r1 + r2 and |r1 - r2|), so |cos mu| there within
+        # cos(asin(floor)) is the whole turn's floor exactly, Grashof's condition with a
+        # margin (crank-rocker or double crank), and smooth in the lengths
+        self.bars: list[tuple[int, int]] | None = None
         fb = fourbar_joints(scene)
         if fb is not None and self.wrap:
             o2, a, b, o4 = (self.names.index(p) for p in fb)
-            bars = [(o2, o4), (o2, a), (a, b), (o4, b)]
-            ln = [
-                math.dist(scene.points[self.names[i]], scene.points[self.names[j]]) for i, j in bars
-            ]
-            # the input turns fully when it or the ground is the shortest and s + l <= p + q
-            # (crank-rocker, double crank): that one's three sums, from the start
-            self.grashof = bars if ln[1] <= ln[0] else [bars[1], bars[0], bars[2], bars[3]]
+            self.bars = [(o2, o4), (o2, a), (a, b), (o4, b)]
         self.det_sign = 0.0
         self.evaluations = 0
         self._key: bytes | None = None
@@ -363,11 +366,26 @@ class PathModel:
             out.append(
                 (self.ratio * ln[None, :] - ln[:, None])[~np.eye(ln.size, dtype=bool)] / self.size
             )
-        if self.grashof is not None:
-            ln = np.array([np.hypot(*(xy[a] - xy[b])) for a, b in self.grashof])
-            short = ln[1]
-            out.append(np.array([ln[j] + ln[k] - short - ln[i] for i, j, k in _THREE]) / self.size)
+        if self.bars is not None:
+            c, _ = self._turn_cosines(xy)
+            k = math.sqrt(1.0 - self.floor**2)
+            out.append(np.concatenate([k - c, k + c]))
         return np.concatenate(out)
+
+    def _turn_cosines(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """A four-bar's cos mu where the crank lies along the ground, outwards and inwards
+        (2,), and their derivatives by u (2, U)."""
+        assert self.bars is not None
+        rho = np.array([np.hypot(*(xy[a] - xy[b])) for a, b in self.bars]) / self.size
+        dl = self._length_rows(xy, self.bars)
+        r1, r2, r3, r4 = rho
+        c, dc = np.zeros(2), np.zeros((2, self.nu))
+        for i, sg in enumerate((1.0, -1.0)):
+            d = r1 + sg * r2
+            c[i] = (r3**2 + r4**2 - d**2) / (2 * r3 * r4)
+            by = [-d / (r3 * r4), -sg * d / (r3 * r4), 1 / r4 - c[i] / r3, 1 / r3 - c[i] / r4]
+            dc[i] = np.asarray(by) @ dl
+        return c, dc
 
     # --- derivatives ----------------------------------------------------------------------
 
@@ -446,9 +464,9 @@ class PathModel:
             dl = self._length_rows(xy, self.pairs)
             big = self.ratio * dl[None, :, :] - dl[:, None, :]
             out.append(big[~np.eye(len(self.pairs), dtype=bool)])
-        if self.grashof is not None:
-            dl = self._length_rows(xy, self.grashof)
-            out.append(np.array([dl[j] + dl[k] - dl[1] - dl[i] for i, j, k in _THREE]))
+        if self.bars is not None:
+            _, dc = self._turn_cosines(xy)
+            out.append(np.vstack([-dc, dc]))
         return np.vstack(out)
 
     def _length_rows(self, xy: np.ndarray, pairs: Sequence[tuple[int, int]]) -> np.ndarray:
@@ -465,10 +483,6 @@ class PathModel:
         val = self.values(u)
         return bool(np.all(val["ok"]) and np.all(val["cons"] >= -FEAS_TOL))
 
-
-#: the Grashof sums with the input (or ground) as the shortest bar, index 1 of
-#: (ground, crank, coupler, rocker) reordered so: s + l <= p + q for each other bar l
-_THREE = ((0, 2, 3), (2, 0, 3), (3, 0, 2))
 
 
 @contextlib.contextmanager
@@ -543,8 +557,9 @@ def refine(
     traced arc (between consecutive inputs; closed or ``full_turn``, the whole turn), the
     inputs strictly monotone in the target's order (spanning less than a turn), fixed
     pivots inside ``box`` ((xmin, xmax), (ymin, ymax)), link dimensions within
-    ``max_link_ratio`` of each other, and for a four-bar that must turn fully, Grashof's
-    sums. Then a least-squares polish (exact Jacobian) kept only if the constraints hold.
+    ``max_link_ratio`` of each other, and for a four-bar that must turn fully, its
+    transmission floor where the crank lies along the ground (exactly the whole turn's,
+    and Grashof's condition with a margin). Then a least-squares polish (exact Jacobian) kept only if the constraints hold.
     ``time_limit`` (seconds) stops SLSQP early."""
     with one_blas_thread():
         return _refine(
@@ -611,10 +626,17 @@ def _refine(
 
     keep(model.u0)
 
+    history: list[float] = []
+
     def stop(intermediate_result: Any) -> None:
         keep(intermediate_result.x)
+        history.append(best["f"])
         if time.perf_counter() > deadline:
             raise StopIteration
+        if len(history) > STALL_ITER:
+            before = history[-1 - STALL_ITER]
+            if math.isfinite(before) and history[-1] > (1 - STALL_DROP) * before:
+                raise StopIteration
 
     def fun(u: np.ndarray) -> float:
         return model.objective(u)

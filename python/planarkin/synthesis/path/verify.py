@@ -23,9 +23,11 @@ DENSE = 64
 DEAD = 1e-3
 #: Newton steps refining each closest point along the input
 NEWTON = 8
-#: a target point lies on a circuit when that circuit's curve passes within CIRCUIT_GAP
-#: (of the target's size) of it and every other circuit's is 1 / CIRCUIT_RATIO times farther
-CIRCUIT_RATIO, CIRCUIT_GAP = 0.5, 1e-3
+#: a target point lies on a circuit when that circuit's curve passes within a tolerance of
+#: it and every other circuit's that much farther again: the tolerance is CIRCUIT_GAP of
+#: the target's size, or CIRCUIT_NOISE times the median distance from the points to the
+#: nearest circuit where that is more (a noisy target near where the curves cross)
+CIRCUIT_GAP, CIRCUIT_NOISE = 1e-3, 3.0
 #: the circuits' traces, this much finer than the default trace (their polylines are read
 #: as curves)
 TRACE_REFINE = 4
@@ -236,11 +238,10 @@ def _closest(
 def _circuit_defect(
     scene: Scene, k: int, q: np.ndarray, dist: np.ndarray, t0: float, sw: Any, size: float
 ) -> bool:
-    """True where the target's points lie on two or more circuits: a point lies on a
-    circuit when its curve passes within CIRCUIT_GAP (of the size) of it and every other
-    circuit's is more than 1 / CIRCUIT_RATIO times farther (points near where the curves
-    cross, or near none, count for no circuit). The design's own circuit is the one
-    through the arc's first pose; its distance is the arc's where that is nearer."""
+    """True where the target's points lie on two or more circuits (see CIRCUIT_GAP;
+    points near where the curves cross, or near none, count for no circuit). The design's
+    own circuit is the one through the arc's first pose; its distance is the arc's where
+    that is nearer."""
     try:
         circuits = scene.circuits(t0, step=TRACE_STEP / TRACE_REFINE)
     except ValueError:
@@ -261,11 +262,13 @@ def _circuit_defect(
     own = int(np.argmin([gap(c) for c in circuits]))
     d = np.stack([_polyline_distance(q, c.trace.coords[:, k]) for c in circuits])
     d[own] = np.minimum(d[own], dist)
+    # the fit's own level: how near the union of the circuits passes the points
+    tol = max(CIRCUIT_GAP * size, CIRCUIT_NOISE * float(np.median(d.min(axis=0))))
     on = set()
     for i in range(q.shape[0]):
         c = int(np.argmin(d[:, i]))
         others = np.delete(d[:, i], c)
-        if d[c, i] <= CIRCUIT_GAP * size and np.all(d[c, i] < CIRCUIT_RATIO * others):
+        if d[c, i] <= tol and np.all(others - d[c, i] > tol):
             on.add(c)
     return len(on) > 1
 
