@@ -239,3 +239,25 @@ def test_bad_input_is_refused_naming_the_parameter() -> None:
         with pytest.raises(ValueError, match=f"^{name}") as e:
             refine(s, t, g, i, **args)
         assert "\n" not in str(e.value)
+
+
+def test_full_turn_makes_a_rocking_start_a_crank() -> None:
+    # an arc of a non-Grashof four-bar (its crank rocks): asked for a full turn, the
+    # refinement moves to a linkage whose crank turns (checked on the real linkage)
+    geo = ((0, 0), (5, 0), 3.0, 3.0, 4.0, 1.0, 1.5)
+    theta = np.linspace(-0.8, 0.8, 12)
+    target = CurveTarget(fourbar_curve(*geo, theta)[2], "open")
+    start = pk.Scene.from_dict(fourbar_scene(*geo, -0.8))
+    assert not verify(start, "P", target, theta).full_turn
+    r = refine(start, "P", target, theta, full_turn=True)
+    v = verify(r.scene, "P", target, r.inputs)
+    assert r.feasible and v.full_turn and v.ok and v.error.max < 1e-3
+
+
+def test_time_limit_stops_early() -> None:
+    _, _, p = fourbar_curve(*CRANK_ROCKER, TURN)
+    target = CurveTarget(p + 0.05, "closed")
+    start = pk.Scene.from_dict(perturbed(fourbar_scene(*CRANK_ROCKER, 0.0), 0.1, 3))
+    r = refine(start, "P", target, TURN, time_limit=0.005)
+    full = refine(start, "P", target, TURN)
+    assert r.iterations < full.iterations

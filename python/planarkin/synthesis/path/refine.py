@@ -349,7 +349,10 @@ class PathModel:
             idx = np.flatnonzero(self.seg == i)
             pick[i] = idx[int(np.argmin(margin[idx]))]
         val["pick"] = pick
-        out = [margin[pick]]
+        # a four-bar's full turn has its floor exactly in the lengths (``bars``): the
+        # samples would only add rows that are -1, with no derivative, where it does not
+        # turn yet
+        out = [margin[pick] if self.bars is None else np.zeros(0)]
         if self.free:
             t = self.inputs(u)
             out.append(self.sign * np.diff(t) - ORDER_GAP)
@@ -441,7 +444,9 @@ class PathModel:
 
     def _cons_jac(self, u: np.ndarray, ddet: np.ndarray) -> np.ndarray:
         nc, nu = self.nc, self.nu
-        out = [self.det_sign * ddet[self.values(u)["pick"]]]
+        out = [
+            self.det_sign * ddet[self.values(u)["pick"]] if self.bars is None else np.zeros((0, nu))
+        ]
         if self.free:
             n = self.n
             d = np.zeros((n - 1, nu))
@@ -482,7 +487,6 @@ class PathModel:
     def feasible(self, u: np.ndarray) -> bool:
         val = self.values(u)
         return bool(np.all(val["ok"]) and np.all(val["cons"] >= -FEAS_TOL))
-
 
 
 @contextlib.contextmanager
