@@ -563,8 +563,9 @@ def refine(
     pivots inside ``box`` ((xmin, xmax), (ymin, ymax)), link dimensions within
     ``max_link_ratio`` of each other, and for a four-bar that must turn fully, its
     transmission floor where the crank lies along the ground (exactly the whole turn's,
-    and Grashof's condition with a margin). Then a least-squares polish (exact Jacobian) kept only if the constraints hold.
-    ``time_limit`` (seconds) stops SLSQP early."""
+    and Grashof's condition with a margin). Then a least-squares polish (exact Jacobian),
+    kept only if the constraints still hold. ``time_limit`` (seconds) stops SLSQP early.
+    OpenBLAS is held to one thread meanwhile (:func:`one_blas_thread`)."""
     with one_blas_thread():
         return _refine(
             scene,
