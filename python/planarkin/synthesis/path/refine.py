@@ -191,20 +191,25 @@ class PathModel:
         self.floor = float(floor)
         closed = target.kind == "closed"
         self.wrap = closed or bool(full_turn)
-        self.sign = direction(t0) if n > 1 else 1.0
-        t0 = unwrapped(t0)
         self.free = target.inputs is None
         if self.free:
-            t0 = reachable(scene, t0, 2 * self.floor)
-        if self.free:
+            self.sign = direction(t0) if n > 1 else 1.0
+            t0 = reachable(scene, unwrapped(t0), 2 * self.floor)
             self.t_fixed = np.zeros(n)
             self.T = np.eye(n)
             tau0 = t0
         else:
+            # the given timing, turned by the offset that suits the start best (the
+            # inputs' circular mean less the timing's)
             ti = np.asarray(target.inputs, dtype=np.float64)
+            _check(ti.shape == (n,), "target", "its inputs must hold one value per point")
+            self.sign = direction(ti) if n > 1 else 1.0
+            off = float(np.angle(np.mean(np.exp(1j * (t0 - ti)))))
+            off += float(t0[0] - ti[0]) - float(np.angle(np.exp(1j * (t0[0] - ti[0]))))
             self.t_fixed = ti
             self.T = np.ones((n, 1))
-            tau0 = np.array([float(np.mean(t0 - ti))])
+            tau0 = np.array([off])
+            t0 = ti + off
         # samples: each segment's start (a target point) and its interior, then the last
         # point, or (closed, full turn) the way back to the first point
         gaps = np.abs(np.diff(np.concatenate([t0, [t0[0] + 2 * math.pi * self.sign]])))
@@ -537,6 +542,26 @@ def _box(box: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
     return (xl, xh), (yl, yh)
 
 
+def _drawn_at_start(sc: Scene, t: float) -> Scene:
+    """``sc`` drawn at input ``t`` (the traced arc's first point), where it solves there:
+    the design's file then starts where its path does, and sweeps from its drawing follow
+    the arc (the drawing's place along the motion is free in the refinement)."""
+    try:
+        sw = sc.sweep(t, outputs="all", tol=SWEEP_TOL)
+    except ValueError:
+        return sc
+    if sw.status[0] != 0 or not np.all(np.isfinite(sw.coords[0])):
+        return sc
+    d = sc.to_dict()
+    d["points"] = {
+        p: [float(x), float(y)] for p, (x, y) in zip(sw.point_names, sw.coords[0], strict=True)
+    }
+    try:
+        return Scene.from_dict(d)
+    except ValueError:
+        return sc
+
+
 def refine(
     scene: Scene,
     tracer: str,
@@ -699,7 +724,7 @@ def _refine(
     err = PathError(float(d.max()), float(np.sqrt(np.mean(d**2))))
     whole = scene.to_dict()
     whole.pop("lengths", None)  # the refined drawing is an exact pose
-    out_scene = model.scene_at(u, whole)
+    out_scene = _drawn_at_start(model.scene_at(u, whole), float(model.inputs(u)[0]))
     return Refined(
         scene=out_scene,
         tracer=tracer,
