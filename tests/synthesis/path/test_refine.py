@@ -1,7 +1,8 @@
 """Path refinement: the objective's and constraints' exact derivatives against central
 differences of whole sweeps (four-bar, a hand-drawn Watt II six-bar, an offset
 slider-crank), exact recovery of linkages whose closed-form coupler curves are the targets
-(started 2 % off), the user's constraints honoured, and bad input refused by name."""
+(every drawn coordinate moved by 1.5 % of the target's size, about 2 % a point), starting
+inputs by assignment, the user's constraints honoured, and bad input refused by name."""
 
 from __future__ import annotations
 
@@ -18,7 +19,13 @@ from _path_linkages import (
     slider_curve,
     slider_scene,
 )
-from planarkin.synthesis.path.refine import PathModel, fourbar_joints, refine
+from planarkin.synthesis.path.refine import (
+    INIT_SAMPLES,
+    PathModel,
+    fourbar_joints,
+    initial_inputs,
+    refine,
+)
 from planarkin.synthesis.path.targets import CurveTarget
 from planarkin.synthesis.path.verify import verify
 
@@ -138,7 +145,7 @@ def test_exact_recovery_of_fourbars_from_two_percent_off(name, geo, kind, theta)
     assert np.all(np.isfinite(p))
     target = CurveTarget(p, kind)
     data = fourbar_scene(*geo, float(theta[0]))
-    start = pk.Scene.from_dict(perturbed(data, 0.01 * target.size, 7))
+    start = pk.Scene.from_dict(perturbed(data, 0.015 * target.size, 7))
     rng = np.random.default_rng(8)
     r = refine(start, "P", target, theta + rng.normal(0, 0.03, theta.size))
     assert r.feasible and r.error.max <= 1e-6, r
@@ -155,7 +162,7 @@ def test_exact_recovery_with_timing_given() -> None:
     _, _, p = fourbar_curve(*CRANK_ROCKER, theta)
     target = CurveTarget(p, "open", theta - 0.5)  # timing measured from the first point
     data = fourbar_scene(*CRANK_ROCKER, 0.5)
-    start = pk.Scene.from_dict(perturbed(data, 0.01 * target.size, 9))
+    start = pk.Scene.from_dict(perturbed(data, 0.015 * target.size, 9))
     r = refine(start, "P", target, theta + 0.04)
     assert r.feasible and r.error.max <= 1e-6, r
     # the given steps are kept: only the common offset moved
@@ -166,7 +173,7 @@ def test_exact_recovery_of_an_offset_slider_crank() -> None:
     geo = ((0.5, 0.2), 0.3, 0.4, 1.0, 3.5, 1.2, 0.8)
     _, _, p = slider_curve(*geo, TURN)
     target = CurveTarget(p, "closed")
-    start = pk.Scene.from_dict(perturbed(slider_scene(*geo, 0.0), 0.01 * target.size, 11))
+    start = pk.Scene.from_dict(perturbed(slider_scene(*geo, 0.0), 0.015 * target.size, 11))
     r = refine(start, "P", target, TURN + 0.03)
     assert r.feasible and r.error.max <= 1e-6, r
     v = verify(r.scene, "P", target, r.inputs)
@@ -261,3 +268,38 @@ def test_time_limit_stops_early() -> None:
     r = refine(start, "P", target, TURN, time_limit=0.005)
     full = refine(start, "P", target, TURN)
     assert r.iterations < full.iterations
+
+
+ROCKING = ((0, 0), (5, 0), 3.0, 3.0, 4.0, 1.0, 1.5)
+
+
+@pytest.mark.parametrize(
+    "geo, kind, theta",
+    [
+        (CRANK_ROCKER, "closed", TURN + 0.7),
+        (CRANK_ROCKER, "closed", (TURN + 0.7)[::-1]),
+        (CRANK_ROCKER, "open", np.linspace(2.5, 4.0, 8)),
+        (ROCKING, "open", np.linspace(-0.8, 0.8, 12)),
+        (ROCKING, "open", np.linspace(0.8, -0.8, 12)),
+    ],
+    ids=["closed", "closed-reversed", "open", "rocking", "rocking-reversed"],
+)
+def test_initial_inputs_find_the_generating_inputs_to_the_grid(geo, kind, theta) -> None:
+    target = CurveTarget(fourbar_curve(*geo, theta)[2], kind)
+    sc = pk.Scene.from_dict(fourbar_scene(*geo, 0.0))
+    t = initial_inputs(sc, "P", target)
+    # within half a grid step of the generating angles (mod 2 pi), monotone the same way
+    assert np.abs(np.angle(np.exp(1j * (t - theta)))).max() <= math.pi / INIT_SAMPLES + 1e-9
+    assert np.all(np.sign(np.diff(t)) == np.sign(np.diff(theta)))
+
+
+def test_initial_inputs_then_refine_recover_from_five_percent_off() -> None:
+    _, _, p = fourbar_curve(*CRANK_ROCKER, TURN)
+    target = CurveTarget(p, "closed")
+    for seed in range(3):
+        sc = pk.Scene.from_dict(
+            perturbed(fourbar_scene(*CRANK_ROCKER, 0.0), 0.05 * target.size, seed)
+        )
+        r = refine(sc, "P", target, initial_inputs(sc, "P", target))
+        v = verify(r.scene, "P", target, r.inputs)
+        assert v.ok and v.error.max <= 1e-6, (seed, v.error)

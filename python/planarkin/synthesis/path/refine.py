@@ -148,6 +148,105 @@ def reachable(scene: Scene, t: np.ndarray, margin: float) -> np.ndarray:
 REACH_GRID = 721
 
 
+#: samples of the start's curve that :func:`initial_inputs` assigns target points to; on a
+#: full turn the first point's candidates are the samples within INIT_AROUND of the
+#: INIT_MINIMA deepest local minima of its distance
+INIT_SAMPLES, INIT_MINIMA, INIT_AROUND = 360, 4, 3
+
+
+def initial_inputs(
+    scene: Scene, tracer: str, target: CurveTarget, *, samples: int = INIT_SAMPLES
+) -> np.ndarray:
+    """Starting input values for :func:`refine`: each target point assigned to a sample of
+    the scene's curve (swept over the turn around its drawing, or the arc its input
+    reaches), in the target's order, the assignment that minimises the sum of squared
+    distances by dynamic programming over both directions (on a full turn, over the first
+    point's place too, the whole target within one turn). Unwrapped along the motion."""
+    _check(isinstance(scene, Scene), "scene", f"must be a planarkin.Scene, got {scene!r}")
+    _check(tracer in scene.points, "tracer", f"no point {tracer!r} in the scene")
+    _check(isinstance(target, CurveTarget), "target", "must be a CurveTarget")
+    _check(
+        isinstance(samples, int) and samples >= 8,
+        "samples",
+        f"must be an integer >= 8, got {samples!r}",
+    )
+    q = np.asarray(target.points, dtype=np.float64)
+    n, m = q.shape[0], samples
+    grid = scene.input_angle + np.linspace(-math.pi, math.pi, m + 1)[:-1]
+    sw = scene.sweep(grid, outputs="all")
+    ok = (sw.status == 0) & np.isfinite(sw.det) & (np.abs(sw.det) > DET_FLOOR)
+    _check(bool(ok.any()), "scene", "its tracer reaches no point of the turn around its drawing")
+    curve = sw.coords[:, list(scene.points).index(tracer)]
+    cost = ((q[:, None, :] - curve[None]) ** 2).sum(-1)
+    cost = np.where(ok[None], cost, np.inf)
+    full = bool(ok.all())
+    # one turn of increasing angles from just after an unreached sample (a reachable arc
+    # is then one run, not split at the grid's ends)
+    start = 0 if full else int(np.flatnonzero(~ok)[-1] + 1) % m
+    base_t = grid[start] + np.arange(m) * (2 * math.pi / m)
+    base_c = np.roll(cost, -start, axis=1)
+    best: tuple[float, np.ndarray] = (math.inf, base_t[:n])
+    for sign in (1.0, -1.0):
+        c, t = (base_c, base_t) if sign > 0 else (base_c[:, ::-1], base_t[::-1])
+        if full:
+            c2 = np.concatenate([c, c], axis=1)
+            t2 = np.concatenate([t, t + sign * 2 * math.pi])
+            firsts: np.ndarray | None = _near_first(c[0])
+        else:
+            c2, t2, firsts = c, t, None
+        idx, total = _monotone(c2, firsts, m)
+        if total < best[0]:
+            best = (total, t2[idx])
+    return best[1]
+
+
+def _near_first(c0: np.ndarray) -> np.ndarray:
+    """The first point's candidate samples on a full turn: around each of the few deepest
+    local minima of its cost (cyclic), where its best assignment lies."""
+    m = c0.size
+    minima = np.flatnonzero((c0 <= np.roll(c0, 1)) & (c0 <= np.roll(c0, -1)))
+    minima = minima[np.argsort(c0[minima])][:INIT_MINIMA]
+    near = (minima[:, None] + np.arange(-INIT_AROUND, INIT_AROUND + 1)[None]) % m
+    return np.unique(near)
+
+
+def _monotone(cost: np.ndarray, firsts: np.ndarray | None, span: int) -> tuple[np.ndarray, float]:
+    """Strictly increasing sample indices, one per row of ``cost`` (n, M), of least total
+    cost: with ``firsts``, the first index one of them and every index within ``span``
+    samples past it (one per start, all at once); otherwise any."""
+    n, big = cost.shape
+    cols = np.arange(big)
+    if firsts is None:
+        d = cost[0][None].copy()
+        lim = np.full((1, big), True)
+    else:
+        k = firsts.size
+        d = np.full((k, big), np.inf)
+        d[np.arange(k), firsts] = cost[0, firsts]
+        lim = (cols[None] >= firsts[:, None]) & (cols[None] < firsts[:, None] + span)
+    back = np.zeros((n, d.shape[0], big), dtype=np.int64)
+    for i in range(1, n):
+        # the best of the previous row strictly before each column
+        prev = np.concatenate([np.full((d.shape[0], 1), np.inf), d[:, :-1]], axis=1)
+        arg = np.concatenate([np.zeros((d.shape[0], 1), dtype=np.int64),
+                              np.arange(big - 1)[None].repeat(d.shape[0], 0)], axis=1)  # fmt: skip
+        acc = np.minimum.accumulate(prev, axis=1)
+        # where the running minimum was set
+        first = prev == acc
+        pos = np.where(first, arg, 0)
+        pos = np.maximum.accumulate(pos, axis=1)
+        back[i] = pos
+        d = np.where(lim, cost[i][None] + acc, np.inf)
+    r = int(np.argmin(d.min(axis=1)))
+    j = int(np.argmin(d[r]))
+    total = float(d[r, j])
+    idx = np.zeros(n, dtype=np.int64)
+    for i in range(n - 1, -1, -1):
+        idx[i] = j
+        j = int(back[i, r, j])
+    return idx, total
+
+
 class PathModel:
     """The path objective and constraints of one design as functions of the design
     vector u = [(coordinates - centre) / size, timing]: timing free, the n inputs; given,
