@@ -668,8 +668,8 @@ class Scene:
         (one factorisation per input angle, reused for every coordinate). A drawn
         coordinate moves the shapes of the links through its point (the drawing is its own
         assembly), a ground pivot drawn there, and the drawn input angle. For synthesis:
-        the design variables are drawn coordinates. Scenes with slots, prismatic pairs or a
-        linear input are refused for now.
+        the design variables are drawn coordinates. Slots and prismatic pairs hold at their
+        drawn offsets from their lines; scenes with a linear input are refused for now.
 
         ``relative=True`` holds the input at its rotation from the drawn pose rather than at
         its absolute angle, as synthesis measures its inputs: the change of the drawn input

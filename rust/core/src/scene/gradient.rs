@@ -9,13 +9,15 @@
 //! so at a solved pose dX/dxi = -G_X^-1 G_xi: one factorisation per input value, reused for
 //! every design variable, and the points follow by the chain rule. A drawn coordinate moves
 //! the shapes of the links through it (the drawing is its own assembly), the ground pivots
-//! drawn on it, and the drawn input angle.
+//! drawn on it, and the drawn input angle. A slot adds one row (its point at its drawn
+//! offset from the guide's line), a prismatic pair two (the link's first point at its drawn
+//! offset from the line, and the link's rotation locked to the guide's).
 
 use nalgebra::DMatrix;
 
 use crate::error::Error;
 use crate::scene::model::Scene;
-use crate::scene::vec2::{perp, sub, Xy};
+use crate::scene::vec2::{cross, perp, sub, Xy};
 
 /// Step of [`Scene::dets_gradient`]'s central difference, in solving-frame units (the
 /// drawing's size is about 1 there).
@@ -45,7 +47,7 @@ impl Scene {
     /// coordinates: `out[(p * 2 + k) * F + f]` = d(point p, coordinate k) / d(free f).
     /// `pos` holds every point's position (scene units) at its input angle. `None` where
     /// the pose is not finite or the linkage is singular there (a dead point). Scenes with
-    /// slots, prismatic pairs or a linear input are refused.
+    /// a linear input are refused.
     pub fn pose_gradient(&self, pos: &[Xy], free: &[Free]) -> Result<Option<Vec<f64>>, Error> {
         let layout = self.layout(free, false)?;
         let np = self.names.len();
@@ -129,10 +131,10 @@ impl Scene {
     }
 
     fn layout(&self, free: &[Free], relative: bool) -> Result<Layout, Error> {
-        if !self.slots.is_empty() || !self.prismatic.is_empty() || self.input.is_none() {
+        if self.input.is_none() {
             return Err(Error::scene(
                 "gradient",
-                "exact gradients of scenes with slots or prismatic pairs are not available yet",
+                "exact gradients of scenes with a linear input are not available yet",
             ));
         }
         let np = self.names.len();
@@ -161,7 +163,7 @@ impl Scene {
                 rows.push((p, l, first));
             }
         }
-        let (m, n) = (2 * rows.len() + 1, 3 * moving.len());
+        let (m, n) = (2 * rows.len() + self.slots.len() + 2 * self.prismatic.len() + 1, 3 * moving.len());
         if m != n {
             return Err(Error::scene("gradient", format!("{m} equations for {n} unknowns: not one degree of freedom")));
         }
@@ -227,6 +229,86 @@ impl Scene {
                 body(r, p, owner, -1.0, &mut gx, &mut gxi);
             }
         }
+        // c . d(position of p read through link l) into row r; through ground, p moves only
+        // with its own drawing
+        let point_dot = |r: usize, p: usize, l: usize, c: Xy, gx: &mut DMatrix<f64>, gxi: &mut DMatrix<f64>| {
+            if l == self.ground {
+                for (fc, ck) in lay.fcol[p].iter().zip(c) {
+                    if let Some(f) = *fc {
+                        gxi[(r, f)] += ck;
+                    }
+                }
+                return;
+            }
+            let col = lay.block[l];
+            let pw = perp(turn(l, sub(xi[p], xi[origin(l)])));
+            gx[(r, col)] += c[0];
+            gx[(r, col + 1)] += c[1];
+            gx[(r, col + 2)] += c[0] * pw[0] + c[1] * pw[1];
+            if p == origin(l) {
+                return;
+            }
+            for (q, sq) in [(p, 1.0), (origin(l), -1.0)] {
+                for j in 0..2 {
+                    if let Some(f) = lay.fcol[q][j] {
+                        let mut e = [0.0; 2];
+                        e[j] = sq;
+                        let re = turn(l, e);
+                        gxi[(r, f)] += c[0] * re[0] + c[1] * re[1];
+                    }
+                }
+            }
+        };
+        // point p (read through link l) on the line (a, b) of guide g at its drawn offset:
+        // cross(R_g v0, pos(p) - pos_g(a)) - cross(v0, xi_p - xi_a) = 0, v0 = xi_b - xi_a
+        // (not normalised: the row is zero at the solution, so its scale does not matter)
+        type Line = (usize, (usize, usize));
+        let on_line =
+            |r: usize, (p, l): (usize, usize), (g, (a, b)): Line, gx: &mut DMatrix<f64>, gxi: &mut DMatrix<f64>| {
+                let v0 = sub(xi[b], xi[a]);
+                let vg = if g == self.ground { v0 } else { turn(g, v0) };
+                let d = sub(at(p), at(a));
+                let c = perp(vg); // cross(vg, y) = perp(vg) . y
+                point_dot(r, p, l, c, gx, gxi);
+                point_dot(r, a, g, [-c[0], -c[1]], gx, gxi);
+                if g != self.ground {
+                    gx[(r, lay.block[g] + 2)] += cross(perp(vg), d);
+                }
+                let w0 = sub(xi[p], xi[a]);
+                for (q, sq) in [(b, 1.0), (a, -1.0)] {
+                    for j in 0..2 {
+                        if let Some(f) = lay.fcol[q][j] {
+                            let mut e = [0.0; 2];
+                            e[j] = sq;
+                            let re = if g == self.ground { e } else { turn(g, e) };
+                            gxi[(r, f)] += cross(re, d) - cross(e, w0);
+                        }
+                    }
+                }
+                for (q, sq) in [(p, 1.0), (a, -1.0)] {
+                    for j in 0..2 {
+                        if let Some(f) = lay.fcol[q][j] {
+                            let mut e = [0.0; 2];
+                            e[j] = sq;
+                            gxi[(r, f)] -= cross(v0, e);
+                        }
+                    }
+                }
+            };
+        let slot_rows = 2 * lay.rows.len();
+        for (i, s) in self.slots.iter().enumerate() {
+            let l = lay.owner[s.point].unwrap_or(self.ground);
+            on_line(slot_rows + i, (s.point, l), (s.guide, s.line), &mut gx, &mut gxi);
+        }
+        for (i, pr) in self.prismatic.iter().enumerate() {
+            let r = slot_rows + self.slots.len() + 2 * i;
+            on_line(r, (origin(pr.link), pr.link), (pr.guide, pr.line), &mut gx, &mut gxi);
+            // the link keeps its drawn rotation relative to the guide
+            gx[(r + 1, lay.block[pr.link] + 2)] += 1.0;
+            if pr.guide != self.ground {
+                gx[(r + 1, lay.block[pr.guide] + 2)] -= 1.0;
+            }
+        }
         // the input: phi_in + theta0(xi) - theta = 0 (theta0 the drawn input angle)
         let input = self.input.expect("checked by the layout");
         let r = n - 1;
@@ -280,5 +362,110 @@ impl Scene {
             }
         }
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::model::{PrismaticSpec, SceneSpec, SlotSpec};
+
+    /// An offset slider-crank with a coupler point P on the rod: B in a slot on the ground
+    /// line O2 -> X, or (`prismatic`) carried by a block sliding along it.
+    fn slider(xy: &[Xy], prismatic: bool) -> Scene {
+        let names = ["O2", "X", "A", "B", "P", "Q"];
+        let n = if prismatic { 6 } else { 5 };
+        let s = |v: &[&str]| v.iter().map(|p| p.to_string()).collect::<Vec<_>>();
+        let mut links = vec![
+            ("ground".to_string(), s(&["O2", "X"])),
+            ("crank".to_string(), s(&["O2", "A"])),
+            ("rod".to_string(), s(&["A", "B", "P"])),
+        ];
+        let line = ("O2".to_string(), "X".to_string());
+        let mut spec = SceneSpec {
+            points: names[..n].iter().zip(xy).map(|(a, p)| (a.to_string(), *p)).collect(),
+            ground: "ground".into(),
+            input: ("crank".into(), "O2".into()),
+            ..Default::default()
+        };
+        if prismatic {
+            links.push(("block".to_string(), s(&["B", "Q"])));
+            let pr = PrismaticSpec { link: "block".into(), guide: "ground".into(), line };
+            spec.prismatic = vec![("piston".into(), pr)];
+        } else {
+            let sl = SlotSpec { point: "B".into(), guide: "ground".into(), line };
+            spec.slots = vec![("piston".into(), sl)];
+        }
+        spec.links = links;
+        Scene::new(spec).unwrap()
+    }
+
+    /// The closed form of the pose at absolute crank angle t, from the drawn coordinates.
+    fn pose(xy: &[Xy], t: f64) -> Vec<Xy> {
+        let (o, x, a0, b0, p0) = (xy[0], xy[1], xy[2], xy[3], xy[4]);
+        let ul = sub(x, o);
+        let len = ul[0].hypot(ul[1]);
+        let u = [ul[0] / len, ul[1] / len];
+        let nrm = perp(u);
+        let dot = |a: Xy, b: Xy| a[0] * b[0] + a[1] * b[1];
+        let r = sub(a0, o)[0].hypot(sub(a0, o)[1]);
+        let l = sub(b0, a0)[0].hypot(sub(b0, a0)[1]);
+        let e = dot(sub(b0, o), nrm);
+        let side = dot(sub(b0, a0), u).signum();
+        let a = [o[0] + r * t.cos(), o[1] + r * t.sin()];
+        let (sa, ha) = (dot(sub(a, o), u), dot(sub(a, o), nrm));
+        let sb = sa + side * (l * l - (e - ha) * (e - ha)).sqrt();
+        let b = [o[0] + sb * u[0] + e * nrm[0], o[1] + sb * u[1] + e * nrm[1]];
+        let (d0, d) = (sub(b0, a0), sub(b, a));
+        let phi = d[1].atan2(d[0]) - d0[1].atan2(d0[0]);
+        let (sn, c) = phi.sin_cos();
+        let w = sub(p0, a0);
+        let p = [a[0] + c * w[0] - sn * w[1], a[1] + sn * w[0] + c * w[1]];
+        let mut out = vec![o, x, a, b, p];
+        if xy.len() > 5 {
+            out.push([b[0] + xy[5][0] - b0[0], b[1] + xy[5][1] - b0[1]]);
+        }
+        out
+    }
+
+    #[test]
+    fn slider_crank_pose_gradient_matches_central_differences_of_the_closed_form() {
+        let (o, x) = ([0.3, -0.2], [1.4, 0.1]);
+        let a = [0.3 + 0.4 * 1.1f64.cos(), -0.2 + 0.4 * 1.1f64.sin()];
+        // B on the line through O2 and X at offset 0.15, 1.3 from A
+        let ul = sub(x, o);
+        let len = ul[0].hypot(ul[1]);
+        let (u, nrm) = ([ul[0] / len, ul[1] / len], perp([ul[0] / len, ul[1] / len]));
+        let ha = (a[0] - o[0]) * nrm[0] + (a[1] - o[1]) * nrm[1];
+        let sa = (a[0] - o[0]) * u[0] + (a[1] - o[1]) * u[1];
+        let sb = sa + (1.3f64.powi(2) - (0.15 - ha).powi(2)).sqrt();
+        let b = [o[0] + sb * u[0] + 0.15 * nrm[0], o[1] + sb * u[1] + 0.15 * nrm[1]];
+        let p = [0.9, 0.7];
+        for prismatic in [false, true] {
+            let mut xy = vec![o, x, a, b, p];
+            if prismatic {
+                xy.push([b[0] + 0.2, b[1] + 0.3]);
+            }
+            let sc = slider(&xy, prismatic);
+            let np = xy.len();
+            let free: Vec<Free> = (0..np).flat_map(|q| [(q, 0), (q, 1)]).collect();
+            for t in [0.3, 2.0, 4.0] {
+                let g = sc.pose_gradient(&pose(&xy, t), &free).unwrap().unwrap();
+                let h = 1e-6;
+                for (f, &(q, k)) in free.iter().enumerate() {
+                    let (mut hi, mut lo) = (xy.clone(), xy.clone());
+                    hi[q][k] += h;
+                    lo[q][k] -= h;
+                    let (ph, pl) = (pose(&hi, t), pose(&lo, t));
+                    for i in 0..np {
+                        for c in 0..2 {
+                            let fd = (ph[i][c] - pl[i][c]) / (2.0 * h);
+                            let ex = g[(i * 2 + c) * free.len() + f];
+                            assert!((fd - ex).abs() < 1e-7, "{prismatic} t {t} point {i}.{c} by {q}.{k}: {ex} vs {fd}");
+                        }
+                    }
+                }
+            }
+        }
     }
 }
