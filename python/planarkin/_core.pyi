@@ -283,4 +283,14 @@ def atlas_match(
     target: _F64,
     closed: bool,
     offsets: int,
+    resolution: int,
+) -> tuple[_F64, _F64, _F64, _F64, npt.NDArray[np.bool_], _F64]: ...
+def atlas_match_curves(
+    points: _F64,
+    theta: _F64,
+    closed: list[bool],
+    target: _F64,
+    target_closed: bool,
+    offsets: int,
+    resolution: int,
 ) -> tuple[_F64, _F64, _F64, _F64, npt.NDArray[np.bool_], _F64]: ...

@@ -4,8 +4,8 @@
 
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use planarkin_core::atlas::{
-    build_shard, coupler_curve, describe, match_curves, match_many, pose, pose_names, Curve, Placement, Topology,
-    DESCRIPTOR, HARMONICS, SAMPLES,
+    build_shard, coupler_curve, describe, match_curves, match_many, pose, pose_names, Curve, Placement, Search,
+    Topology, DESCRIPTOR, HARMONICS, SAMPLES,
 };
 use planarkin_core::scene::Xy;
 use planarkin_core::Error;
@@ -120,7 +120,8 @@ fn atlas_pose<'py>(
 
 type MatchOut<'py> = (Arr1<'py, f64>, Arr2<'py, f64>, Arr2<'py, f64>, Arr1<'py, f64>, Arr1<'py, bool>, Arr2<'py, f64>);
 
-/// Places N candidates (params (N, P), signs (N, S)) onto the target (n, 2): per
+/// Places N candidates (params (N, P), signs (N, S)) onto the target (n, 2), `offsets`
+/// starts per direction and the target resampled to `resolution` points: per
 /// candidate (cost, a, b, fraction, reversed, theta (n,)); cost NaN where none fits.
 #[pyfunction]
 fn atlas_match<'py>(
@@ -131,6 +132,7 @@ fn atlas_match<'py>(
     target: PyReadonlyArray2<'py, f64>,
     closed: bool,
     offsets: usize,
+    resolution: usize,
 ) -> PyResult<MatchOut<'py>> {
     let t = topology(topology_name)?;
     let pts = points_of("target", &target)?;
@@ -143,7 +145,9 @@ fn atlas_match<'py>(
     }
     let n = params.shape()[0];
     let m = pts.len();
-    let found = Signals::detach(py, |signals| match_many(t, p, s, SAMPLES, &pts, closed, offsets, signals))?;
+    let found = Signals::detach(py, |signals| {
+        match_many(t, p, s, SAMPLES, &pts, closed, Search { offsets, resolution }, signals)
+    })?;
     Ok(placements(py, found, n, m))
 }
 
@@ -183,6 +187,7 @@ fn atlas_match_curves<'py>(
     target: PyReadonlyArray2<'py, f64>,
     target_closed: bool,
     offsets: usize,
+    resolution: usize,
 ) -> PyResult<MatchOut<'py>> {
     let pts = points_of("points", &points)?;
     let tgt = points_of("target", &target)?;
@@ -205,7 +210,9 @@ fn atlas_match_curves<'py>(
             }
         })
         .collect();
-    let found = Signals::detach(py, |signals| match_curves(&curves, &tgt, target_closed, offsets, signals))?;
+    let found = Signals::detach(py, |signals| {
+        match_curves(&curves, &tgt, target_closed, Search { offsets, resolution }, signals)
+    })?;
     Ok(placements(py, found, n, tgt.len()))
 }
 

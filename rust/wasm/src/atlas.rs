@@ -2,7 +2,9 @@
 //! `atlas.rs` binds it): a shard of entries, a curve's descriptor, the placement of many
 //! candidates onto a target, and an entry's pose. Convert and map errors; nothing numeric.
 
-use planarkin_core::atlas::{build_shard, describe, match_many, pose, pose_names, Topology, DESCRIPTOR, SAMPLES};
+use planarkin_core::atlas::{
+    build_shard, describe, match_many, pose, pose_names, Search, Topology, DESCRIPTOR, SAMPLES,
+};
 use planarkin_core::scene::Xy;
 use planarkin_core::{Error, Never};
 use serde_json::{json, Value};
@@ -106,7 +108,9 @@ pub(crate) fn placements(req: &Value) -> Result<Value, String> {
     }
     let target = points(req, "target")?;
     let offsets = usize::try_from(count(req, "offsets")?).map_err(|_| "offsets is too large")?;
-    let found = match_many(t, &p, &s, SAMPLES, &target, flag(req, "closed")?, offsets, &Never).map_err(err)?;
+    let found =
+        match_many(t, &p, &s, SAMPLES, &target, flag(req, "closed")?, Search { offsets, ..Search::FINE }, &Never)
+            .map_err(err)?;
     let list: Vec<Value> = found
         .into_iter()
         .map(|f| {

@@ -22,14 +22,18 @@ from .templates import TRACER, input_offset, scene_of
 from .verify import verify
 
 #: the topologies a path synthesis can return ("auto" tries each)
-TOPOLOGIES = ("four-bar", "slider-crank", "watt2")
+TOPOLOGIES = ("four-bar", "slider-crank", "watt2", "stephenson3")
 #: descriptor neighbours placed onto the target
 RETRIEVE = 300
 #: atlas entries placed onto an open or partial target besides the neighbours (the
 #: descriptors of a whole curve do not see a part of it)
 SCAN = 30_000
-#: starts per direction when an arc is placed onto an open or partial target
-OFFSETS = 48
+#: (starts per direction, target resampling) of the placement a refinement starts from
+FINE = (64, 64)
+#: the same for a quick first pass over the scanned entries, about 25 times cheaper
+COARSE = (12, 16)
+#: scanned entries kept from the quick pass for the fine one
+KEEP = 400
 
 
 @dataclass(frozen=True)
@@ -70,15 +74,18 @@ class Placed:
         return self.theta + input_offset(self.a)
 
 
-def place(atlas: atlases.Atlas, target: CurveTarget, rows: np.ndarray) -> list[Placed]:
-    """The atlas rows placed onto the target, best fit first (those with no fit left out)."""
+def place(
+    atlas: atlases.Atlas, target: CurveTarget, rows: np.ndarray, search: tuple[int, int] = FINE
+) -> list[Placed]:
+    """The atlas rows placed onto the target, best fit first (those with no fit left out);
+    ``search``: starts per direction and the target's resampling (:data:`FINE`)."""
     if rows.size == 0:
         return []
     closed = target.kind == "closed"
     params = np.ascontiguousarray(atlas.params[rows])
     signs = np.ascontiguousarray(atlas.signs[rows], dtype=np.float64)
     pts = np.ascontiguousarray(target.points, dtype=np.float64)
-    cost, a, b, frac, rev, theta = atlas_match(atlas.topology, params, signs, pts, closed, OFFSETS)
+    cost, a, b, frac, rev, theta = atlas_match(atlas.topology, params, signs, pts, closed, *search)
     out = [
         Placed(
             topology=atlas.topology,
@@ -102,12 +109,14 @@ def place(atlas: atlases.Atlas, target: CurveTarget, rows: np.ndarray) -> list[P
 def retrieve(atlas: atlases.Atlas, target: CurveTarget, k: int = RETRIEVE) -> list[Placed]:
     """The atlas entries placed onto the target, best first: the descriptor neighbours of a
     closed target; for an open or partial one, those of the curve traced there and back
-    and the first :data:`SCAN` entries, each placed on its best arc."""
+    and the first :data:`SCAN` entries, each placed on its best arc (a quick pass, then the
+    best :data:`KEEP` finely)."""
     if target.kind == "closed":
         rows = atlases.query(atlas, target.points, k, closed=True).rows
     else:
         near = atlases.query(atlas, target.points, k, closed=False).rows
         rows = np.unique(np.concatenate([near, np.arange(min(SCAN, len(atlas)))]))
+        rows = np.array([p.row for p in place(atlas, target, rows, COARSE)[:KEEP]], dtype=np.int64)
     return place(atlas, target, rows)
 
 

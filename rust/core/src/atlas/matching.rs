@@ -17,8 +17,23 @@ use crate::scene::Xy;
 pub const FRACTIONS: [f64; 9] = [1.0, 0.8, 0.65, 0.5, 0.4, 0.3, 0.22, 0.16, 0.12];
 /// Points of a candidate's arc-length resampling.
 const ARC: usize = 256;
-/// Points the target is resampled to.
-const TARGET: usize = 64;
+/// How finely a placement is searched: `offsets` starts per direction along an arc (four
+/// times as many around a closed target) and the target resampled to `resolution` points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Search {
+    /// Starts per direction.
+    pub offsets: usize,
+    /// Points of the target's resampling.
+    pub resolution: usize,
+}
+
+impl Search {
+    /// The placement a refinement starts from.
+    pub const FINE: Search = Search { offsets: 64, resolution: 64 };
+    /// A quick pass over many candidates (an open target scanned over an atlas), about
+    /// 25 times cheaper, whose best are then placed finely.
+    pub const COARSE: Search = Search { offsets: 12, resolution: 16 };
+}
 
 /// (cost, a, b, fraction, direction, start) of the best fit so far.
 type Best = (f64, Xy, Xy, f64, f64, f64);
@@ -93,9 +108,10 @@ fn arc_samples(curve: &Curve) -> (Vec<Xy>, Vec<f64>) {
 
 /// The best placement of `curve` onto the target `target` (points in order, `closed` or
 /// not) over `fractions` of the curve's arc length (a closed target takes the whole of
-/// a closed curve, from every start) and `offsets` starts in each direction; None where no arc of the
+/// a closed curve) and the starts and resolution of `search`; None where no arc of the
 /// curve can carry the target (a closed target on a rocking input's arc).
-pub fn match_curve(curve: &Curve, target: &[Xy], closed: bool, fractions: &[f64], offsets: usize) -> Option<Placement> {
+pub fn match_curve(curve: &Curve, target: &[Xy], closed: bool, fractions: &[f64], search: Search) -> Option<Placement> {
+    let (offsets, res) = (search.offsets.max(2), search.resolution.max(3));
     if target.len() < 2 || curve.points.len() < 2 || (closed && !curve.closed) {
         return None;
     }
@@ -107,8 +123,8 @@ pub fn match_curve(curve: &Curve, target: &[Xy], closed: bool, fractions: &[f64]
         return None;
     }
     let at: Vec<f64> = tcum[..target.len()].iter().map(|s| s / ttotal).collect();
-    let tz = super::descriptor::resample(target, closed, TARGET);
-    let tdiv = if closed { TARGET } else { TARGET - 1 } as f64;
+    let tz = super::descriptor::resample(target, closed, res);
+    let tdiv = if closed { res } else { res - 1 } as f64;
     let mean = |v: &[Xy]| {
         let n = v.len() as f64;
         let s = v.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
@@ -123,7 +139,7 @@ pub fn match_curve(curve: &Curve, target: &[Xy], closed: bool, fractions: &[f64]
     let cclosed = curve.closed;
     let span = if cclosed { ARC as f64 } else { (ARC - 1) as f64 };
     let fr: &[f64] = if closed { &[1.0] } else { fractions };
-    let mut w = vec![[0.0; 2]; TARGET];
+    let mut w = vec![[0.0; 2]; res];
     // the least-squares similarity of the arc (fraction f, direction dir, start x0)
     let mut fit = |f: f64, dir: f64, x0: f64| -> Option<(f64, Xy, Xy)> {
         for (i, wi) in w.iter_mut().enumerate() {
@@ -170,7 +186,7 @@ pub fn match_curve(curve: &Curve, target: &[Xy], closed: bool, fractions: &[f64]
         }
         for dir in [1.0, -1.0] {
             let (lo, hi) = range(f, dir);
-            let starts = if closed { ARC } else { offsets.max(2) };
+            let starts = if closed { (4 * offsets).min(ARC) } else { offsets };
             let div = if cclosed { starts } else { starts - 1 } as f64;
             for o in 0..starts {
                 let x0 = lo + (hi - lo) * o as f64 / div;
@@ -180,7 +196,7 @@ pub fn match_curve(curve: &Curve, target: &[Xy], closed: bool, fractions: &[f64]
     }
     // then the stretch and start near the best, finer (an open or partial target)
     if let (false, Some((_, _, _, f0, dir, x00))) = (closed, best) {
-        let step = span / offsets.max(2) as f64;
+        let step = span / offsets as f64;
         for i in -6..=6 {
             let f = (f0 * (1.0 + 0.02 * i as f64)).min(1.0);
             let (lo, hi) = range(f, dir);
@@ -229,7 +245,7 @@ pub fn match_many(
     samples: usize,
     target: &[Xy],
     closed: bool,
-    offsets: usize,
+    search: Search,
     interrupt: &dyn Interrupt,
 ) -> Result<Vec<Option<Placement>>, Error> {
     let (np, ns) = (topology.params(), topology.signs());
@@ -247,7 +263,7 @@ pub fn match_many(
             .par_iter()
             .map(|&i| {
                 let c = coupler_curve(topology, &params[i * np..(i + 1) * np], &signs[i * ns..(i + 1) * ns], samples)?;
-                match_curve(&c, target, closed, &FRACTIONS, offsets)
+                match_curve(&c, target, closed, &FRACTIONS, search)
             })
             .collect();
         out.extend(part);
@@ -260,7 +276,7 @@ pub fn match_curves(
     curves: &[Curve],
     target: &[Xy],
     closed: bool,
-    offsets: usize,
+    search: Search,
     interrupt: &dyn Interrupt,
 ) -> Result<Vec<Option<Placement>>, Error> {
     let mut out = Vec::with_capacity(curves.len());
@@ -268,7 +284,7 @@ pub fn match_curves(
         if interrupt.interrupted() {
             return Err(Error::Interrupted);
         }
-        out.extend(chunk.par_iter().map(|c| match_curve(c, target, closed, &FRACTIONS, offsets)).collect::<Vec<_>>());
+        out.extend(chunk.par_iter().map(|c| match_curve(c, target, closed, &FRACTIONS, search)).collect::<Vec<_>>());
     }
     Ok(out)
 }

@@ -20,7 +20,7 @@ pub use chain::{pose, pose_names, Pose, MAX_POINTS};
 pub use curve::{coupler_curve, Curve, COARSE, SAMPLES};
 pub use descriptor::{describe, resample, DESCRIPTOR, HARMONICS, RESAMPLED};
 pub use draw::{draw, Entry};
-pub use matching::{match_curve, match_curves, match_many, Placement, FRACTIONS};
+pub use matching::{match_curve, match_curves, match_many, Placement, Search, FRACTIONS};
 pub use scene_chain::{stephenson3_spec, STEPHENSON3_POINTS};
 pub use shard::{build_shard, Shard};
 
@@ -65,10 +65,9 @@ impl Topology {
 
     /// The topology named `name`, or an error naming `topology`.
     pub fn from_name(name: &str) -> Result<Topology, Error> {
-        Topology::ALL
-            .into_iter()
-            .find(|t| t.name() == name)
-            .ok_or_else(|| Error::invalid("topology", "must be one of four-bar, slider-crank, watt2, stephenson3", name))
+        Topology::ALL.into_iter().find(|t| t.name() == name).ok_or_else(|| {
+            Error::invalid("topology", "must be one of four-bar, slider-crank, watt2, stephenson3", name)
+        })
     }
 
     /// Number of parameters.

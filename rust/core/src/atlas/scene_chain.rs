@@ -102,7 +102,8 @@ pub(super) fn stephenson3_curve(p: &[f64], samples: usize) -> Option<Curve> {
     if len < MIN_ARC.min(samples) {
         return None;
     }
-    let mut curve = Curve { points: Vec::with_capacity(len), theta: Vec::with_capacity(len), closed, conditioning: f64::INFINITY };
+    let mut curve =
+        Curve { points: Vec::with_capacity(len), theta: Vec::with_capacity(len), closed, conditioning: f64::INFINITY };
     for j in 0..len {
         let k = (lo + j) % samples;
         let (pts, cond) = rows[k]?;

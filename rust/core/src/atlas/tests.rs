@@ -106,7 +106,7 @@ fn matching_finds_the_similarity_the_start_and_the_inputs() {
         .map(|&t| pose(Topology::FourBar, &[0.35, 1.3, 1.2, 0.6, -0.4], &[1.0], t).unwrap().tracer())
         .collect();
     let target = similar(&pts, a, b);
-    let m = match_curve(&c, &target, true, &FRACTIONS, 64).unwrap();
+    let m = match_curve(&c, &target, true, &FRACTIONS, Search::FINE).unwrap();
     // the target is a 40-gon of the curve: its chords leave a residual of about 2e-4
     assert!(m.cost < 1e-3, "{}", m.cost);
     assert!((m.a[0] - a[0]).abs() < 1e-2 && (m.a[1] - a[1]).abs() < 1e-2, "{:?}", m.a);
@@ -117,7 +117,7 @@ fn matching_finds_the_similarity_the_start_and_the_inputs() {
     }
     // an open part of it, backwards
     let part: Vec<Xy> = target[5..18].iter().rev().copied().collect();
-    let m = match_curve(&c, &part, false, &FRACTIONS, 64).unwrap();
+    let m = match_curve(&c, &part, false, &FRACTIONS, Search::FINE).unwrap();
     assert!(m.cost < 1e-2, "{}", m.cost);
     for (t, u) in m.theta.iter().zip(th[5..18].iter().rev()) {
         assert!(crate::wrap_angle(t - u).abs() < 0.1, "{t} vs {u}");
