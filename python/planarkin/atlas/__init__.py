@@ -11,7 +11,7 @@ atlases).
 ('four-bar', 2000)
 """
 
-from ._build import IN_PROCESS, SHARD_SIZE, AtlasFiles, build
+from ._build import IN_PROCESS, SHARD_SIZE, AtlasFiles, build, client_for
 from ._default import DEFAULT_SIZE, cache_dir, default
 from ._query import APPROXIMATE_FROM, NPROBE, Candidates, descriptor_variants, query
 from ._store import PARAMS, TOPOLOGIES, Atlas, open_atlas
@@ -31,6 +31,7 @@ __all__ = [
     "AtlasFiles",
     "Candidates",
     "build",
+    "client_for",
     "cache_dir",
     "default",
     "descriptor_variants",

@@ -96,7 +96,8 @@ def _manifest(topology: str, seed: int, size: int, shard_size: int) -> dict[str,
     }
 
 
-def _client(scheduler: str | None, workers: int | None) -> tuple[Any, Any]:
+def client_for(scheduler: str | None, workers: int | None) -> tuple[Any, Any]:
+    """A Dask client and the LocalCluster it owns (None: ``scheduler`` is an address)."""
     try:
         from distributed import Client, LocalCluster
     except ImportError:
@@ -169,7 +170,7 @@ def build(
     else:
         from distributed import as_completed
 
-        client, cluster = _client(scheduler, workers)
+        client, cluster = client_for(scheduler, workers)
         futures = []
         try:
             futures = [

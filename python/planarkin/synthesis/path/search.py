@@ -15,8 +15,9 @@ import numpy as np
 
 from ... import atlas as atlases
 from ..._kernel import atlas_match
+from ...scene import Scene
 from .refine import refine
-from .results import Design, PathResult
+from .results import Defects, Design, PathError, PathResult
 from .targets import CurveTarget, load_target
 from .templates import TRACER, input_offset, scene_of
 from .verify import verify
@@ -128,6 +129,72 @@ class _Clock:
     def over(self) -> bool:
         return self.limit is not None and time.perf_counter() - self.start > self.limit
 
+    def left(self) -> float | None:
+        return (
+            None
+            if self.limit is None
+            else max(0.1, self.limit - (time.perf_counter() - self.start))
+        )
+
+
+def refine_one(
+    cand: Placed, target: CurveTarget, constraints: dict, time_limit: float | None
+) -> dict | None:
+    """One candidate refined and verified, as plain data (a Dask task's result): the
+    scene's dict, error, defects, inputs, transmission, full turn and the verdict; None
+    where the candidate does not assemble at its start."""
+    try:
+        sc = cand.scene()
+    except ValueError:
+        return None
+    r = refine(sc, TRACER, target, cand.inputs, time_limit=time_limit, **constraints)
+    mt = constraints["min_transmission"]
+    v = verify(r.scene, TRACER, target, r.inputs, min_transmission=mt)
+    return {
+        "scene": r.scene.to_dict(),
+        "error": (v.error.max, v.error.rms),
+        "defects": (v.defects.circuit, v.defects.branch, v.defects.order),
+        "inputs": np.asarray(v.inputs),
+        "min_transmission": float(v.min_transmission),
+        "full_turn": bool(v.full_turn),
+        "verified": bool(v.ok),
+    }
+
+
+def _distributed(
+    todo: list[Placed],
+    target: CurveTarget,
+    constraints: dict,
+    clock: _Clock,
+    scheduler: str,
+    keep: Callable[[Placed, dict | None], None],
+    say: Callable[[str, int, int], None],
+) -> str:
+    """The candidates refined as Dask tasks on ``scheduler`` (an address, or "local": a
+    LocalCluster on this machine); returns why it stopped."""
+    client, cluster = atlases.client_for(None if scheduler == "local" else scheduler, None)
+    futures = []
+    try:
+        futures = [
+            client.submit(refine_one, c, target, constraints, clock.left(), pure=False)
+            for c in todo
+        ]
+        index = {f.key: c for f, c in zip(futures, todo, strict=True)}
+        from distributed import as_completed
+
+        for n, f in enumerate(as_completed(futures), 1):
+            keep(index[f.key], f.result())
+            say("refinement", n, len(todo))
+            if clock.over():
+                return "time limit"
+        return "done"
+    finally:
+        for f in futures:
+            f.cancel()
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
 
 def _same(d: Design, others: list[Design], tol: float) -> bool:
     # two starts that refine to one linkage give one design
@@ -154,6 +221,7 @@ def path(
     max_link_ratio: float | None = None,
     full_turn: bool | None = None,
     time_limit: float | None = None,
+    scheduler: str | None = None,
     seed: int = 0,
     progress: Callable[[str, int, int], None] | None = None,
 ) -> PathResult:
@@ -165,7 +233,10 @@ def path(
     ``min_transmission`` (degrees), ``box`` ((xmin, xmax), (ymin, ymax)) for the fixed
     pivots, ``max_link_ratio`` and ``full_turn`` constrain the refinement;
     ``refine_count`` candidates are refined (default 3 x designs, at least 8);
-    ``time_limit`` (seconds) stops refining and returns what is verified so far.
+    ``time_limit`` (seconds) stops refining and returns what is verified so far;
+    ``scheduler`` refines the candidates as Dask tasks (an address, or "local" for a
+    LocalCluster here; None: in this process); Ctrl-C returns the designs so far with
+    ``stopped`` "interrupted".
     ``progress(stage, done, total)`` is told each stage's advance."""
     clock = _Clock(time_limit)
     tgt = target if isinstance(target, CurveTarget) else load_target(target, kind=kind)
@@ -214,42 +285,30 @@ def path(
     t0 = time.perf_counter()
     tol = 1e-6 * tgt.size
     todo = placed[:n_refine]
-    for i, cand in enumerate(todo):
-        if clock.over():
-            stopped = "time limit"
-            break
-        say("refinement", i, len(todo))
-        try:
-            sc = cand.scene(len(found) + 1)
-            inputs = cand.inputs
-        except ValueError:
-            continue
-        r = refine(
-            sc,
-            TRACER,
-            tgt,
-            inputs,
-            min_transmission=min_transmission,
-            box=box,
-            max_link_ratio=max_link_ratio,
-            full_turn=bool(full_turn) if full_turn is not None else tgt.kind != "open",
-        )
-        v = verify(r.scene, TRACER, tgt, r.inputs, min_transmission=min_transmission)
+    constraints = {
+        "min_transmission": min_transmission,
+        "box": box,
+        "max_link_ratio": max_link_ratio,
+        "full_turn": bool(full_turn) if full_turn is not None else tgt.kind != "open",
+    }
+    seeds = {m["topology"]: int(m["seed"]) for m in manifests}
+
+    def keep(cand: Placed, got: dict | None) -> None:
+        if got is None:
+            return
         d = Design(
-            scene=r.scene,
+            scene=Scene(got["scene"]),
             tracer=TRACER,
-            error=v.error,
-            defects=v.defects,
-            inputs=v.inputs,
+            error=PathError(*got["error"]),
+            defects=Defects(*got["defects"]),
+            inputs=got["inputs"],
             topology=cand.topology,
-            min_transmission=v.min_transmission,
-            full_turn=v.full_turn,
-            verified=v.ok,
+            min_transmission=got["min_transmission"],
+            full_turn=got["full_turn"],
+            verified=got["verified"],
             source={
                 "atlas_entry": cand.entry,
-                "atlas_seed": int(
-                    manifests[TOPOLOGIES.index(cand.topology) if topology == "auto" else 0]["seed"]
-                ),
+                "atlas_seed": seeds[cand.topology],
                 "placement_cost": cand.cost,
                 "reversed": cand.reversed,
                 "arc_fraction": cand.fraction,
@@ -257,6 +316,19 @@ def path(
         )
         if not _same(d, found, tol):
             found.append(d)
+
+    try:
+        if scheduler is None:
+            for i, cand in enumerate(todo):
+                if clock.over():
+                    stopped = "time limit"
+                    break
+                say("refinement", i, len(todo))
+                keep(cand, refine_one(cand, tgt, constraints, clock.left()))
+        else:
+            stopped = _distributed(todo, tgt, constraints, clock, scheduler, keep, say)
+    except KeyboardInterrupt:
+        stopped = "interrupted"
     say("refinement", len(todo), len(todo))
     timings["refinement"] = time.perf_counter() - t0
     found.sort(key=lambda d: (not d.verified, d.error.max))
@@ -275,6 +347,7 @@ def path(
             "full_turn": full_turn,
             "time_limit": time_limit,
             "timing": tgt.inputs is not None,
+            "scheduler": scheduler,
         },
         timings=timings,
         seed=seed,
