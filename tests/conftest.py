@@ -18,6 +18,19 @@ if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
     signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
+@pytest.fixture(autouse=True, scope="session")
+def _private_cache(tmp_path_factory):
+    """Default atlases (path synthesis) go to a cache of the session's own, never the
+    user's: built once per session, by whichever test needs one first."""
+    old = os.environ.get("PLANARKIN_CACHE")
+    os.environ["PLANARKIN_CACHE"] = str(tmp_path_factory.mktemp("planarkin-cache"))
+    yield
+    if old is None:
+        os.environ.pop("PLANARKIN_CACHE", None)
+    else:
+        os.environ["PLANARKIN_CACHE"] = old
+
+
 def pytest_configure(config: pytest.Config) -> None:
     # the inner loop (`pytest -m "not slow"`) runs each property test on a quarter of its
     # examples (_support.examples reads this); any other run, plain `pytest` included, on

@@ -19,7 +19,7 @@ from ...scene import Scene
 from .refine import refine
 from .results import Defects, Design, PathError, PathResult
 from .targets import CurveTarget, load_target
-from .templates import TRACER, input_offset, scene_of
+from .templates import TRACER, NotAssembled, input_offset, scene_of
 from .verify import verify
 
 #: the topologies a path synthesis can return ("auto" tries each)
@@ -145,7 +145,7 @@ def refine_one(
     where the candidate does not assemble at its start."""
     try:
         sc = cand.scene()
-    except ValueError:
+    except NotAssembled:
         return None
     r = refine(sc, TRACER, target, cand.inputs, time_limit=time_limit, **constraints)
     mt = constraints["min_transmission"]

@@ -57,6 +57,10 @@ _SHAPES: dict[str, tuple[dict[str, list[str]], dict[str, Any]]] = {
 }
 
 
+class NotAssembled(ValueError):
+    """An atlas entry asked for a pose at an input angle where it does not assemble."""
+
+
 def scene_dict(
     topology: str,
     params: np.ndarray,
@@ -74,12 +78,13 @@ def scene_dict(
     at ``theta``."""
     got = atlas_pose(
         topology,
-        np.ascontiguousarray(params, dtype=np.float64),
-        np.ascontiguousarray(signs, dtype=np.float64),
+        # fresh copies: arrays a Dask worker unpickled may be unaligned views of its buffer
+        np.array(params, dtype=np.float64),
+        np.array(signs, dtype=np.float64),
         float(theta),
     )
     if got is None:
-        raise ValueError(f"theta: the {topology} does not assemble at {theta!r} rad")
+        raise NotAssembled(f"theta: the {topology} does not assemble at {theta!r} rad")
     names, pts, _ = got
     z = a * (pts[:, 0] + 1j * pts[:, 1]) + b
     points = {n: [float(w.real), float(w.imag)] for n, w in zip(names, z, strict=True)}
