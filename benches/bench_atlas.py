@@ -46,7 +46,7 @@ def test_atlas_query_exact(benchmark, default_atlas):
     record(
         benchmark,
         "atlas_query_exact",
-        f"atlas: top 100 of the default four-bar atlas ({len(default_atlas)} entries) by exact scan",
+        f"atlas: top 100 of the default four-bar atlas ({len(default_atlas)} entries), exact scan",
     )
     benchmark.group = "atlas: retrieval"
     got = benchmark(default_atlas.query, t, 100, closed=True, method="exact")
