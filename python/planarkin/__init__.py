@@ -59,3 +59,13 @@ __all__ = [
     "sweep_batch",
     "use_simd",
 ]
+
+
+def __getattr__(name: str) -> object:
+    # pk.synthesis on first use: it brings SciPy's optimizers, which `import planarkin`
+    # need not pay for
+    if name == "synthesis":
+        import importlib
+
+        return importlib.import_module(".synthesis", __name__)
+    raise AttributeError(f"module 'planarkin' has no attribute {name!r}")

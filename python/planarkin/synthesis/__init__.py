@@ -11,7 +11,7 @@ its template (``balanced_arm``).
 26
 """
 
-from . import ackermann
+from . import ackermann, path
 from .driver import synthesize
 from .effort import EffortDesign, balanced_arm, minimise_effort
 from .generated import SIGN_COMBINATIONS, Generated, SeedPlan, half_angle
@@ -68,6 +68,7 @@ __all__ = [
     "SynthesisResult",
     "Template",
     "ackermann",
+    "path",
     "admissible_loop_choices",
     "half_angle",
     "linear_sensitivity",

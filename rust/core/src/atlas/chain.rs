@@ -2,30 +2,9 @@
 //! one or two dyads (circle-circle or circle-line intersections) in the normalised frame
 //! of [`Topology`], with each dyad's conditioning (the sine of its transmission angle).
 
+pub use super::shape::{Pose, MAX_POINTS};
 use super::Topology;
 use crate::scene::Xy;
-
-/// Most points of any topology's pose.
-pub const MAX_POINTS: usize = 8;
-
-/// A solved pose: the points (in the order [`pose_names`] gives), the tracer's index
-/// among them, and the worst transmission sine of its dyads.
-#[derive(Clone, Copy, Debug)]
-pub struct Pose {
-    /// The points; only the first `count` are set.
-    pub points: [Xy; MAX_POINTS],
-    /// How many points.
-    pub count: usize,
-    /// The smallest sine of a dyad's transmission angle (0 at a dead point).
-    pub conditioning: f64,
-}
-
-impl Pose {
-    /// The tracer point (the last one).
-    pub fn tracer(&self) -> Xy {
-        self.points[self.count - 1]
-    }
-}
 
 /// The names of a topology's points, in the order of [`Pose::points`] (the tracer last).
 pub fn pose_names(topology: Topology) -> &'static [&'static str] {

@@ -5,8 +5,8 @@
 use std::f64::consts::TAU;
 
 use super::chain::pose;
+pub use super::shape::Curve;
 use super::Topology;
-use crate::scene::Xy;
 
 /// Input angles tried to tell a full turn from a rocking input.
 pub const COARSE: usize = 72;
@@ -14,20 +14,6 @@ pub const COARSE: usize = 72;
 pub const SAMPLES: usize = 128;
 /// Bisection steps refining each end of a rocking input's arc.
 const BISECTIONS: usize = 40;
-
-/// A coupler curve: `points` at the input angles `theta` (increasing); `closed` where the
-/// input turns fully (the last point then joins the first).
-#[derive(Clone, Debug)]
-pub struct Curve {
-    /// The tracer's positions.
-    pub points: Vec<Xy>,
-    /// The input angles (radians, increasing, within one turn of the first).
-    pub theta: Vec<f64>,
-    /// The input turns fully.
-    pub closed: bool,
-    /// The smallest transmission sine over the points.
-    pub conditioning: f64,
-}
 
 /// The coupler curve of `topology` with parameters `p` and signs `s` at `samples` input
 /// angles; None where no two neighbouring coarse angles assemble.
@@ -79,7 +65,7 @@ pub fn coupler_curve(topology: Topology, p: &[f64], s: &[f64], samples: usize) -
 }
 
 /// The last assembled angle from `good` towards `bad` (bisection).
-fn edge(at: &impl Fn(f64) -> Option<super::chain::Pose>, mut good: f64, mut bad: f64) -> f64 {
+fn edge(at: &impl Fn(f64) -> Option<super::shape::Pose>, mut good: f64, mut bad: f64) -> f64 {
     for _ in 0..BISECTIONS {
         let mid = 0.5 * (good + bad);
         if at(mid).is_some() {

@@ -14,6 +14,7 @@ mod descriptor;
 mod draw;
 mod matching;
 mod scene_chain;
+mod shape;
 mod shard;
 
 pub use chain::{pose, pose_names, Pose, MAX_POINTS};

@@ -5,8 +5,7 @@
 
 use std::f64::consts::TAU;
 
-use super::chain::{Pose, MAX_POINTS};
-use super::curve::Curve;
+use super::shape::{Curve, Pose, MAX_POINTS};
 use crate::interrupt::Never;
 use crate::scene::format::sweep_options;
 use crate::scene::{Plan, Scene, SceneSpec, SceneSweepBuffers, Xy};
