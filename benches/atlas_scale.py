@@ -3,7 +3,8 @@ reports its build time, entries per second, size on disk and this process's peak
 then the retrieval of the top 100 (exact scan against faiss IVF-Flat): recall@100 and
 query time, median of many queries. Writes a JSON report.
 
-    python benches/atlas_scale.py --size 10000000 --out /tmp/atlas10m --report benches/results/atlas_scale.json
+    python benches/atlas_scale.py --size 10000000 --out /tmp/atlas10m \
+        --report benches/results/atlas_scale.json
 """
 
 from __future__ import annotations
@@ -17,7 +18,6 @@ import time
 from pathlib import Path
 
 import numpy as np
-
 import planarkin as pk
 from planarkin import _kernel as k
 
@@ -62,7 +62,8 @@ def main() -> None:
             found.append(pk.atlas.query(atlas, t, 100, closed=True, method=method).rows)
             times.append(time.perf_counter() - s)
         out[method] = (statistics.median(times), found)
-    recall = [np.intersect1d(e, f).size / 100 for e, f in zip(out["exact"][1], out["ivf"][1])]
+    pairs = zip(out["exact"][1], out["ivf"][1], strict=True)
+    recall = [np.intersect1d(e, f).size / 100 for e, f in pairs]
     report = {
         "command": f"python benches/atlas_scale.py --size {a.size} --out {a.out}",
         "machine": f"{platform.machine()}, 2 cores (shared)",
@@ -78,7 +79,10 @@ def main() -> None:
         "peak_rss_bytes_this_process": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
         "ivf_index_build_seconds": round(index_s, 2),
         "query_top100_median_ms": {m: round(v[0] * 1e3, 2) for m, v in out.items()},
-        "recall_at_100_ivf_vs_exact": {"mean": float(np.mean(recall)), "min": float(np.min(recall))},
+        "recall_at_100_ivf_vs_exact": {
+            "mean": float(np.mean(recall)),
+            "min": float(np.min(recall)),
+        },
         "nprobe": pk.atlas.NPROBE,
     }
     text = json.dumps(report, indent=1)
