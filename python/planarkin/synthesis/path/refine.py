@@ -599,34 +599,44 @@ def one_blas_thread() -> Iterator[None]:
     are a few dozen rows: on a busy machine OpenBLAS's threads wait on each other for
     longer than the work (measured: 7 ms an SLSQP step against 0.3 ms single-threaded, on
     2 shared cores). Linux only (the loaded libraries read from /proc); a no-op elsewhere."""
-    held: list[tuple[Any, int]] = []
-    if sys.platform.startswith("linux"):
-        try:
-            with open("/proc/self/maps", encoding="utf-8") as f:
-                paths = {ln.split()[-1] for ln in f if "openblas" in ln.lower() and "/" in ln}
-        except OSError:
-            paths = set()
-        for path in sorted(paths):
-            try:
-                lib = ctypes.CDLL(path)
-            except OSError:
-                continue
-            for pre in ("scipy_openblas", "openblas"):
-                for suf in ("64_", ""):
-                    get = getattr(lib, f"{pre}_get_num_threads{suf}", None)
-                    put = getattr(lib, f"{pre}_set_num_threads{suf}", None)
-                    if get is not None and put is not None:
-                        held.append((put, int(get())))
-                        put(1)
-                        break
-                else:
-                    continue
-                break
+    global _BLAS
+    if _BLAS is None:
+        _BLAS = _openblas_controls()
+    held = [(put, int(get())) for get, put in _BLAS]
+    for put, _ in held:
+        put(1)
     try:
         yield
     finally:
         for put, n in held:
             put(n)
+
+
+#: the loaded OpenBLAS libraries' (get, set) thread-count functions, found once
+_BLAS: list[tuple[Any, Any]] | None = None
+
+
+def _openblas_controls() -> list[tuple[Any, Any]]:
+    out: list[tuple[Any, Any]] = []
+    if not sys.platform.startswith("linux"):
+        return out
+    try:
+        with open("/proc/self/maps", encoding="utf-8") as f:
+            paths = {ln.split()[-1] for ln in f if "openblas" in ln.lower() and "/" in ln}
+    except OSError:
+        return out
+    for path in sorted(paths):
+        try:
+            lib = ctypes.CDLL(path)
+        except OSError:
+            continue
+        names = [(f"{p}_get_num_threads{s}", f"{p}_set_num_threads{s}")
+                 for p in ("scipy_openblas", "openblas") for s in ("64_", "")]  # fmt: skip
+        for get, put in names:
+            if hasattr(lib, get) and hasattr(lib, put):
+                out.append((getattr(lib, get), getattr(lib, put)))
+                break
+    return out
 
 
 def _box(box: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
