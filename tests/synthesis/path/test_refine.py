@@ -179,6 +179,11 @@ def test_exact_recovery_with_timing_given() -> None:
     assert r.feasible and r.error.max <= 1e-6, r
     # the given steps are kept: only the common offset moved
     assert np.allclose(np.diff(r.inputs), np.diff(theta), atol=1e-12)
+    # the given values as they are (absolute): the inputs do not move at all
+    exact = CurveTarget(p, "open", theta)
+    r = refine(start, "P", exact, theta, timing_offset=False)
+    assert r.feasible and r.error.max <= 1e-6, r
+    np.testing.assert_array_equal(r.inputs, theta)
 
 
 def test_exact_recovery_of_an_offset_slider_crank() -> None:

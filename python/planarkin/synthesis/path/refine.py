@@ -250,7 +250,8 @@ def _monotone(cost: np.ndarray, firsts: np.ndarray | None, span: int) -> tuple[n
 class PathModel:
     """The path objective and constraints of one design as functions of the design
     vector u = [(coordinates - centre) / size, timing]: timing free, the n inputs; given,
-    one offset added to the target's inputs (a placement turns the input's frame). One
+    one offset added to the target's inputs (a placement turns the input's frame), or
+    nothing with ``timing_offset`` False. One
     sweep per design, its exact derivatives on demand."""
 
     def __init__(
@@ -264,6 +265,7 @@ class PathModel:
         box: Any = None,
         max_link_ratio: float | None = None,
         full_turn: bool = False,
+        timing_offset: bool = True,
     ) -> None:
         _check(isinstance(scene, Scene), "scene", f"must be a planarkin.Scene, got {scene!r}")
         _check(scene.input_kind == "angle", "scene", "the input must be an angle (a crank)")
@@ -305,9 +307,11 @@ class PathModel:
             self.sign = direction(ti) if n > 1 else 1.0
             off = float(np.angle(np.mean(np.exp(1j * (t0 - ti)))))
             off += float(t0[0] - ti[0]) - float(np.angle(np.exp(1j * (t0[0] - ti[0]))))
+            if not timing_offset:
+                off = 0.0  # the given values as they are: no timing variable
             self.t_fixed = ti
-            self.T = np.ones((n, 1))
-            tau0 = np.array([off])
+            self.T = np.ones((n, 1)) if timing_offset else np.zeros((n, 0))
+            tau0 = np.array([off]) if timing_offset else np.zeros(0)
             t0 = ti + off
         # samples: each segment's start (a target point) and its interior, then the last
         # point, or (closed, full turn) the way back to the first point
@@ -683,23 +687,25 @@ def refine(
     full_turn: bool = False,
     time_limit: float | None = None,
     max_iter: int = MAX_ITER,
+    timing_offset: bool = True,
 ) -> Refined:
     """Refines ``scene`` (placed on ``target``, in its frame and units) so that its point
-    ``tracer`` passes the target's points: least squares of their distances to the tracer
-    at their input values (``inputs``, the scene's absolute input angles, one per target
-    point: the start; timing free each is a variable, given the target's inputs with one
-    common offset), over the target's size squared. SLSQP with exact derivatives over every
-    drawn coordinate (the drawing's own place along its motion is a null direction the
-    solvers tolerate: it changes no curve), under: the conditioning keeps its sign and
-    stays >= ``DET_FLOOR`` (and >= sin(``min_transmission``), degrees) on samples of the
-    traced arc (between consecutive inputs; closed or ``full_turn``, the whole turn), the
-    inputs strictly monotone in the target's order (spanning less than a turn), fixed
-    pivots inside ``box`` ((xmin, xmax), (ymin, ymax)), link dimensions within
-    ``max_link_ratio`` of each other, and for a four-bar that must turn fully, its
-    transmission floor where the crank lies along the ground (exactly the whole turn's,
-    and Grashof's condition with a margin). Then a least-squares polish (exact Jacobian),
-    kept only if the constraints still hold. ``time_limit`` (seconds) stops SLSQP early.
-    OpenBLAS is held to one thread meanwhile (:func:`one_blas_thread`)."""
+    ``tracer`` passes the target's points: least squares of their distances to the tracer at
+    their input values (``inputs``, the scene's absolute input angles, one per target point: the
+    start; timing free each is a variable; given, the target's inputs turned by one common
+    offset, a variable too unless ``timing_offset`` is False: then they are the scene's input
+    values as they are), over the target's size squared. SLSQP with exact derivatives over every
+    drawn coordinate (the drawing's own place along its motion is a null direction the solvers
+    tolerate: it changes no curve), under: the conditioning keeps its sign and stays >=
+    ``DET_FLOOR`` (and >= sin(``min_transmission``), degrees) on samples of the traced arc
+    (between consecutive inputs; closed or ``full_turn``, the whole turn), the inputs strictly
+    monotone in the target's order (spanning less than a turn), fixed pivots inside ``box``
+    ((xmin, xmax), (ymin, ymax)), link dimensions within ``max_link_ratio`` of each other, and
+    for a four-bar that must turn fully, its transmission floor where the crank lies along the
+    ground (exactly the whole turn's, and Grashof's condition with a margin). Then a least-
+    squares polish (exact Jacobian), kept only if the constraints still hold. ``time_limit``
+    (seconds) stops SLSQP early. OpenBLAS is held to one thread meanwhile
+    (:func:`one_blas_thread`)."""
     with one_blas_thread():
         return _refine(
             scene,
@@ -712,6 +718,7 @@ def refine(
             full_turn=full_turn,
             time_limit=time_limit,
             max_iter=max_iter,
+            timing_offset=timing_offset,
         )
 
 
@@ -727,6 +734,7 @@ def _refine(
     full_turn: bool,
     time_limit: float | None,
     max_iter: int,
+    timing_offset: bool,
 ) -> Refined:
     start = time.perf_counter()
     floor = DET_FLOOR
@@ -754,6 +762,7 @@ def _refine(
         box=box,
         max_link_ratio=max_link_ratio,
         full_turn=full_turn,
+        timing_offset=timing_offset,
     )
     deadline = math.inf if time_limit is None else start + float(time_limit)
     best: dict[str, Any] = {"u": model.u0, "f": math.inf}
