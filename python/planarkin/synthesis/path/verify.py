@@ -11,8 +11,8 @@ from typing import Any
 
 import numpy as np
 
+from ..._kernel import TRACE_STEP
 from ...scene import Scene
-from ...scene._model import TRACE_STEP
 from .refine import direction
 from .results import Defects, PathError
 from .targets import CurveTarget
