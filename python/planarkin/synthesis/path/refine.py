@@ -40,6 +40,10 @@ FTOL = 1e-13
 #: the objective levels off and SLSQP's own test (an absolute FTOL) would use every
 #: iteration
 STALL_ITER, STALL_DROP = 15, 1e-4
+#: the polish's relative tolerances and most evaluations: a short arc's fit is ill-
+#: conditioned (singular values over six decades on 10 points of a third of a coupler
+#: curve), where Levenberg-Marquardt needs about 300 to reach 1e-16 of the size
+POLISH_TOL, POLISH_NFEV = 1e-12, 1000
 #: a constraint counts as holding down to this (dimensionless) violation
 FEAS_TOL = 1e-9
 #: Newton tolerance of the model's sweeps
@@ -826,10 +830,10 @@ def _refine(
                     u,
                     jac=lambda v: model.jacobians(v)["r"],
                     method=method,
-                    xtol=1e-15,
-                    ftol=1e-15,
+                    xtol=POLISH_TOL,
+                    ftol=POLISH_TOL,
                     gtol=1e-15,
-                    max_nfev=200,
+                    max_nfev=POLISH_NFEV,
                 )
             f0 = model.objective(u)
             if model.objective(ls.x) < f0 and (model.feasible(ls.x) or not model.feasible(u)):
