@@ -40,10 +40,13 @@ FTOL = 1e-13
 #: the objective levels off and SLSQP's own test (an absolute FTOL) would use every
 #: iteration
 STALL_ITER, STALL_DROP = 15, 1e-4
-#: the polish's relative tolerances and most evaluations: a short arc's fit is ill-
-#: conditioned (singular values over six decades on 10 points of a third of a coupler
-#: curve), where Levenberg-Marquardt needs about 300 to reach 1e-16 of the size
-POLISH_TOL, POLISH_NFEV = 1e-12, 1000
+#: the polish's relative tolerances, most evaluations and their rounds: a short arc's fit
+#: is ill-conditioned (singular values over six decades on 10 points of a third of a
+#: coupler curve), where Levenberg-Marquardt needs about 300 to reach 1e-16 of the size;
+#: a round that does not take the objective below POLISH_DROP of its start ends it
+POLISH_TOL, POLISH_NFEV, POLISH_ROUND, POLISH_DROP = 1e-12, 1000, 100, 0.8
+#: the drawn coordinates stay within this many target sizes of the target's centre
+COORD_BOUND = 10.0
 #: a constraint counts as holding down to this (dimensionless) violation
 FEAS_TOL = 1e-9
 #: Newton tolerance of the model's sweeps
@@ -596,6 +599,12 @@ class PathModel:
             out[r, 2 * b : 2 * b + 2] -= e
         return out
 
+    def bounds(self) -> list[tuple[float | None, float | None]]:
+        """SLSQP's bounds: every coordinate within COORD_BOUND target sizes of the target's
+        centre (a design that flies away is no design), the inputs free."""
+        b: list[tuple[float | None, float | None]] = [(-COORD_BOUND, COORD_BOUND)] * self.nc
+        return b + [(None, None)] * self.nt
+
     def feasible(self, u: np.ndarray) -> bool:
         val = self.values(u)
         return bool(np.all(val["ok"]) and np.all(val["cons"] >= -FEAS_TOL))
@@ -657,6 +666,41 @@ def _box(box: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
     ok = all(math.isfinite(v) for v in (xl, xh, yl, yh)) and xl < xh and yl < yh
     _check(ok, "box", f"must be finite with min < max on both axes, got {box!r}")
     return (xl, xh), (yl, yh)
+
+
+def _polish(model: PathModel, u: np.ndarray, deadline: float) -> np.ndarray:
+    """Least squares from ``u`` with the exact Jacobian (Levenberg-Marquardt, or a trust
+    region where there are fewer residuals than variables), in rounds of POLISH_ROUND
+    evaluations while each round takes the objective below POLISH_DROP of its start (an
+    ill-conditioned exact fit crawls at about that rate before it converges; a round that
+    gains less is at a minimum it cannot fit better) and time is left."""
+    method = "lm" if 2 * model.n >= model.nu else "trf"
+    x = np.array(u)
+    for _ in range(POLISH_NFEV // POLISH_ROUND):
+        if time.perf_counter() >= deadline:
+            break
+        f0 = model.objective(x)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                ls = least_squares(
+                    model.residuals,
+                    x,
+                    jac=lambda v: model.jacobians(v)["r"],
+                    method=method,
+                    xtol=POLISH_TOL,
+                    ftol=POLISH_TOL,
+                    gtol=1e-15,
+                    max_nfev=POLISH_ROUND,
+                )
+        except (ValueError, np.linalg.LinAlgError):
+            break
+        f = model.objective(ls.x)
+        if f < f0:
+            x = ls.x
+        if ls.status != 0 or not f < POLISH_DROP * f0:
+            break  # converged by its own test, or no longer converging
+    return x
 
 
 def _drawn_at_start(sc: Scene, t: float) -> Scene:
@@ -812,6 +856,7 @@ def _refine(
                 jac=jac,
                 method="SLSQP",
                 constraints=[cons],
+                bounds=model.bounds(),
                 options={"maxiter": max_iter, "ftol": FTOL},
                 callback=stop,
             )
@@ -819,27 +864,10 @@ def _refine(
         keep(u)
     u = best["u"] if math.isfinite(best["f"]) else u
     polished = False
-    if time.perf_counter() < deadline and np.all(model.values(u)["ok"]):
-        nr = 2 * model.n
-        method = "lm" if nr >= model.nu else "trf"
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", RuntimeWarning)
-                ls = least_squares(
-                    model.residuals,
-                    u,
-                    jac=lambda v: model.jacobians(v)["r"],
-                    method=method,
-                    xtol=POLISH_TOL,
-                    ftol=POLISH_TOL,
-                    gtol=1e-15,
-                    max_nfev=POLISH_NFEV,
-                )
-            f0 = model.objective(u)
-            if model.objective(ls.x) < f0 and (model.feasible(ls.x) or not model.feasible(u)):
-                u, polished = ls.x, True
-        except (ValueError, np.linalg.LinAlgError):
-            pass
+    if np.all(model.values(u)["ok"]):
+        x = _polish(model, u, deadline)
+        if model.objective(x) < model.objective(u) and (model.feasible(x) or not model.feasible(u)):
+            u, polished = x, True
     feasible = model.feasible(u)
     r = model.residuals(u).reshape(-1, 2)
     d = np.hypot(r[:, 0], r[:, 1])
