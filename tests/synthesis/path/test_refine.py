@@ -83,6 +83,18 @@ def test_objective_gradient_of_a_watt2_sixbar_matches_central_differences() -> N
     assert max(errs) < 1e-6, errs
 
 
+def test_objective_gradient_of_a_stephenson3_group_matches_central_differences() -> None:
+    # a plan with no dyad (one Newton group): the conditioning's derivative along the exact
+    # tangent still matches the re-swept one
+    sc = pk.scenes.load("stephenson3")
+    theta = sc.input_angle + TURN
+    p = sc.sweep(theta, outputs="all").points["j5"]
+    q = p + 0.05 * np.stack([np.sin(2 * TURN), np.cos(TURN)], -1)
+    model = PathModel(sc, "j5", CurveTarget(q, "closed"), theta + 0.02)
+    errs = _fd_check(model, 4)
+    assert max(errs) < 1e-6, errs
+
+
 def test_objective_gradient_of_an_offset_slider_crank_matches_central_differences() -> None:
     geo = ((0.5, 0.2), 0.3, 0.4, 1.0, 3.5, 1.2, 0.8)
     _, _, p = slider_curve(*geo, TURN)
@@ -167,6 +179,11 @@ def test_exact_recovery_with_timing_given() -> None:
     assert r.feasible and r.error.max <= 1e-6, r
     # the given steps are kept: only the common offset moved
     assert np.allclose(np.diff(r.inputs), np.diff(theta), atol=1e-12)
+    # the given values as they are (absolute): the inputs do not move at all
+    exact = CurveTarget(p, "open", theta)
+    r = refine(start, "P", exact, theta, timing_offset=False)
+    assert r.feasible and r.error.max <= 1e-6, r
+    np.testing.assert_array_equal(r.inputs, theta)
 
 
 def test_exact_recovery_of_an_offset_slider_crank() -> None:

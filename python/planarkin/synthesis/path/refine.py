@@ -40,6 +40,13 @@ FTOL = 1e-13
 #: the objective levels off and SLSQP's own test (an absolute FTOL) would use every
 #: iteration
 STALL_ITER, STALL_DROP = 15, 1e-4
+#: the polish's relative tolerances, most evaluations and their rounds: a short arc's fit
+#: is ill-conditioned (singular values over six decades on 10 points of a third of a
+#: coupler curve), where Levenberg-Marquardt needs about 300 to reach 1e-16 of the size;
+#: a round that does not take the objective below POLISH_DROP of its start ends it
+POLISH_TOL, POLISH_NFEV, POLISH_ROUND, POLISH_DROP = 1e-12, 1000, 100, 0.8
+#: the drawn coordinates stay within this many target sizes of the target's centre
+COORD_BOUND = 10.0
 #: a constraint counts as holding down to this (dimensionless) violation
 FEAS_TOL = 1e-9
 #: Newton tolerance of the model's sweeps
@@ -250,7 +257,8 @@ def _monotone(cost: np.ndarray, firsts: np.ndarray | None, span: int) -> tuple[n
 class PathModel:
     """The path objective and constraints of one design as functions of the design
     vector u = [(coordinates - centre) / size, timing]: timing free, the n inputs; given,
-    one offset added to the target's inputs (a placement turns the input's frame). One
+    one offset added to the target's inputs (a placement turns the input's frame), or
+    nothing with ``timing_offset`` False. One
     sweep per design, its exact derivatives on demand."""
 
     def __init__(
@@ -264,6 +272,7 @@ class PathModel:
         box: Any = None,
         max_link_ratio: float | None = None,
         full_turn: bool = False,
+        timing_offset: bool = True,
     ) -> None:
         _check(isinstance(scene, Scene), "scene", f"must be a planarkin.Scene, got {scene!r}")
         _check(scene.input_kind == "angle", "scene", "the input must be an angle (a crank)")
@@ -305,9 +314,11 @@ class PathModel:
             self.sign = direction(ti) if n > 1 else 1.0
             off = float(np.angle(np.mean(np.exp(1j * (t0 - ti)))))
             off += float(t0[0] - ti[0]) - float(np.angle(np.exp(1j * (t0[0] - ti[0]))))
+            if not timing_offset:
+                off = 0.0  # the given values as they are: no timing variable
             self.t_fixed = ti
-            self.T = np.ones((n, 1))
-            tau0 = np.array([off])
+            self.T = np.ones((n, 1)) if timing_offset else np.zeros((n, 0))
+            tau0 = np.array([off]) if timing_offset else np.zeros(0)
             t0 = ti + off
         # samples: each segment's start (a target point) and its interior, then the last
         # point, or (closed, full turn) the way back to the first point
@@ -588,6 +599,12 @@ class PathModel:
             out[r, 2 * b : 2 * b + 2] -= e
         return out
 
+    def bounds(self) -> list[tuple[float | None, float | None]]:
+        """SLSQP's bounds: every coordinate within COORD_BOUND target sizes of the target's
+        centre (a design that flies away is no design), the inputs free."""
+        b: list[tuple[float | None, float | None]] = [(-COORD_BOUND, COORD_BOUND)] * self.nc
+        return b + [(None, None)] * self.nt
+
     def feasible(self, u: np.ndarray) -> bool:
         val = self.values(u)
         return bool(np.all(val["ok"]) and np.all(val["cons"] >= -FEAS_TOL))
@@ -599,34 +616,44 @@ def one_blas_thread() -> Iterator[None]:
     are a few dozen rows: on a busy machine OpenBLAS's threads wait on each other for
     longer than the work (measured: 7 ms an SLSQP step against 0.3 ms single-threaded, on
     2 shared cores). Linux only (the loaded libraries read from /proc); a no-op elsewhere."""
-    held: list[tuple[Any, int]] = []
-    if sys.platform.startswith("linux"):
-        try:
-            with open("/proc/self/maps", encoding="utf-8") as f:
-                paths = {ln.split()[-1] for ln in f if "openblas" in ln.lower() and "/" in ln}
-        except OSError:
-            paths = set()
-        for path in sorted(paths):
-            try:
-                lib = ctypes.CDLL(path)
-            except OSError:
-                continue
-            for pre in ("scipy_openblas", "openblas"):
-                for suf in ("64_", ""):
-                    get = getattr(lib, f"{pre}_get_num_threads{suf}", None)
-                    put = getattr(lib, f"{pre}_set_num_threads{suf}", None)
-                    if get is not None and put is not None:
-                        held.append((put, int(get())))
-                        put(1)
-                        break
-                else:
-                    continue
-                break
+    global _BLAS
+    if _BLAS is None:
+        _BLAS = _openblas_controls()
+    held = [(put, int(get())) for get, put in _BLAS]
+    for put, _ in held:
+        put(1)
     try:
         yield
     finally:
         for put, n in held:
             put(n)
+
+
+#: the loaded OpenBLAS libraries' (get, set) thread-count functions, found once
+_BLAS: list[tuple[Any, Any]] | None = None
+
+
+def _openblas_controls() -> list[tuple[Any, Any]]:
+    out: list[tuple[Any, Any]] = []
+    if not sys.platform.startswith("linux"):
+        return out
+    try:
+        with open("/proc/self/maps", encoding="utf-8") as f:
+            paths = {ln.split()[-1] for ln in f if "openblas" in ln.lower() and "/" in ln}
+    except OSError:
+        return out
+    for path in sorted(paths):
+        try:
+            lib = ctypes.CDLL(path)
+        except OSError:
+            continue
+        names = [(f"{p}_get_num_threads{s}", f"{p}_set_num_threads{s}")
+                 for p in ("scipy_openblas", "openblas") for s in ("64_", "")]  # fmt: skip
+        for get, put in names:
+            if hasattr(lib, get) and hasattr(lib, put):
+                out.append((getattr(lib, get), getattr(lib, put)))
+                break
+    return out
 
 
 def _box(box: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
@@ -639,6 +666,41 @@ def _box(box: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
     ok = all(math.isfinite(v) for v in (xl, xh, yl, yh)) and xl < xh and yl < yh
     _check(ok, "box", f"must be finite with min < max on both axes, got {box!r}")
     return (xl, xh), (yl, yh)
+
+
+def _polish(model: PathModel, u: np.ndarray, deadline: float) -> np.ndarray:
+    """Least squares from ``u`` with the exact Jacobian (Levenberg-Marquardt, or a trust
+    region where there are fewer residuals than variables), in rounds of POLISH_ROUND
+    evaluations while each round takes the objective below POLISH_DROP of its start (an
+    ill-conditioned exact fit crawls at about that rate before it converges; a round that
+    gains less is at a minimum it cannot fit better) and time is left."""
+    method = "lm" if 2 * model.n >= model.nu else "trf"
+    x = np.array(u)
+    for _ in range(POLISH_NFEV // POLISH_ROUND):
+        if time.perf_counter() >= deadline:
+            break
+        f0 = model.objective(x)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                ls = least_squares(
+                    model.residuals,
+                    x,
+                    jac=lambda v: model.jacobians(v)["r"],
+                    method=method,
+                    xtol=POLISH_TOL,
+                    ftol=POLISH_TOL,
+                    gtol=1e-15,
+                    max_nfev=POLISH_ROUND,
+                )
+        except (ValueError, np.linalg.LinAlgError):
+            break
+        f = model.objective(ls.x)
+        if f < f0:
+            x = ls.x
+        if ls.status != 0 or not f < POLISH_DROP * f0:
+            break  # converged by its own test, or no longer converging
+    return x
 
 
 def _drawn_at_start(sc: Scene, t: float) -> Scene:
@@ -673,23 +735,25 @@ def refine(
     full_turn: bool = False,
     time_limit: float | None = None,
     max_iter: int = MAX_ITER,
+    timing_offset: bool = True,
 ) -> Refined:
     """Refines ``scene`` (placed on ``target``, in its frame and units) so that its point
-    ``tracer`` passes the target's points: least squares of their distances to the tracer
-    at their input values (``inputs``, the scene's absolute input angles, one per target
-    point: the start; timing free each is a variable, given the target's inputs with one
-    common offset), over the target's size squared. SLSQP with exact derivatives over every
-    drawn coordinate (the drawing's own place along its motion is a null direction the
-    solvers tolerate: it changes no curve), under: the conditioning keeps its sign and
-    stays >= ``DET_FLOOR`` (and >= sin(``min_transmission``), degrees) on samples of the
-    traced arc (between consecutive inputs; closed or ``full_turn``, the whole turn), the
-    inputs strictly monotone in the target's order (spanning less than a turn), fixed
-    pivots inside ``box`` ((xmin, xmax), (ymin, ymax)), link dimensions within
-    ``max_link_ratio`` of each other, and for a four-bar that must turn fully, its
-    transmission floor where the crank lies along the ground (exactly the whole turn's,
-    and Grashof's condition with a margin). Then a least-squares polish (exact Jacobian),
-    kept only if the constraints still hold. ``time_limit`` (seconds) stops SLSQP early.
-    OpenBLAS is held to one thread meanwhile (:func:`one_blas_thread`)."""
+    ``tracer`` passes the target's points: least squares of their distances to the tracer at
+    their input values (``inputs``, the scene's absolute input angles, one per target point: the
+    start; timing free each is a variable; given, the target's inputs turned by one common
+    offset, a variable too unless ``timing_offset`` is False: then they are the scene's input
+    values as they are), over the target's size squared. SLSQP with exact derivatives over every
+    drawn coordinate (the drawing's own place along its motion is a null direction the solvers
+    tolerate: it changes no curve), under: the conditioning keeps its sign and stays >=
+    ``DET_FLOOR`` (and >= sin(``min_transmission``), degrees) on samples of the traced arc
+    (between consecutive inputs; closed or ``full_turn``, the whole turn), the inputs strictly
+    monotone in the target's order (spanning less than a turn), fixed pivots inside ``box``
+    ((xmin, xmax), (ymin, ymax)), link dimensions within ``max_link_ratio`` of each other, and
+    for a four-bar that must turn fully, its transmission floor where the crank lies along the
+    ground (exactly the whole turn's, and Grashof's condition with a margin). Then a least-
+    squares polish (exact Jacobian), kept only if the constraints still hold. ``time_limit``
+    (seconds) stops SLSQP early. OpenBLAS is held to one thread meanwhile
+    (:func:`one_blas_thread`)."""
     with one_blas_thread():
         return _refine(
             scene,
@@ -702,6 +766,7 @@ def refine(
             full_turn=full_turn,
             time_limit=time_limit,
             max_iter=max_iter,
+            timing_offset=timing_offset,
         )
 
 
@@ -717,6 +782,7 @@ def _refine(
     full_turn: bool,
     time_limit: float | None,
     max_iter: int,
+    timing_offset: bool,
 ) -> Refined:
     start = time.perf_counter()
     floor = DET_FLOOR
@@ -744,6 +810,7 @@ def _refine(
         box=box,
         max_link_ratio=max_link_ratio,
         full_turn=full_turn,
+        timing_offset=timing_offset,
     )
     deadline = math.inf if time_limit is None else start + float(time_limit)
     best: dict[str, Any] = {"u": model.u0, "f": math.inf}
@@ -789,6 +856,7 @@ def _refine(
                 jac=jac,
                 method="SLSQP",
                 constraints=[cons],
+                bounds=model.bounds(),
                 options={"maxiter": max_iter, "ftol": FTOL},
                 callback=stop,
             )
@@ -796,27 +864,10 @@ def _refine(
         keep(u)
     u = best["u"] if math.isfinite(best["f"]) else u
     polished = False
-    if time.perf_counter() < deadline and np.all(model.values(u)["ok"]):
-        nr = 2 * model.n
-        method = "lm" if nr >= model.nu else "trf"
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", RuntimeWarning)
-                ls = least_squares(
-                    model.residuals,
-                    u,
-                    jac=lambda v: model.jacobians(v)["r"],
-                    method=method,
-                    xtol=1e-15,
-                    ftol=1e-15,
-                    gtol=1e-15,
-                    max_nfev=200,
-                )
-            f0 = model.objective(u)
-            if model.objective(ls.x) < f0 and (model.feasible(ls.x) or not model.feasible(u)):
-                u, polished = ls.x, True
-        except (ValueError, np.linalg.LinAlgError):
-            pass
+    if np.all(model.values(u)["ok"]):
+        x = _polish(model, u, deadline)
+        if model.objective(x) < model.objective(u) and (model.feasible(x) or not model.feasible(u)):
+            u, polished = x, True
     feasible = model.feasible(u)
     r = model.residuals(u).reshape(-1, 2)
     d = np.hypot(r[:, 0], r[:, 1])

@@ -10,9 +10,10 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
+from ..._kernel import TRACE_STEP
 from ...scene import Scene
-from ...scene._model import TRACE_STEP
 from .refine import direction
 from .results import Defects, PathError
 from .targets import CurveTarget
@@ -152,6 +153,8 @@ def verify(
     fin = det[np.isfinite(det)]
     same_sign = bool(fin.size and (np.all(fin > 0) or np.all(fin < 0)))
     mind = float(np.min(np.abs(fin))) if fin.size else 0.0
+    if converged and same_sign:
+        mind = _smallest(scene, grid, np.abs(det), mind)
     branch = not converged or not same_sign or mind <= floor
     min_mu = math.degrees(math.asin(min(mind, 1.0)))
     # each point's closest point on the arc, from two starts: its nearest sample and the
@@ -194,6 +197,25 @@ def verify(
         distances=dist / size,
         converged=converged,
     )
+
+
+def _smallest(scene: Scene, grid: np.ndarray, a: np.ndarray, at_grid: float) -> float:
+    """The smallest |conditioning| of the arc: its smallest sample's, refined by a bounded
+    scalar minimisation between the samples either side (each value a sweep of the real
+    linkage)."""
+    j = int(np.argmin(a))
+    lo, hi = grid[max(j - 1, 0)], grid[min(j + 1, grid.size - 1)]
+    if lo == hi:
+        return at_grid
+
+    def f(t: float) -> float:
+        sw = _sweep(scene, np.array([t]))
+        return float(abs(sw.det[0])) if sw.status[0] == 0 else math.inf
+
+    res = minimize_scalar(
+        f, bounds=(min(lo, hi), max(lo, hi)), method="bounded", options={"xatol": 1e-10}
+    )
+    return min(at_grid, float(res.fun)) if np.isfinite(res.fun) else at_grid
 
 
 def _closest(
