@@ -146,7 +146,16 @@ fn atlas_match<'py>(
     let n = params.shape()[0];
     let m = pts.len();
     let found = Signals::detach(py, |signals| {
-        match_many(t, p, s, SAMPLES, &pts, closed, Search { offsets, resolution }, signals)
+        match_many(
+            t,
+            p,
+            s,
+            SAMPLES,
+            &pts,
+            closed,
+            Search { offsets, resolution, local: resolution >= Search::FINE.resolution },
+            signals,
+        )
     })?;
     Ok(placements(py, found, n, m))
 }
@@ -211,7 +220,13 @@ fn atlas_match_curves<'py>(
         })
         .collect();
     let found = Signals::detach(py, |signals| {
-        match_curves(&curves, &tgt, target_closed, Search { offsets, resolution }, signals)
+        match_curves(
+            &curves,
+            &tgt,
+            target_closed,
+            Search { offsets, resolution, local: resolution >= Search::FINE.resolution },
+            signals,
+        )
     })?;
     Ok(placements(py, found, n, tgt.len()))
 }

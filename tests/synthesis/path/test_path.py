@@ -45,8 +45,9 @@ def test_a_closed_four_bar_curve_is_recovered_defect_free():
     steps = np.diff(np.unwrap(best.inputs))
     assert np.all(steps > 0) or np.all(steps < 0)
     assert abs(np.unwrap(best.inputs)[-1] - best.inputs[0]) < 2 * np.pi
-    # ranked: verified first, then by the largest error
-    keys = [(not d.verified, d.error.max) for d in res.designs]
+    # ranked: verified first, then by the largest error (to 3 digits, at least 1e-12:
+    # cognates trace one curve, and their errors differ in rounding only)
+    keys = [(not d.verified, float(f"{max(d.error.max, 1e-12):.3g}")) for d in res.designs]
     assert keys == sorted(keys)
     assert res.stopped == "done" and res.timings["total"] > 0
 
@@ -99,8 +100,17 @@ def test_a_partial_target_on_part_of_a_closed_curve():
     res = pk.synthesis.path(target, designs=2)
     best = res.designs[0]
     assert best.verified and best.full_turn
-    assert best.error.max <= 1e-4
-    assert _traced(best, target).max() <= 1e-4
+    assert best.error.max <= 1e-6
+    assert _traced(best, target).max() <= 1e-6
+
+
+@pytest.mark.slow
+def test_an_open_arc_is_recovered():
+    th = np.linspace(1.0, 2.2, 8)
+    target = CurveTarget(fourbar_curve(*CRANK_ROCKER, th)[2], "open")
+    best = pk.synthesis.path(target, designs=2).designs[0]
+    assert best.verified and not best.defects.any
+    assert best.error.max <= 1e-6 and _traced(best, target).max() <= 1e-6
 
 
 def test_bad_options_name_themselves():

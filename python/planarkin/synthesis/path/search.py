@@ -109,14 +109,17 @@ def place(
 
 def retrieve(atlas: atlases.Atlas, target: CurveTarget, k: int = RETRIEVE) -> list[Placed]:
     """The atlas entries placed onto the target, best first: the descriptor neighbours of a
-    closed target; for an open or partial one, those of the curve traced there and back
-    and the first :data:`SCAN` entries, each placed on its best arc (a quick pass, then the
-    best :data:`KEEP` finely)."""
+    closed target; for an open one, those of the curve traced there and back, and for an
+    open or partial one the first :data:`SCAN` entries, each placed on its best arc (a
+    quick pass, then the best :data:`KEEP` finely)."""
     if target.kind == "closed":
         rows = atlases.query(atlas, target.points, k, closed=True).rows
     else:
-        near = atlases.query(atlas, target.points, k, closed=False).rows
-        rows = np.unique(np.concatenate([near, np.arange(min(SCAN, len(atlas)))]))
+        rows = np.arange(min(SCAN, len(atlas)))
+        if target.kind == "open":
+            # an open target may be a rocking input's whole arc: its descriptor finds those
+            near = atlases.query(atlas, target.points, k, closed=False).rows
+            rows = np.unique(np.concatenate([near, rows]))
         rows = np.array([p.row for p in place(atlas, target, rows, COARSE)[:KEEP]], dtype=np.int64)
     return place(atlas, target, rows)
 
@@ -179,15 +182,21 @@ def _distributed(
             client.submit(refine_one, c, target, constraints, clock.left(), pure=False)
             for c in todo
         ]
-        index = {f.key: c for f, c in zip(futures, todo, strict=True)}
         from distributed import as_completed
 
+        order = {f.key: i for i, f in enumerate(futures)}
+        got: dict[int, dict | None] = {}
+        stopped = "done"
         for n, f in enumerate(as_completed(futures), 1):
-            keep(index[f.key], f.result())
+            got[order[f.key]] = f.result()
             say("refinement", n, len(todo))
             if clock.over():
-                return "time limit"
-        return "done"
+                stopped = "time limit"
+                break
+        # in the candidates' order, as in this process: the same designs kept
+        for i in sorted(got):
+            keep(todo[i], got[i])
+        return stopped
     finally:
         for f in futures:
             f.cancel()
@@ -307,6 +316,7 @@ def path(
             full_turn=got["full_turn"],
             verified=got["verified"],
             source={
+                "rank": todo.index(cand) + 1,
                 "atlas_entry": cand.entry,
                 "atlas_seed": seeds[cand.topology],
                 "placement_cost": cand.cost,
@@ -331,7 +341,11 @@ def path(
         stopped = "interrupted"
     say("refinement", len(todo), len(todo))
     timings["refinement"] = time.perf_counter() - t0
-    found.sort(key=lambda d: (not d.verified, d.error.max))
+    # verified first, then by error to 3 digits (cognates trace one curve), then in the
+    # order retrieval placed them
+    found.sort(
+        key=lambda d: (not d.verified, float(f"{max(d.error.max, 1e-12):.3g}"), d.source["rank"])
+    )
     timings["total"] = time.perf_counter() - clock.start
     return PathResult(
         designs=found[:designs],

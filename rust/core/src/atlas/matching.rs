@@ -25,14 +25,16 @@ pub struct Search {
     pub offsets: usize,
     /// Points of the target's resampling.
     pub resolution: usize,
+    /// Search the stretch and start near the best finely (an open or partial target).
+    pub local: bool,
 }
 
 impl Search {
     /// The placement a refinement starts from.
-    pub const FINE: Search = Search { offsets: 64, resolution: 64 };
+    pub const FINE: Search = Search { offsets: 64, resolution: 64, local: true };
     /// A quick pass over many candidates (an open target scanned over an atlas), about
-    /// 25 times cheaper, whose best are then placed finely.
-    pub const COARSE: Search = Search { offsets: 12, resolution: 16 };
+    /// 40 times cheaper, whose best are then placed finely.
+    pub const COARSE: Search = Search { offsets: 12, resolution: 16, local: false };
 }
 
 /// (cost, a, b, fraction, direction, start) of the best fit so far.
@@ -195,7 +197,7 @@ pub fn match_curve(curve: &Curve, target: &[Xy], closed: bool, fractions: &[f64]
         }
     }
     // then the stretch and start near the best, finer (an open or partial target)
-    if let (false, Some((_, _, _, f0, dir, x00))) = (closed, best) {
+    if let (false, true, Some((_, _, _, f0, dir, x00))) = (closed, search.local, best) {
         let step = span / offsets as f64;
         for i in -6..=6 {
             let f = (f0 * (1.0 + 0.02 * i as f64)).min(1.0);
