@@ -144,3 +144,34 @@ def test_a_dask_cluster_refines_the_same_designs():
     ]
     for a, b in zip(here.designs, there.designs, strict=True):
         assert a.error.max == pytest.approx(b.error.max, abs=1e-12)
+
+
+@pytest.mark.slow
+def test_the_command_writes_scene_files_that_trace_the_target(tmp_path, capsys):
+    import json
+
+    from planarkin.face.cli import main
+
+    pts = _closed_fourbar(20)
+    csv = tmp_path / "target.csv"
+    csv.write_text("x,y\n" + "".join(f"{x:.17g},{y:.17g}\n" for x, y in pts))
+    out = tmp_path / "out"
+    code = main(
+        ["synthesize", "path", str(csv), "--kind", "closed", "--designs", "2", "--out", str(out),
+         "--box", "-20", "20", "-20", "20", "--no-figures", "-q"]
+    )  # fmt: skip
+    assert code == 0
+    report = json.loads((out / "report.json").read_text())
+    first = report["designs"][0]
+    assert first["verified"] and first["error"]["max"] <= 1e-6
+    assert not any(first["defects"].values())
+    # the file is a scene on its own: swept at the report's inputs it passes the points
+    sc = pk.Scene.load(out / first["file"])
+    sw = sc.sweep(np.asarray(first["inputs"]), outputs=[first["tracer"]])
+    size = float(np.hypot(*np.ptp(pts, axis=0)))
+    assert np.hypot(*(sw.points[first["tracer"]] - pts).T).max() <= 1e-6 * size
+    # and the fixed pivots lie in the box asked for
+    d = sc.to_dict()
+    for name in d["links"]["ground"]:
+        assert all(-20 <= c <= 20 for c in d["points"][name])
+    assert main(["analyze", str(out / first["file"]), "--out", str(tmp_path / "fig")]) == 0

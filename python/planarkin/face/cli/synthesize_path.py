@@ -85,6 +85,26 @@ def add_parser(problems: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "it is always reported)",
     )
     p.add_argument(
+        "--box",
+        type=float,
+        nargs=4,
+        default=None,
+        metavar=("XMIN", "XMAX", "YMIN", "YMAX"),
+        help="the fixed pivots must lie inside this box, in the target's units (default: anywhere)",
+    )
+    p.add_argument(
+        "--max-link-ratio",
+        type=float,
+        default=None,
+        metavar="R",
+        help="the longest link at most R times the shortest (default: any)",
+    )
+    p.add_argument(
+        "--full-turn",
+        action="store_true",
+        help="the input must turn fully (always so for a closed or partial target)",
+    )
+    p.add_argument(
         "--atlas",
         type=Path,
         default=None,
@@ -141,6 +161,13 @@ def _check(args: argparse.Namespace) -> None:
         raise ValueError(f"--time-limit must be finite and > 0 seconds, got {t}")
     if args.svg_samples < 3:
         raise ValueError(f"--svg-samples must be >= 3, got {args.svg_samples}")
+    if args.box is not None:
+        x0, x1, y0, y1 = args.box
+        if not all(map(math.isfinite, args.box)) or x0 >= x1 or y0 >= y1:
+            raise ValueError(f"--box must be finite XMIN < XMAX, YMIN < YMAX, got {args.box}")
+    r = args.max_link_ratio
+    if r is not None and not (math.isfinite(r) and r >= 1):
+        raise ValueError(f"--max-link-ratio must be finite and >= 1, got {r}")
     if args.atlas is not None and not args.atlas.is_dir():
         raise ValueError(f"--atlas {str(args.atlas)!r} is not a folder")
 
@@ -157,6 +184,12 @@ def command_line(args: argparse.Namespace) -> str:
         words.append("--timing")
     if args.min_transmission is not None:
         words += ["--min-transmission", repr(args.min_transmission)]
+    if args.box is not None:
+        words += ["--box", *map(repr, args.box)]
+    if args.max_link_ratio is not None:
+        words += ["--max-link-ratio", repr(args.max_link_ratio)]
+    if args.full_turn:
+        words.append("--full-turn")
     if args.atlas is not None:
         words += ["--atlas", str(args.atlas)]
     words += ["--seed", str(args.seed), "--svg-samples", str(args.svg_samples)]
@@ -227,6 +260,9 @@ def run(args: argparse.Namespace) -> int:
             topology=args.topology,
             designs=args.designs,
             min_transmission=args.min_transmission,
+            box=None if args.box is None else (tuple(args.box[:2]), tuple(args.box[2:])),
+            max_link_ratio=args.max_link_ratio,
+            full_turn=True if args.full_turn else None,
             atlas=None if args.atlas is None else str(args.atlas),
             scheduler=args.scheduler,
             time_limit=args.time_limit,
