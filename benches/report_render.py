@@ -216,6 +216,10 @@ def render() -> None:
     if os.path.exists(os.path.join(RESULTS, "web.json")):
         L += _web_md(_load("web.json"))
 
+    L += _atlas_md()
+    if os.path.exists(os.path.join(RESULTS, "path_accuracy.json")):
+        L += _path_md(_load("path_accuracy.json"))
+
     for name in ("analysis.md", "analysis_scenes.md"):
         analysis = os.path.join(HERE, name)
         if os.path.exists(analysis):
@@ -224,6 +228,65 @@ def render() -> None:
     with open(OUT, "w", encoding="utf-8") as f:
         f.write("\n".join(L))
     print(f"wrote {OUT}")
+
+
+def _atlas_md() -> list[str]:
+    """Atlases at scale (issue 33): built through Dask, their size and memory, and the
+    retrieval of the top 100 (exact scan against faiss IVF-Flat), from the JSON reports of
+    ``benches/atlas_scale.py`` (its own runs: minutes each)."""
+    files = sorted(f for f in os.listdir(RESULTS) if f.startswith("atlas_scale_"))
+    if not files:
+        return []
+    L = [
+        "## Atlases at scale (`benches/atlas_scale.py`, through Dask, 2 local workers)",
+        "",
+        "| atlas | build | entries/s | on disk | peak memory (client) | top 100: exact | "
+        "top 100: IVF | recall@100 (mean, min) | IVF 100th / exact 100th distance |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for f in files:
+        r = _load(f)
+        q = r.get("query_top100_median_ms", {})
+        rec = r.get("recall_at_100_ivf_vs_exact")
+        ratio = r.get("distance_100th_ivf_over_exact")
+        L.append(
+            f"| {r['size']:,} {r['topology']} | {r['build_seconds_fresh']:.0f} s | "
+            f"{r['entries_per_second']:,.0f} | {r['disk_bytes'] / 1e9:.2f} GB | "
+            f"{r['peak_rss_bytes_this_process'] / 1e9:.1f} GB | "
+            + (f"{q['exact']:.0f} ms | {q['ivf']:.1f} ms | " if q else "- | - | ")
+            + (f"{rec['mean']:.3f}, {rec['min']:.2f} | " if rec else "- | ")
+            + (f"median {ratio['median']:.3f}, max {ratio['max']:.3f} |" if ratio else "- |")
+        )
+    cmds = sorted({_load(f)["command"] for f in files})
+    return [*L, "", "Commands: " + "; ".join(f"`{c}`" for c in cmds) + ".", ""]
+
+
+def _path_md(acc: dict) -> list[str]:
+    """Path synthesis accuracy (issue 33): the best verified (defect-free) design's error
+    over the target's size, and the query's time, from ``benches/path_accuracy.py``."""
+
+    def e(v: float | None) -> str:
+        return "none verified" if v is None else f"{v:.2e}"
+
+    L = [
+        "## Path synthesis: accuracy and time per query (`benches/path_accuracy.py`)",
+        "",
+        "Errors are distances from the target's points to the design's traced arc, over the "
+        "target's size (its bounding box's diagonal), measured on the real linkage; the time "
+        "is the whole query with the default atlas already built.",
+        "",
+        "| target | origin | best verified design: max, rms error | least transmission | "
+        "time |",
+        "|---|---|---|---|---|",
+    ]
+    for r in acc["rows"]:
+        mt = r["min_transmission_deg"]
+        L.append(
+            f"| {r['target']} ({r['topology']}) | {r['origin']} | "
+            f"{e(r['best_verified_error_max'])}, {e(r['best_verified_error_rms'])} | "
+            f"{'-' if mt is None else f'{mt:.1f} deg'} | {r['seconds']:.1f} s |"
+        )
+    return [*L, "", f"Command: `{acc['command']}`.", ""]
 
 
 def _web_md(web: dict) -> list[str]:

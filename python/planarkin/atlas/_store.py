@@ -17,7 +17,8 @@ from ._query import query
 
 #: the manifest's file name inside an atlas directory
 MANIFEST = "manifest.json"
-#: the layout this code writes and reads (raised when a shard's columns change)
+#: the layout this code writes and reads, and how entries are drawn (raised when either
+#: changes: a cached default atlas of another version is rebuilt)
 FORMAT_VERSION = 1
 #: topology name -> (parameter count, sign count)
 TOPOLOGIES: dict[str, tuple[int, int]] = {n: (p, s) for n, p, s in ATLAS_TOPOLOGIES}

@@ -424,7 +424,14 @@ class PathModel:
         sw: Any
         try:
             sc = self.scene_at(u)
-            sw = sc.sweep(s, outputs="all", rate=1.0, tol=SWEEP_TOL)
+            # a step that throws the inputs turns away (a least-squares step can) fails here:
+            # sweeping there would follow the motion through every one of those turns
+            far = np.abs(s - sc.input_angle).max(initial=0.0) > FAR_TURNS * 2 * math.pi
+            sw = (
+                None
+                if far or not np.all(np.isfinite(s))
+                else sc.sweep(s, outputs="all", rate=1.0, tol=SWEEP_TOL)
+            )
         except ValueError:
             sc = sw = None
         val["scene"], val["sweep"] = sc, sw
@@ -666,6 +673,10 @@ def _box(box: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
     ok = all(math.isfinite(v) for v in (xl, xh, yl, yh)) and xl < xh and yl < yh
     _check(ok, "box", f"must be finite with min < max on both axes, got {box!r}")
     return (xl, xh), (yl, yh)
+
+
+#: input values farther than this many turns from the drawn input angle fail outright
+FAR_TURNS = 3
 
 
 def _polish(model: PathModel, u: np.ndarray, deadline: float) -> np.ndarray:

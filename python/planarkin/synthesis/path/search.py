@@ -29,6 +29,9 @@ RETRIEVE = 300
 #: atlas entries placed onto an open or partial target besides the neighbours (the
 #: descriptors of a whole curve do not see a part of it)
 SCAN = 30_000
+#: longest refinement of one candidate (seconds): a four-bar's takes about 0.1 s, and a
+#: six-bar start that needs longer seldom ends better than the next start
+CANDIDATE_SECONDS = 2.5
 #: (starts per direction, target resampling) of the placement a refinement starts from
 FINE = (64, 64)
 #: the same for a quick first pass over the scanned entries, about 25 times cheaper
