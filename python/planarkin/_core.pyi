@@ -21,6 +21,10 @@ TRACE_STEP: float
 TRACE_MAX_POINTS: int
 SWEEP_LEN: int
 __all__ = [
+    "ATLAS_DESCRIPTOR",
+    "ATLAS_HARMONICS",
+    "ATLAS_SAMPLES",
+    "ATLAS_TOPOLOGIES",
     "BUILD_PROFILE",
     "MAX_ITER",
     "MAX_STEP",
@@ -40,6 +44,12 @@ __all__ = [
     "SINGULAR_THRESHOLD",
     "STATUSES",
     "__version__",
+    "atlas_curve",
+    "atlas_describe",
+    "atlas_match",
+    "atlas_match_curves",
+    "atlas_pose",
+    "atlas_shard",
     "closed_form_batch",
     "load_scene",
     "set_simd",

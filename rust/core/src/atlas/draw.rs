@@ -59,7 +59,7 @@ impl Rng {
 }
 
 /// Entry `index` of the atlas of `topology` drawn from `seed`; None only if
-/// [`MAX_DRAWS`] draws all failed.
+/// 10 000 draws all failed.
 pub fn draw(topology: Topology, seed: u64, index: u64) -> Option<Entry> {
     let mut rng = Rng(seed ^ Rng(index ^ 0xD1B5_4A32_D192_ED03).next());
     for draws in 1..=MAX_DRAWS {

@@ -17,8 +17,9 @@ use crate::scene::Xy;
 pub const FRACTIONS: [f64; 9] = [1.0, 0.8, 0.65, 0.5, 0.4, 0.3, 0.22, 0.16, 0.12];
 /// Points of a candidate's arc-length resampling.
 const ARC: usize = 256;
-/// How finely a placement is searched: `offsets` starts per direction along an arc (four
-/// times as many around a closed target) and the target resampled to `resolution` points.
+/// How finely a placement is searched: `offsets` starts per direction along an arc (around
+/// a closed target every start, or four times `offsets` in a quick pass) and the target
+/// resampled to `resolution` points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Search {
     /// Starts per direction.
@@ -188,7 +189,12 @@ pub fn match_curve(curve: &Curve, target: &[Xy], closed: bool, fractions: &[f64]
         }
         for dir in [1.0, -1.0] {
             let (lo, hi) = range(f, dir);
-            let starts = if closed { (4 * offsets).min(ARC) } else { offsets };
+            // around a closed target every start of the curve's resampling, unless quick
+            let starts = match (closed, search.local) {
+                (true, true) => ARC,
+                (true, false) => (4 * offsets).min(ARC),
+                (false, _) => offsets,
+            };
             let div = if cclosed { starts } else { starts - 1 } as f64;
             for o in 0..starts {
                 let x0 = lo + (hi - lo) * o as f64 / div;

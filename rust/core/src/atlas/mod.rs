@@ -1,9 +1,9 @@
 //! Atlases of normalised coupler curves for path synthesis: random linkages of a topology
-//! drawn reproducibly from a seed ([`draw`]), their coupler curves in closed form
-//! ([`chain`], [`curve`]), a descriptor of each curve invariant to translation, rotation,
-//! scale, start point and direction ([`descriptor`]), a shard of entries built in
-//! parallel ([`shard`]), and the placement of a candidate's curve onto a target
-//! ([`matching`]).
+//! drawn reproducibly from a seed ([`draw()`]), their coupler curves in closed form
+//! ([`pose`], [`coupler_curve`]; the Stephenson III by the scene solver), a descriptor of
+//! each curve invariant to translation, rotation, scale, start point and direction
+//! ([`describe`]), a shard of entries built in parallel ([`build_shard`]), and the
+//! placement of a candidate's curve onto a target ([`match_curve`]).
 //!
 //! Every entry is a function of (seed, index) alone, so an atlas is the same bit for bit
 //! however its shards are cut or spread over workers.

@@ -49,8 +49,11 @@ fn plan(p: &[f64]) -> Option<(Plan, f64)> {
     Some((scene.plan(None).ok()?, theta0))
 }
 
+/// A solved value: the 8 points and the conditioning.
+type Solved = ([Xy; 8], f64);
+
 /// Sweeps `p`'s plan at `theta`: per value, the points (all 8) and conditioning, or None.
-fn solve(plan: &Plan, theta: &[f64]) -> Option<Vec<Option<([Xy; 8], f64)>>> {
+fn solve(plan: &Plan, theta: &[f64]) -> Option<Vec<Option<Solved>>> {
     // what the drawn circuit does not reach is all the atlas needs to know of it
     let opts = sweep_options(false, 1.0).ok()?.with_classify(false);
     let mut buf = SceneSweepBuffers::new(plan, theta.len(), false).ok()?;

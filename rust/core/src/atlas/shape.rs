@@ -5,7 +5,7 @@ use crate::scene::Xy;
 /// Most points of any topology's pose.
 pub const MAX_POINTS: usize = 8;
 
-/// A solved pose: the points (in the order [`pose_names`] gives), the tracer's index
+/// A solved pose: the points (in the order [`super::pose_names`] gives), the tracer's index
 /// among them, and the worst transmission sine of its dyads.
 #[derive(Clone, Copy, Debug)]
 pub struct Pose {
