@@ -28,7 +28,7 @@ TOPOLOGIES = ("four-bar", "slider-crank", "watt2", "stephenson3")
 RETRIEVE = 300
 #: atlas entries placed onto an open or partial target besides the neighbours (the
 #: descriptors of a whole curve do not see a part of it)
-SCAN = 30_000
+SCAN = 20_000
 #: longest refinement of one candidate (seconds): a four-bar's takes about 0.1 s, and a
 #: six-bar start that needs longer seldom ends better than the next start
 CANDIDATE_SECONDS = 2.5
@@ -37,7 +37,7 @@ FINE = (64, 64)
 #: the same for a quick first pass over the scanned entries, about 25 times cheaper
 COARSE = (12, 16)
 #: scanned entries kept from the quick pass for the fine one
-KEEP = 400
+KEEP = 300
 
 
 @dataclass(frozen=True)
