@@ -275,8 +275,7 @@ def _path_md(acc: dict) -> list[str]:
         "target's size (its bounding box's diagonal), measured on the real linkage; the time "
         "is the whole query with the default atlas already built.",
         "",
-        "| target | origin | best verified design: max, rms error | least transmission | "
-        "time |",
+        "| target | origin | best verified design: max, rms error | least transmission | time |",
         "|---|---|---|---|---|",
     ]
     for r in acc["rows"]:

@@ -19,13 +19,13 @@ from _path_linkages import (
     slider_curve,
     slider_scene,
 )
-from planarkin.synthesis.path.refine import (
+from planarkin.synthesis.path.model import (
     INIT_SAMPLES,
     PathModel,
     fourbar_joints,
     initial_inputs,
-    refine,
 )
+from planarkin.synthesis.path.refine import refine
 from planarkin.synthesis.path.targets import CurveTarget
 from planarkin.synthesis.path.verify import verify
 

@@ -14,7 +14,7 @@ from scipy.optimize import minimize_scalar
 
 from ..._kernel import TRACE_STEP
 from ...scene import Scene
-from .refine import direction
+from .model import direction
 from .results import Defects, PathError
 from .targets import CurveTarget
 
