@@ -117,8 +117,12 @@ def write_shard(path: Path, table: Any) -> None:
     """Writes a shard atomically (a half-written file never has the shard's name)."""
     pq = require_pyarrow().parquet
     tmp = path.with_suffix(".parquet.tmp")
-    pq.write_table(table, tmp, compression="zstd")
-    os.replace(tmp, path)
+    try:
+        pq.write_table(table, tmp, compression="zstd")
+        os.replace(tmp, path)
+    except BaseException:  # Ctrl-C too: no half-written file is left behind
+        tmp.unlink(missing_ok=True)
+        raise
 
 
 def read_manifest(path: Path) -> dict[str, Any]:
