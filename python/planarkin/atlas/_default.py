@@ -25,6 +25,9 @@ DEFAULT_SIZE = {
 DEFAULT_SEED = 0
 #: entries built per kernel call (for progress and Ctrl-C)
 CHUNK = 100_000
+#: default atlases already in this process, by (topology, size): a second query does not
+#: read the file again (nor recompute what retrieval keeps with an atlas)
+_LOADED: dict[tuple[str, int], Atlas] = {}
 
 
 def cache_dir() -> Path:
@@ -38,7 +41,9 @@ def cache_dir() -> Path:
 
 def default(topology: str = "four-bar", *, size: int | None = None, progress=None) -> Atlas:
     """The default atlas of ``topology`` (``size`` entries, seed 0), loaded from the cache
-    or built there first. ``progress(done, total)`` is called while it is built."""
+    or built there first, and kept in this process for the next call (the cache is keyed
+    by its file, so another $PLANARKIN_CACHE gets its own). ``progress(done, total)`` is
+    called while it is built."""
     topology_checked(topology)
     size = DEFAULT_SIZE[topology] if size is None else int(size)
     if size < 1:
@@ -59,11 +64,15 @@ def default(topology: str = "four-bar", *, size: int | None = None, progress=Non
         cache_dir()
         / f"atlas-{topology}-{size}-seed{DEFAULT_SEED}-v{FORMAT_VERSION}-{__version__}.npz"
     )
+    key = (str(file), size)
+    if key in _LOADED:
+        return _LOADED[key]
     if file.is_file():
         try:
             with np.load(file) as z:
                 cols = {k: z[k] for k in z.files}
-            return Atlas(manifest=manifest, path=None, **cols)
+            _LOADED[key] = Atlas(manifest=manifest, path=None, **cols)
+            return _LOADED[key]
         except (OSError, ValueError, KeyError):
             pass  # a damaged cache file is rebuilt
     parts = []
@@ -82,4 +91,5 @@ def default(topology: str = "four-bar", *, size: int | None = None, progress=Non
     with tempfile.NamedTemporaryFile(dir=file.parent, suffix=".npz", delete=False) as tmp:
         np.savez(tmp, **cols)
     os.replace(tmp.name, file)
-    return Atlas(manifest=manifest, path=None, **cols)
+    _LOADED[key] = Atlas(manifest=manifest, path=None, **cols)
+    return _LOADED[key]

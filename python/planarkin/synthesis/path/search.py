@@ -29,6 +29,8 @@ RETRIEVE = 300
 #: atlas entries placed onto an open or partial target besides the neighbours (the
 #: descriptors of a whole curve do not see a part of it)
 SCAN = 20_000
+#: an error (over the target's size) no refinement improves on: rounding
+EXACT = 1e-12
 #: longest refinement of one candidate (seconds): a four-bar's takes about 0.1 s, and a
 #: six-bar start that needs longer seldom ends better than the next start
 CANDIDATE_SECONDS = 2.5
@@ -338,6 +340,8 @@ def path(
                     break
                 say("refinement", i, len(todo))
                 keep(cand, refine_one(cand, tgt, constraints, clock.left()))
+                if sum(d.verified and d.error.max <= EXACT for d in found) >= designs:
+                    break  # as many exact designs as asked: no later start can do better
         else:
             stopped = _distributed(todo, tgt, constraints, clock, scheduler, keep, say)
     except KeyboardInterrupt:
