@@ -175,7 +175,7 @@ def _distributed(
     constraints: dict,
     clock: _Clock,
     scheduler: str,
-    keep: Callable[[Placed, dict | None], None],
+    keep: Callable[[int, dict | None], None],
     say: Callable[[str, int, int], None],
 ) -> str:
     """The candidates refined as Dask tasks on ``scheduler`` (an address, or "local": a
@@ -200,7 +200,7 @@ def _distributed(
                 break
         # in the candidates' order, as in this process: the same designs kept
         for i in sorted(got):
-            keep(todo[i], got[i])
+            keep(i, got[i])
         return stopped
     finally:
         for f in futures:
@@ -251,7 +251,8 @@ def path(
     ``scheduler`` refines the candidates as Dask tasks (an address, or "local" for a
     LocalCluster here; None: in this process); Ctrl-C returns the designs so far with
     ``stopped`` "interrupted".
-    ``progress(stage, done, total)`` is told each stage's advance."""
+    ``progress(stage, done, total)`` is told each stage's advance. ``seed`` is recorded
+    in the result: nothing here draws at random (an atlas carries its own seed)."""
     clock = _Clock(time_limit)
     tgt = target if isinstance(target, CurveTarget) else load_target(target, kind=kind)
     if kind is not None and tgt.kind != kind:
@@ -307,9 +308,11 @@ def path(
     }
     seeds = {m["topology"]: int(m["seed"]) for m in manifests}
 
-    def keep(cand: Placed, got: dict | None) -> None:
+    def keep(i: int, got: dict | None) -> None:
+        # the i-th candidate's refined design, unless it is one already kept
         if got is None:
             return
+        cand = todo[i]
         d = Design(
             scene=Scene(got["scene"]),
             tracer=TRACER,
@@ -321,7 +324,7 @@ def path(
             full_turn=got["full_turn"],
             verified=got["verified"],
             source={
-                "rank": todo.index(cand) + 1,
+                "rank": i + 1,
                 "atlas_entry": cand.entry,
                 "atlas_seed": seeds[cand.topology],
                 "placement_cost": cand.cost,
@@ -339,7 +342,7 @@ def path(
                     stopped = "time limit"
                     break
                 say("refinement", i, len(todo))
-                keep(cand, refine_one(cand, tgt, constraints, clock.left()))
+                keep(i, refine_one(cand, tgt, constraints, clock.left()))
                 if sum(d.verified and d.error.max <= EXACT for d in found) >= designs:
                     break  # as many exact designs as asked: no later start can do better
         else:
