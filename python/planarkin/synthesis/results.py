@@ -5,10 +5,29 @@ why a search or start stopped early. Plain data: nothing here runs anything."""
 from __future__ import annotations
 
 import math
+import platform
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+
+
+def versions() -> dict[str, str]:
+    """What a run ran with, for its report: planarkin, NumPy, SciPy, Python and the
+    platform."""
+    import scipy
+
+    from .._kernel import __version__  # the package's own, without importing the package
+
+    return {
+        "planarkin": __version__,
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+        "python": platform.python_version(),
+        "platform": platform.platform(),
+        "machine": platform.machine(),
+    }
+
 
 #: what :attr:`StartResult.stopped` and :attr:`SynthesisResult.stopped` say
 TIME_LIMIT, INTERRUPTED = "time limit", "interrupted"

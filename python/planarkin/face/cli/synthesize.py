@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import platform
 import shlex
 import sys
 import time
@@ -26,6 +25,7 @@ from ...synthesis import ackermann as ak
 from ...synthesis import ackermann_report as rep
 from ...synthesis import driver
 from ...synthesis.problem import OBJECTIVES, FunctionTarget, Problem
+from ...synthesis.results import versions
 from ...synthesis.start import MINIMAX_ITER
 from ..figures import synthesis as synthesis_figures
 from ..progress import bar, shown
@@ -232,22 +232,6 @@ def command_line(args: argparse.Namespace) -> str:
 def _word(v: object) -> str:
     # repr: the shortest text that reads back to the same float
     return repr(v) if isinstance(v, float) else str(v)
-
-
-def versions() -> dict[str, str]:
-    """What the run ran with: planarkin, NumPy, SciPy, Python and the platform."""
-    import scipy
-
-    from ... import __version__
-
-    return {
-        "planarkin": __version__,
-        "numpy": np.__version__,
-        "scipy": scipy.__version__,
-        "python": platform.python_version(),
-        "platform": platform.platform(),
-        "machine": platform.machine(),
-    }
 
 
 class _Bars:

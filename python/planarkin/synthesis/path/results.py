@@ -8,7 +8,6 @@ import contextlib
 import json
 import math
 import os
-import platform
 import re
 import shutil
 import signal
@@ -21,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..results import versions
 from .targets import CurveTarget
 
 if TYPE_CHECKING:  # a design holds a Scene; its class is the scene's own at run time
@@ -122,22 +122,6 @@ class Design:
         if outs and self.tracer not in outs:
             d["outputs"] = [*outs, self.tracer]
         return d
-
-
-def versions() -> dict[str, str]:
-    """What the run ran with: planarkin, NumPy, SciPy, Python and the platform."""
-    import scipy
-
-    from ..._kernel import __version__  # the package's own, without importing the package
-
-    return {
-        "planarkin": __version__,
-        "numpy": np.__version__,
-        "scipy": scipy.__version__,
-        "python": platform.python_version(),
-        "platform": platform.platform(),
-        "machine": platform.machine(),
-    }
 
 
 def _plain(x: object) -> object:
