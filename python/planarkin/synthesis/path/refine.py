@@ -5,13 +5,9 @@ user's constraints; then a least-squares polish kept only where the constraints 
 
 from __future__ import annotations
 
-import contextlib
-import ctypes
 import math
-import sys
 import time
 import warnings
-from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -19,6 +15,7 @@ import numpy as np
 from scipy.optimize import least_squares, minimize
 
 from ...scene import Scene
+from ..pool import blas_held_to_one_thread
 from .model import DET_FLOOR, SWEEP_TOL, PathModel, _check
 from .results import PathError
 from .targets import CurveTarget
@@ -57,52 +54,6 @@ class Refined:
     evaluations: int
     seconds: float
     message: str
-
-
-@contextlib.contextmanager
-def one_blas_thread() -> Iterator[None]:
-    """OpenBLAS held to one thread for the duration (restored after). SLSQP's subproblems
-    are a few dozen rows: on a busy machine OpenBLAS's threads wait on each other for
-    longer than the work (measured: 7 ms an SLSQP step against 0.3 ms single-threaded, on
-    2 shared cores). Linux only (the loaded libraries read from /proc); a no-op elsewhere."""
-    global _BLAS
-    if _BLAS is None:
-        _BLAS = _openblas_controls()
-    held = [(put, int(get())) for get, put in _BLAS]
-    for put, _ in held:
-        put(1)
-    try:
-        yield
-    finally:
-        for put, n in held:
-            put(n)
-
-
-#: the loaded OpenBLAS libraries' (get, set) thread-count functions, found once
-_BLAS: list[tuple[Any, Any]] | None = None
-
-
-def _openblas_controls() -> list[tuple[Any, Any]]:
-    out: list[tuple[Any, Any]] = []
-    if not sys.platform.startswith("linux"):
-        return out
-    try:
-        with open("/proc/self/maps", encoding="utf-8") as f:
-            paths = {ln.split()[-1] for ln in f if "openblas" in ln.lower() and "/" in ln}
-    except OSError:
-        return out
-    for path in sorted(paths):
-        try:
-            lib = ctypes.CDLL(path)
-        except OSError:
-            continue
-        names = [(f"{p}_get_num_threads{s}", f"{p}_set_num_threads{s}")
-                 for p in ("scipy_openblas", "openblas") for s in ("64_", "")]  # fmt: skip
-        for get, put in names:
-            if hasattr(lib, get) and hasattr(lib, put):
-                out.append((getattr(lib, get), getattr(lib, put)))
-                break
-    return out
 
 
 def _polish(model: PathModel, u: np.ndarray, deadline: float) -> np.ndarray:
@@ -190,8 +141,8 @@ def refine(
     ground (exactly the whole turn's, and Grashof's condition with a margin). Then a least-
     squares polish (exact Jacobian), kept only if the constraints still hold. ``time_limit``
     (seconds) stops SLSQP early. OpenBLAS is held to one thread meanwhile
-    (:func:`one_blas_thread`)."""
-    with one_blas_thread():
+    (:func:`~planarkin.synthesis.pool.blas_held_to_one_thread`)."""
+    with blas_held_to_one_thread():
         return _refine(
             scene,
             tracer,
