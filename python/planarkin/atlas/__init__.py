@@ -11,7 +11,7 @@ atlases).
 ('four-bar', 2000)
 """
 
-from ._build import IN_PROCESS, SHARD_SIZE, AtlasFiles, build, client_for
+from ._build import IN_PROCESS, SHARD_SIZE, AtlasFiles, build, client_for, run_tasks
 from ._default import DEFAULT_SIZE, cache_dir, default
 from ._query import APPROXIMATE_FROM, NPROBE, Candidates, descriptor_variants, query
 from ._store import PARAMS, TOPOLOGIES, Atlas, open_atlas
@@ -38,4 +38,5 @@ __all__ = [
     "open",
     "open_atlas",
     "query",
+    "run_tasks",
 ]

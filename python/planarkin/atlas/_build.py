@@ -6,12 +6,13 @@ incomplete until every shard is written)."""
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
 import platform
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -114,6 +115,33 @@ def client_for(scheduler: str | None, workers: int | None) -> tuple[Any, Any]:
     return Client(scheduler), None
 
 
+def run_tasks(
+    fn: Callable[..., Any],
+    calls: list[tuple],
+    scheduler: str | None,
+    workers: int | None = None,
+) -> Generator[tuple[int, Any], None, None]:
+    """``fn(*args)`` for each ``args`` of ``calls`` as Dask tasks on ``scheduler`` (see
+    :func:`client_for`): yields (index in ``calls``, result) as each finishes. When the
+    caller stops taking them (done, broken off, Ctrl-C; close the generator), the tasks
+    left are cancelled and a LocalCluster made here is closed."""
+    from distributed import as_completed
+
+    client, cluster = client_for(scheduler, workers)
+    futures = []
+    try:
+        futures = [client.submit(fn, *args, pure=False) for args in calls]
+        index = {f.key: i for i, f in enumerate(futures)}
+        for f in as_completed(futures):
+            yield index[f.key], f.result()
+    finally:
+        for f in futures:
+            f.cancel()
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
 def build(
     topology: str,
     size: int,
@@ -168,25 +196,11 @@ def build(
             if progress:
                 progress(len(done), total)
     else:
-        from distributed import as_completed
-
-        client, cluster = client_for(scheduler, workers)
-        futures = []
-        try:
-            futures = [
-                client.submit(make_shard, *a, key=f"atlas-{a[-1]}", pure=False) for a in todo
-            ]
-            for f in as_completed(futures):
-                info = f.result()
+        with contextlib.closing(run_tasks(make_shard, todo, scheduler, workers)) as shards:
+            for _, info in shards:
                 done[info["file"]] = info
                 if progress:
                     progress(len(done), total)
-        finally:
-            for f in futures:
-                f.cancel()
-            client.close()
-            if cluster is not None:
-                cluster.close()
     manifest["shards"] = [done[s["file"]] for s in manifest["shards"]]
     manifest["complete"] = True
     manifest["build"] = {

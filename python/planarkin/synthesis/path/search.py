@@ -5,6 +5,7 @@ on a dense sweep, and rank by true error (defect-free designs first)."""
 
 from __future__ import annotations
 
+import contextlib
 import math
 import time
 from collections.abc import Callable
@@ -180,34 +181,21 @@ def _distributed(
 ) -> str:
     """The candidates refined as Dask tasks on ``scheduler`` (an address, or "local": a
     LocalCluster on this machine); returns why it stopped."""
-    client, cluster = atlases.client_for(None if scheduler == "local" else scheduler, None)
-    futures = []
-    try:
-        futures = [
-            client.submit(refine_one, c, target, constraints, clock.left(), pure=False)
-            for c in todo
-        ]
-        from distributed import as_completed
-
-        order = {f.key: i for i, f in enumerate(futures)}
-        got: dict[int, dict | None] = {}
-        stopped = "done"
-        for n, f in enumerate(as_completed(futures), 1):
-            got[order[f.key]] = f.result()
+    calls = [(c, target, constraints, clock.left()) for c in todo]
+    where = None if scheduler == "local" else scheduler
+    got: dict[int, dict | None] = {}
+    stopped = "done"
+    with contextlib.closing(atlases.run_tasks(refine_one, calls, where)) as tasks:
+        for n, (i, result) in enumerate(tasks, 1):
+            got[i] = result
             say("refinement", n, len(todo))
             if clock.over():
                 stopped = "time limit"
                 break
-        # in the candidates' order, as in this process: the same designs kept
-        for i in sorted(got):
-            keep(i, got[i])
-        return stopped
-    finally:
-        for f in futures:
-            f.cancel()
-        client.close()
-        if cluster is not None:
-            cluster.close()
+    # in the candidates' order, as in this process: the same designs kept
+    for i in sorted(got):
+        keep(i, got[i])
+    return stopped
 
 
 def _same(d: Design, others: list[Design], tol: float) -> bool:
