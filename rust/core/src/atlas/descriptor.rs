@@ -22,9 +22,8 @@ pub const DESCRIPTOR: usize = 4 * HARMONICS;
 /// Points of the arc-length resampling the coefficients are taken from.
 pub const RESAMPLED: usize = 128;
 
-/// `n` points equally spaced by arc length along `points` (closed: around the loop, the
-/// first point first; open: from the first point to the last, both included).
-pub fn resample(points: &[Xy], closed: bool, n: usize) -> Vec<Xy> {
+/// Cumulative arc length along `points` (closed: back to the first point).
+pub(super) fn cumulative(points: &[Xy], closed: bool) -> Vec<f64> {
     let m = points.len();
     let segs = if closed { m } else { m - 1 };
     let mut cum = Vec::with_capacity(segs + 1);
@@ -33,6 +32,15 @@ pub fn resample(points: &[Xy], closed: bool, n: usize) -> Vec<Xy> {
         let (a, b) = (points[i], points[(i + 1) % m]);
         cum.push(cum[i] + (b[0] - a[0]).hypot(b[1] - a[1]));
     }
+    cum
+}
+
+/// Where `n` positions equally spaced by arc length along `points` fall (closed: around
+/// the loop, the first point first; open: from the first point to the last, both
+/// included): each as (segment, weight) between point `segment` and the next.
+pub(super) fn arc_positions(points: &[Xy], closed: bool, n: usize) -> Vec<(usize, f64)> {
+    let cum = cumulative(points, closed);
+    let segs = cum.len() - 1;
     let total = cum[segs];
     let div = if closed { n } else { n - 1 } as f64;
     let mut out = Vec::with_capacity(n);
@@ -43,11 +51,21 @@ pub fn resample(points: &[Xy], closed: bool, n: usize) -> Vec<Xy> {
             i += 1;
         }
         let len = cum[i + 1] - cum[i];
-        let w = if len > 0.0 { ((s - cum[i]) / len).clamp(0.0, 1.0) } else { 0.0 };
-        let (a, b) = (points[i], points[(i + 1) % m]);
-        out.push([a[0] + w * (b[0] - a[0]), a[1] + w * (b[1] - a[1])]);
+        out.push((i, if len > 0.0 { ((s - cum[i]) / len).clamp(0.0, 1.0) } else { 0.0 }));
     }
     out
+}
+
+/// `n` points equally spaced by arc length along `points` (see [`arc_positions`]).
+pub fn resample(points: &[Xy], closed: bool, n: usize) -> Vec<Xy> {
+    let m = points.len();
+    arc_positions(points, closed, n)
+        .into_iter()
+        .map(|(i, w)| {
+            let (a, b) = (points[i], points[(i + 1) % m]);
+            [a[0] + w * (b[0] - a[0]), a[1] + w * (b[1] - a[1])]
+        })
+        .collect()
 }
 
 fn twiddles() -> &'static [(f64, f64)] {

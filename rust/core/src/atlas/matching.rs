@@ -7,6 +7,7 @@
 use std::f64::consts::TAU;
 
 use super::curve::{coupler_curve, Curve};
+use super::descriptor::{arc_positions, cumulative, resample};
 use super::Topology;
 use crate::error::Error;
 use crate::interrupt::Interrupt;
@@ -58,19 +59,6 @@ pub struct Placement {
     pub theta: Vec<f64>,
 }
 
-/// Cumulative arc length along `pts` (closed: back to the first point).
-fn cumulative(pts: &[Xy], closed: bool) -> Vec<f64> {
-    let m = pts.len();
-    let segs = if closed { m } else { m - 1 };
-    let mut cum = Vec::with_capacity(segs + 1);
-    cum.push(0.0);
-    for i in 0..segs {
-        let (a, b) = (pts[i], pts[(i + 1) % m]);
-        cum.push(cum[i] + (b[0] - a[0]).hypot(b[1] - a[1]));
-    }
-    cum
-}
-
 /// The point at float position x (in arc-length samples) of `v`, wrapping a closed one.
 fn at_position(v: &[Xy], closed: bool, x: f64) -> Xy {
     let n = v.len();
@@ -84,29 +72,18 @@ fn at_position(v: &[Xy], closed: bool, x: f64) -> Xy {
 
 /// Resamples a curve to `ARC` points by arc length, with the input angle at each.
 fn arc_samples(curve: &Curve) -> (Vec<Xy>, Vec<f64>) {
-    let (pts, th, closed) = (&curve.points, &curve.theta, curve.closed);
-    let cum = cumulative(pts, closed);
-    let total = *cum.last().unwrap_or(&0.0);
-    let segs = cum.len() - 1;
-    let div = if closed { ARC } else { ARC - 1 } as f64;
-    let (mut out, mut ang) = (Vec::with_capacity(ARC), Vec::with_capacity(ARC));
-    let mut i = 0;
+    let (pts, th) = (&curve.points, &curve.theta);
     let m = pts.len();
-    for j in 0..ARC {
-        let s = total * j as f64 / div;
-        while i + 1 < segs && cum[i + 1] < s {
-            i += 1;
-        }
-        let len = cum[i + 1] - cum[i];
-        let w = if len > 0.0 { ((s - cum[i]) / len).clamp(0.0, 1.0) } else { 0.0 };
-        let k = (i + 1) % m;
-        let (a, b) = (pts[i], pts[k]);
-        // past the last sample of a closed curve the input has turned once more
-        let tb = if k == 0 { th[0] + TAU } else { th[k] };
-        out.push([a[0] + w * (b[0] - a[0]), a[1] + w * (b[1] - a[1])]);
-        ang.push(th[i] + w * (tb - th[i]));
-    }
-    (out, ang)
+    arc_positions(pts, curve.closed, ARC)
+        .into_iter()
+        .map(|(i, w)| {
+            let k = (i + 1) % m;
+            let (a, b) = (pts[i], pts[k]);
+            // past the last sample of a closed curve the input has turned once more
+            let tb = if k == 0 { th[0] + TAU } else { th[k] };
+            ([a[0] + w * (b[0] - a[0]), a[1] + w * (b[1] - a[1])], th[i] + w * (tb - th[i]))
+        })
+        .unzip()
 }
 
 /// The best placement of `curve` onto the target `target` (points in order, `closed` or
@@ -126,7 +103,7 @@ pub fn match_curve(curve: &Curve, target: &[Xy], closed: bool, fractions: &[f64]
         return None;
     }
     let at: Vec<f64> = tcum[..target.len()].iter().map(|s| s / ttotal).collect();
-    let tz = super::descriptor::resample(target, closed, res);
+    let tz = resample(target, closed, res);
     let tdiv = if closed { res } else { res - 1 } as f64;
     let mean = |v: &[Xy]| {
         let n = v.len() as f64;
