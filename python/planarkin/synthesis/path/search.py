@@ -81,6 +81,21 @@ class Placed:
         return self.theta + input_offset(self.a)
 
 
+def _match(
+    atlas: atlases.Atlas, target: CurveTarget, rows: np.ndarray, search: tuple[int, int]
+) -> tuple[np.ndarray, ...]:
+    """The kernel's placement of the atlas rows: (cost, a, b, fraction, reversed, theta),
+    a row each; cost NaN where none fits."""
+    return atlas_match(
+        atlas.topology,
+        np.ascontiguousarray(atlas.params[rows]),
+        np.ascontiguousarray(atlas.signs[rows], dtype=np.float64),
+        np.ascontiguousarray(target.points, dtype=np.float64),
+        target.kind == "closed",
+        *search,
+    )
+
+
 def place(
     atlas: atlases.Atlas, target: CurveTarget, rows: np.ndarray, search: tuple[int, int] = FINE
 ) -> list[Placed]:
@@ -88,18 +103,15 @@ def place(
     ``search``: starts per direction and the target's resampling (:data:`FINE`)."""
     if rows.size == 0:
         return []
-    closed = target.kind == "closed"
-    params = np.ascontiguousarray(atlas.params[rows])
-    signs = np.ascontiguousarray(atlas.signs[rows], dtype=np.float64)
-    pts = np.ascontiguousarray(target.points, dtype=np.float64)
-    cost, a, b, frac, rev, theta = atlas_match(atlas.topology, params, signs, pts, closed, *search)
-    out = [
+    cost, a, b, frac, rev, theta = _match(atlas, target, rows, search)
+    order = [i for i in np.argsort(cost, kind="stable") if math.isfinite(cost[i])]
+    return [
         Placed(
             topology=atlas.topology,
-            row=int(r),
-            entry=int(atlas.ids[r]),
-            params=params[i],
-            signs=atlas.signs[r],
+            row=int(rows[i]),
+            entry=int(atlas.ids[rows[i]]),
+            params=atlas.params[rows[i]],
+            signs=atlas.signs[rows[i]],
             cost=float(cost[i]),
             a=complex(*a[i]),
             b=complex(*b[i]),
@@ -107,10 +119,8 @@ def place(
             reversed=bool(rev[i]),
             fraction=float(frac[i]),
         )
-        for i, r in enumerate(rows)
-        if math.isfinite(cost[i])
+        for i in order
     ]
-    return sorted(out, key=lambda p: p.cost)
 
 
 def retrieve(atlas: atlases.Atlas, target: CurveTarget, k: int = RETRIEVE) -> list[Placed]:
@@ -126,7 +136,10 @@ def retrieve(atlas: atlases.Atlas, target: CurveTarget, k: int = RETRIEVE) -> li
             # an open target may be a rocking input's whole arc: its descriptor finds those
             near = atlases.query(atlas, target.points, k, closed=False).rows
             rows = np.unique(np.concatenate([near, rows]))
-        rows = np.array([p.row for p in place(atlas, target, rows, COARSE)[:KEEP]], dtype=np.int64)
+        # the quick pass ranks the many by their cost alone; only the best are placed finely
+        cost = _match(atlas, target, rows, COARSE)[0]
+        best = np.argsort(np.where(np.isfinite(cost), cost, np.inf), kind="stable")[:KEEP]
+        rows = rows[best[np.isfinite(cost[best])]]
     return place(atlas, target, rows)
 
 
