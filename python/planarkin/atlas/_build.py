@@ -17,14 +17,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .._kernel import __version__, atlas_shard
+from .._kernel import atlas_shard
 from ._store import (
-    FORMAT_VERSION,
     MANIFEST,
-    PARAMS,
-    TOPOLOGIES,
     Atlas,
-    descriptor_info,
+    manifest_of,
     open_atlas,
     read_manifest,
     require_pyarrow,
@@ -82,16 +79,8 @@ def _manifest(topology: str, seed: int, size: int, shard_size: int) -> dict[str,
         for i in range(n)
     ]
     return {
-        "format": "planarkin-atlas",
-        "version": FORMAT_VERSION,
-        "topology": topology,
-        "seed": seed,
-        "size": size,
+        **manifest_of(topology, seed, size),
         "shard_size": shard_size,
-        "params": list(PARAMS[topology]),
-        "signs": TOPOLOGIES[topology][1],
-        "descriptor": descriptor_info(),
-        "planarkin": __version__,
         "complete": False,
         "shards": shards,
     }

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from .._kernel import __version__, atlas_shard
-from ._store import FORMAT_VERSION, PARAMS, Atlas, descriptor_info, topology_checked
+from ._store import FORMAT_VERSION, Atlas, manifest_of, topology_checked
 
 #: entries of the default atlas per topology (four-bars: about 6 s to build on 2 cores)
 DEFAULT_SIZE = {
@@ -48,18 +48,7 @@ def default(topology: str = "four-bar", *, size: int | None = None, progress=Non
     size = DEFAULT_SIZE[topology] if size is None else int(size)
     if size < 1:
         raise ValueError(f"size must be >= 1, got {size}")
-    manifest = {
-        "format": "planarkin-atlas",
-        "version": FORMAT_VERSION,
-        "topology": topology,
-        "seed": DEFAULT_SEED,
-        "size": size,
-        "params": list(PARAMS[topology]),
-        "descriptor": descriptor_info(),
-        "planarkin": __version__,
-        "complete": True,
-        "default": True,
-    }
+    manifest = {**manifest_of(topology, DEFAULT_SEED, size), "complete": True, "default": True}
     file = (
         cache_dir()
         / f"atlas-{topology}-{size}-seed{DEFAULT_SEED}-v{FORMAT_VERSION}-{__version__}.npz"

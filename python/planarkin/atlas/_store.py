@@ -12,7 +12,13 @@ from typing import Any
 
 import numpy as np
 
-from .._kernel import ATLAS_DESCRIPTOR, ATLAS_HARMONICS, ATLAS_SAMPLES, ATLAS_TOPOLOGIES
+from .._kernel import (
+    ATLAS_DESCRIPTOR,
+    ATLAS_HARMONICS,
+    ATLAS_SAMPLES,
+    ATLAS_TOPOLOGIES,
+    __version__,
+)
 from ._query import query
 
 #: the manifest's file name inside an atlas directory
@@ -46,6 +52,22 @@ def require_pyarrow() -> Any:
     except ImportError:
         raise ImportError('atlas files need pyarrow: pip install "planarkin[atlas]"') from None
     return pyarrow
+
+
+def manifest_of(topology: str, seed: int, size: int) -> dict[str, Any]:
+    """What every atlas's manifest says of it: format, topology, seed, size, parameters,
+    signs, descriptor and the planarkin that made it."""
+    return {
+        "format": "planarkin-atlas",
+        "version": FORMAT_VERSION,
+        "topology": topology,
+        "seed": seed,
+        "size": size,
+        "params": list(PARAMS[topology]),
+        "signs": TOPOLOGIES[topology][1],
+        "descriptor": descriptor_info(),
+        "planarkin": __version__,
+    }
 
 
 def descriptor_info() -> dict[str, Any]:
