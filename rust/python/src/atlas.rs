@@ -11,20 +11,17 @@ use planarkin_core::scene::Xy;
 use planarkin_core::Error;
 use pyo3::prelude::*;
 
-use crate::buffers::{grid, points_of, slice, Arr1, Arr2};
+use crate::buffers::{grid, points_of, Arr1, Arr2};
 use crate::errors::{err, Signals};
 
 fn topology(name: &str) -> PyResult<Topology> {
     Topology::from_name(name).map_err(err)
 }
 
-/// Checks a candidate's parameters and signs against its topology.
-fn row<'a>(
-    t: Topology,
-    p: &'a PyReadonlyArray1<'_, f64>,
-    s: &'a PyReadonlyArray1<'_, f64>,
-) -> PyResult<(&'a [f64], &'a [f64])> {
-    let (p, s) = (slice("params", p)?, slice("signs", s)?);
+/// A candidate's parameters and signs, checked against its topology: copied (a dozen
+/// numbers), so any layout will do, a strided view or a buffer Dask unpickled unaligned.
+fn row(t: Topology, p: &PyReadonlyArray1<'_, f64>, s: &PyReadonlyArray1<'_, f64>) -> PyResult<(Vec<f64>, Vec<f64>)> {
+    let (p, s) = (p.as_array().to_vec(), s.as_array().to_vec());
     let bad = |name: &str, got, expected| err(Error::Shape { name: name.into(), got, expected });
     if p.len() != t.params() {
         return Err(bad("params", p.len(), t.params()));
@@ -84,6 +81,7 @@ fn atlas_curve<'py>(
 ) -> PyResult<Option<CurveOut<'py>>> {
     let t = topology(topology_name)?;
     let (p, s) = row(t, &params, &signs)?;
+    let (p, s) = (&p[..], &s[..]);
     if samples < 2 {
         return Err(err(Error::InvalidParameter {
             name: "samples".into(),
@@ -112,6 +110,7 @@ fn atlas_pose<'py>(
 ) -> PyResult<Option<PoseOut<'py>>> {
     let t = topology(topology_name)?;
     let (p, s) = row(t, &params, &signs)?;
+    let (p, s) = (&p[..], &s[..]);
     Ok(pose(t, p, s, theta).map(|q| {
         let flat: Vec<f64> = q.points[..q.count].iter().flatten().copied().collect();
         (pose_names(t).to_vec(), grid(py, q.count, 2, flat), q.conditioning)

@@ -78,9 +78,8 @@ def scene_dict(
     at ``theta``."""
     got = atlas_pose(
         topology,
-        # fresh copies: arrays a Dask worker unpickled may be unaligned views of its buffer
-        np.array(params, dtype=np.float64),
-        np.array(signs, dtype=np.float64),
+        np.asarray(params, dtype=np.float64),
+        np.asarray(signs, dtype=np.float64),
         float(theta),
     )
     if got is None:
