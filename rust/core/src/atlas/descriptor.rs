@@ -56,7 +56,8 @@ pub(super) fn arc_positions(points: &[Xy], closed: bool, n: usize) -> Vec<(usize
     out
 }
 
-/// `n` points equally spaced by arc length along `points` (see [`arc_positions`]).
+/// `n` points equally spaced by arc length along `points` (closed: around the loop, the
+/// first point first; open: from the first point to the last, both included).
 pub fn resample(points: &[Xy], closed: bool, n: usize) -> Vec<Xy> {
     let m = points.len();
     arc_positions(points, closed, n)
