@@ -8,6 +8,7 @@ not depend on what else the machine is doing, unlike timings on a shared 2-core 
     python benches/profile.py closed_form   # closed_form_batch, 200 linkages, 1 thread
     python benches/profile.py numpy_cf      # the NumPy vectorized closed form, same batch
     python benches/profile.py group         # double-butterfly-1's sweep (a 6x6 group), 361 angles
+    python benches/profile.py group_near    # the same, 361 angles within 20 deg (all converge)
     python benches/profile.py jansen        # Jansen's leg, the foot requested, 361 angles
 
 For cycles rather than instructions: ``perf record -g python benches/profile.py batch --run 20``
@@ -33,6 +34,7 @@ KINDS = {
     "closed_form": (M * 361, 1),
     "numpy_cf": (M * 361, 1),
     "group": (361, 10),
+    "group_near": (361, 10),
     "jansen": (361, 100),
 }
 
@@ -49,6 +51,7 @@ def workload(kind: str, reps: int) -> None:
     cols = [links[:, k : k + 1] for k in range(4)]
     db = pk.scenes.load("double-butterfly-1")
     db_theta = db.input_angle + np.radians(np.arange(361.0))
+    db_near = db.input_angle + np.radians(np.linspace(-20.0, 20.0, 361))
     jansen = pk.scenes.load("jansen")
     j_theta = jansen.input_angle + np.radians(np.arange(361.0))
     calls = {
@@ -58,6 +61,7 @@ def workload(kind: str, reps: int) -> None:
         "closed_form": lambda: pk.closed_form_batch(links, threads=1),
         "numpy_cf": lambda: closed_form_vectorized(*cols, pk.DEFAULT_THETA2),
         "group": lambda: db.sweep(db_theta),
+        "group_near": lambda: db.sweep(db_near, outputs="all"),
         "jansen": lambda: jansen.sweep(j_theta, outputs=["foot"]),
     }
     fn = calls[kind]

@@ -204,6 +204,28 @@ def test_a_parallelogram_inside_a_group_never_turns_into_the_antiparallelogram(d
             assert ok.sum() >= len(th) - 2
 
 
+def test_a_group_crosses_its_change_point_from_every_direction_with_or_without_rates():
+    # The step across the crossing extrapolates the tangent with its curvature; the last
+    # solutions before it are splits a hair apart at a conditioning near 1e-6, whose
+    # tangents are off by about 1e-4: the curvature comes from solutions far enough apart.
+    # Without rates the tangents come from the Newton check's Jacobian (one correction from
+    # the solution's), with rates from the solution's: both cross, to the same points.
+    theta = np.radians(np.arange(0.0, 360.5, 0.5))
+    for direction in range(0, 360, 10):
+        sc, o2, v = parallelogram_triad(direction)
+        if [s.kind for s in sc.plan("all").steps] != ["group"]:
+            continue
+        a = o2 + np.stack([np.cos(theta), np.sin(theta)], -1)
+        b = circle_circle(a, 3.0, np.broadcast_to(v, a.shape), 2.0, 1.0)
+        for th, bb in ((theta, b), (theta[::-1], b[::-1])):
+            plain, rated = sc.sweep(th, outputs="all"), sc.sweep(th, outputs="all", rate=1.0)
+            for sw in (plain, rated):
+                ok = sw.success
+                assert ok.sum() >= len(th) - 2, direction
+                np.testing.assert_allclose(sw.points["B"][ok], bb[ok], rtol=0, atol=1e-9)
+            np.testing.assert_array_equal(plain.status, rated.status)
+
+
 # --- a crank pin in a slot of a group's link -----------------------------------------------
 
 

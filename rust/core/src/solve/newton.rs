@@ -69,15 +69,7 @@ pub fn hadamard_ratio<const N: usize>(j: &SMatrix<f64, N, N>) -> f64 {
 
 /// Gaussian elimination with partial pivoting on the stack, for any N (nalgebra's LU needs
 /// `DimMin` bounds a generic const N cannot name). Multiplies `det` by the determinant;
-/// `None` on an exactly zero pivot.
-///
-/// Written for the small systems of a sweep (a 6x6 group is solved about twice an angle):
-/// rows are arrays, so a row swap is a swap of two arrays, and each elimination updates a
-/// whole row, a loop of constant length the compiler unrolls into packed operations. The
-/// columns left of the pivot that this also updates are never read again (the pivot search
-/// and the back substitution read only the columns from the pivot's on); every value that is
-/// read is made by the same operations, in the same order, as in the textbook loop, and so
-/// has the same bits.
+/// `None` on an exactly zero pivot. [`eliminate_rows`] does the work.
 #[inline]
 pub fn eliminate<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>, det: &mut f64) -> Option<SVector<f64, N>> {
     let mut m = [[0.0; N]; N];
@@ -86,13 +78,35 @@ pub fn eliminate<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>, det:
             *v = a[(i, c)];
         }
     }
-    let mut x = [0.0; N];
-    x.copy_from_slice(b.as_slice());
+    let mut x = [[0.0; 1]; N];
+    for (xi, bi) in x.iter_mut().zip(b.iter()) {
+        xi[0] = *bi;
+    }
+    eliminate_rows(&mut m, &mut x, det).then(|| SVector::<f64, N>::from_fn(|i, _| x[i][0]))
+}
+
+/// Gaussian elimination with partial pivoting of the row-major `m` against `K` right-hand
+/// sides at once (the rows of `x`), which it overwrites with the solutions; multiplies
+/// `det` by the determinant. False on an exactly zero pivot.
+///
+/// Written for the small systems of a sweep (a 6x6 group is solved at every angle): rows
+/// are arrays, so a row swap is a swap of two arrays, and each elimination updates a
+/// whole row, a loop of constant length the compiler unrolls into packed operations. The
+/// columns left of the pivot that this also updates are never read again (the pivot search
+/// and the back substitution read only the columns from the pivot's on); every value that is
+/// read is made by the same operations, in the same order, as in the textbook loop, and so
+/// has the same bits; each right-hand side gets the operations it would get alone.
+#[inline]
+pub fn eliminate_rows<const N: usize, const K: usize>(
+    m: &mut [[f64; N]; N],
+    x: &mut [[f64; K]; N],
+    det: &mut f64,
+) -> bool {
     // the steps spelled out for the sizes the groups use, so each step's loops have
     // constant bounds and unroll (the same operations in the same order as the loop)
     macro_rules! steps {
         ($($k:literal)*) => {{
-            $( eliminate_step(&mut m, &mut x, det, $k)?; )*
+            $( if !eliminate_step(m, x, det, $k) { return false; } )*
         }};
     }
     match N {
@@ -102,23 +116,34 @@ pub fn eliminate<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>, det:
         8 => steps!(0 1 2 3 4 5 6 7),
         _ => {
             for k in 0..N {
-                eliminate_step(&mut m, &mut x, det, k)?;
+                if !eliminate_step(m, x, det, k) {
+                    return false;
+                }
             }
         }
     }
     for k in (0..N).rev() {
         let mut s = x[k];
         for c in k + 1..N {
-            s -= m[k][c] * x[c];
+            for (sj, xj) in s.iter_mut().zip(x[c]) {
+                *sj -= m[k][c] * xj;
+            }
         }
-        x[k] = s / m[k][k];
+        for (xj, sj) in x[k].iter_mut().zip(s) {
+            *xj = sj / m[k][k];
+        }
     }
-    Some(SVector::<f64, N>::from_column_slice(&x))
+    true
 }
 
-/// Step `k` of [`eliminate`]: the pivot, the row swap, and the rows below it.
+/// Step `k` of [`eliminate_rows`]: the pivot, the row swap, and the rows below it.
 #[inline(always)]
-fn eliminate_step<const N: usize>(m: &mut [[f64; N]; N], x: &mut [f64; N], det: &mut f64, k: usize) -> Option<()> {
+fn eliminate_step<const N: usize, const K: usize>(
+    m: &mut [[f64; N]; N],
+    x: &mut [[f64; K]; N],
+    det: &mut f64,
+    k: usize,
+) -> bool {
     // the last row of largest |a_ik| (as `max_by` on `total_cmp` picks among equals; for
     // numbers with a clear sign bit that order is the order of their bits)
     let mut p = k;
@@ -137,7 +162,7 @@ fn eliminate_step<const N: usize>(m: &mut [[f64; N]; N], x: &mut [f64; N], det: 
     let pivot = m[k][k];
     *det *= pivot;
     if pivot == 0.0 {
-        return None;
+        return false;
     }
     let (rk, xk) = (m[k], x[k]);
     for i in k + 1..N {
@@ -145,9 +170,11 @@ fn eliminate_step<const N: usize>(m: &mut [[f64; N]; N], x: &mut [f64; N], det: 
         for (v, r) in m[i].iter_mut().zip(rk) {
             *v -= f * r;
         }
-        x[i] -= f * xk;
+        for (v, r) in x[i].iter_mut().zip(xk) {
+            *v -= f * r;
+        }
     }
-    Some(())
+    true
 }
 
 /// Stopping criteria, validated once.

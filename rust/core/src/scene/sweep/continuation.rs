@@ -17,7 +17,7 @@
 //! same.
 
 use super::options::SceneSweepOptions;
-use super::predict::{DyadState, GroupState, Jump, Tangent, BOUNDED, JUMP, NEAR_DEAD, ON_PATH};
+use super::predict::{DyadState, GroupState, Jump, Tangent, BOUNDED, JUMP, JUMP_MIN, NEAR_DEAD, ON_PATH};
 use crate::scene::build::Plan;
 use crate::scene::ops::Known;
 use crate::scene::ops::Op;
@@ -99,9 +99,7 @@ impl<'p> Solver<'p> {
                 .ops
                 .iter()
                 .map(|o| match o {
-                    Op::Group(g) => {
-                        Some(GroupState { theta: plan.theta0, tangents: [None; 3], head: 0, limit: None, sign: g.sign })
-                    }
+                    Op::Group(g) => Some(GroupState::new(plan.theta0, g.sign, opts.max_step / JUMP_MIN)),
                     _ => None,
                 })
                 .collect(),
@@ -399,7 +397,13 @@ impl<'p> Solver<'p> {
             }
             return self.commit_group(i, theta, out, -sign0, anchors, anchor_vel);
         }
-        let mut out: GroupSolve = solve(&guess[..n], newton);
+        // an angle predicted to within the tolerance (most of them, away from dead points)
+        // converges at Newton's first evaluation: that evaluation's elimination gives the
+        // tangent too, where the rates are not outputs (they then take the solution's)
+        let first = (!near_dead && self.opts.omega.is_none())
+            .then(|| g.solve_predicted(anchors, anchor_vel, &guess[..n], newton))
+            .flatten();
+        let mut out: GroupSolve = first.unwrap_or_else(|| solve(&guess[..n], newton));
         self.nit += out.nit;
         let mut sign = sign0;
         if near_dead && out.status == Status::Converged && out.det * sign < 0.0 {

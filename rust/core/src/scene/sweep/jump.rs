@@ -34,11 +34,17 @@ impl Solver<'_> {
         let h = (JUMP_REACH * (at - a).abs()).clamp(max_step / JUMP_MIN, max_step);
         let to = at + dir * h;
         let d = to - a;
+        // the tangent's change from two solutions far enough apart to tell it (the last
+        // two, where there are no others)
+        let (f0, f1) = match st.spaced {
+            [Some(f0), Some(f1)] => (f0, f1),
+            _ => (t0, t1),
+        };
         let mut guess = [0.0; MAX];
         let mut tangent = [0.0; MAX];
         for k in 0..n {
-            // Taylor to second order, the tangent's change from the last two
-            let curv = (t1.dphi[k] - t0.dphi[k]) / s;
+            // Taylor to second order
+            let curv = (f1.dphi[k] - f0.dphi[k]) / (f1.theta - f0.theta);
             guess[k] = t1.phi[k] + t1.dphi[k] * d + 0.5 * curv * d * d;
             tangent[k] = t1.dphi[k] + curv * d;
         }

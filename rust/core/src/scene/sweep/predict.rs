@@ -134,9 +134,20 @@ pub(super) struct GroupState {
     /// Sign of the conditioning on the branch followed (as drawn; it changes at a change
     /// point).
     pub(super) sign: f64,
+    /// The last two solutions at least `spacing` apart (the older first): the curvature a
+    /// step across a change point extrapolates with (see `jump`). Its last solutions are
+    /// splits a hair apart there, where a tangent is off by about the solution's error over
+    /// the conditioning, and two such tangents give no curvature.
+    pub(super) spaced: [Option<Tangent>; 2],
+    pub(super) spacing: f64,
 }
 
 impl GroupState {
+    /// The state at the drawn pose (`theta`), on the branch of conditioning sign `sign`.
+    pub(super) fn new(theta: f64, sign: f64, spacing: f64) -> Self {
+        GroupState { theta, tangents: [None; 3], head: 0, limit: None, sign, spaced: [None; 2], spacing }
+    }
+
     /// The last solution's tangent.
     pub(super) fn tangent(&self) -> Option<&Tangent> {
         self.tangents[self.head].as_ref()
@@ -165,6 +176,11 @@ impl GroupState {
     /// Records a new solution: the last one becomes the previous one if it was taken at
     /// another input value (else the history restarts), and so on down the line.
     pub(super) fn push(&mut self, t: Tangent) {
+        match self.spaced[1] {
+            Some(s1) if s1.theta == t.theta => self.spaced[1] = Some(t),
+            Some(s1) if (t.theta - s1.theta).abs() < self.spacing => {}
+            _ => self.spaced = [self.spaced[1], Some(t)],
+        }
         match self.tangent() {
             Some(t1) if t1.theta != t.theta => {
                 let keep_previous = self.previous().is_some_and(|t0| t0.theta != t.theta);

@@ -167,7 +167,7 @@ impl Solver<'_> {
     pub(super) fn shift(&mut self, by: f64) {
         for g in self.groups.iter_mut().flatten() {
             g.theta += by;
-            for tg in g.tangents.iter_mut().flatten() {
+            for tg in g.tangents.iter_mut().chain(&mut g.spaced).flatten() {
                 tg.theta += by;
             }
             if let Some(l) = g.limit.as_mut() {

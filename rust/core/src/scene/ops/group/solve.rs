@@ -1,7 +1,7 @@
 //! Solving a group by Newton and placing its points (with their velocities and
 //! accelerations), and reading its unknowns back off positions.
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SVector;
 
 use super::equations::{cs_of, At};
 use super::{Group, GroupSolve, Node, Reader, MAX};
@@ -23,6 +23,23 @@ impl Group {
         stall: bool,
     ) -> GroupSolve {
         dispatch!(self.n(), solve_n, self, anchors, anchor_vel, guess, opts, stall)
+    }
+
+    /// Newton's first evaluation from a prediction, kept only where it converges there
+    /// (its correction applied, as [`newton::solve`] does: the same solution, status and
+    /// conditioning), with the tangent dx/dtheta from the same elimination. That Jacobian
+    /// is the prediction's, one correction (below `tol`) from the solution's, so the tangent
+    /// is within about `tol` / conditioning of the solution's: enough to predict the next
+    /// angle, not for rates reported as outputs (those take [`Group::solve`]). `None`: it did
+    /// not converge there, and the full solve decides.
+    pub(crate) fn solve_predicted(
+        &self,
+        anchors: &[Xy],
+        anchor_vel: &[Xy],
+        guess: &[f64],
+        opts: &NewtonOptions,
+    ) -> Option<GroupSolve> {
+        dispatch!(self.n(), predicted_n, self, anchors, anchor_vel, guess, opts)
     }
 
     /// Visits each node with its term's multiplier and arm.
@@ -186,14 +203,73 @@ pub(super) fn solve_n<const N: usize>(
             // and the rates would be off by as much. The rotations' sines and cosines are
             // kept for the placement.
             g.turns(&phi[..N], &mut cs);
-            let mut jacobian = SMatrix::<f64, N, N>::zeros();
-            g.closure_terms_with(&phi[..N], &cs[..g.nrot], anchors, |_, _| {}, |r, c, v| jacobian[(r, c)] += v);
+            let mut m = [[0.0; N]; N];
+            g.closure_terms_with(&phi[..N], &cs[..g.nrot], anchors, |_, _| {}, |r, c, v| m[r][c] += v);
             let d = g.rate_terms(&phi[..N], &cs[..g.nrot], anchors, vel);
-            let rhs = SVector::<f64, N>::from_fn(|r, _| -d[r / 2][r % 2]);
-            if let Some(t) = newton::eliminate(jacobian, rhs, &mut 1.0) {
-                dphi[..N].copy_from_slice(t.as_slice());
+            let mut rhs: [[f64; 1]; N] = std::array::from_fn(|r| [-d[r / 2][r % 2]]);
+            if newton::eliminate_rows(&mut m, &mut rhs, &mut 1.0) {
+                for (t, r) in dphi.iter_mut().zip(rhs) {
+                    *t = r[0];
+                }
             }
         }
     }
     GroupSolve { phi, dphi, status: out.status, nit: out.nit, det, cs }
+}
+
+fn predicted_n<const N: usize>(
+    g: &Group,
+    anchors: &[Xy],
+    anchor_vel: &[Xy],
+    guess: &[f64],
+    opts: &NewtonOptions,
+) -> Option<GroupSolve> {
+    let x = &guess[..N];
+    let mut cs = [[f64::NAN; 2]; MAX];
+    g.turns(x, &mut cs);
+    // [J | -F | -dF/dtheta] at the prediction, J row-major: the two right-hand sides are
+    // eliminated together
+    let mut m = [[0.0; N]; N];
+    let mut rhs = [[0.0; 2]; N];
+    g.closure_terms_with(x, &cs[..g.nrot], anchors, |r, v| rhs[r][0] = -v, |r, c, v| m[r][c] += v);
+    let residual = rhs.iter().fold(0.0_f64, |a, r| a.max(r[0].abs()));
+    if !rhs.iter().zip(x).all(|(r, v)| r[0].is_finite() && v.is_finite()) || !(residual < opts.tol) {
+        return None;
+    }
+    let d = g.rate_terms(x, &cs[..g.nrot], anchors, anchor_vel);
+    for (r, row) in rhs.iter_mut().enumerate() {
+        row[1] = -d[r / 2][r % 2];
+    }
+    // the signed Hadamard ratio, as [`newton::hadamard_step`] gives it
+    let norms: f64 = (0..N).map(|c| m.iter().fold(0.0, |a, row| a + row[c] * row[c]).sqrt()).product();
+    let mut det = 1.0;
+    if !newton::eliminate_rows(&mut m, &mut rhs, &mut det) {
+        return None;
+    }
+    let conditioning = if norms == 0.0 { 0.0 } else { det / norms };
+    if !(conditioning.abs() >= opts.singular) || !rhs.iter().all(|r| r[0].abs() < opts.tol) {
+        return None;
+    }
+    let mut out = GroupSolve {
+        phi: [f64::NAN; MAX],
+        dphi: [f64::NAN; MAX],
+        status: Status::Converged,
+        nit: 0,
+        det: conditioning,
+        cs: [[f64::NAN; 2]; MAX],
+    };
+    for (k, (v, r)) in x.iter().zip(rhs).enumerate() {
+        let [step, rate] = r;
+        out.dphi[k] = rate;
+        if g.is_angle(k) {
+            out.phi[k] = wrap_angle(v + step);
+            // (cos, sin) turned on by the step: cos and sin of a step below `tol` are
+            // 1 - step^2 / 2 and step to within rounding
+            let ([c, s], h) = (cs[k], 1.0 - 0.5 * step * step);
+            out.cs[k] = [c * h - s * step, s * h + c * step];
+        } else {
+            out.phi[k] = v + step;
+        }
+    }
+    Some(out)
 }
