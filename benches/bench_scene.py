@@ -100,6 +100,26 @@ def test_group_sweep(benchmark, name):
            note="pylinkage: cannot solve (no dyad reaches the group)")  # fmt: skip
 
 
+NEAR = "scene: double butterflies, 361 angles within 20 deg of the drawn pose (all converge)"
+
+
+@pytest.mark.benchmark(group=NEAR)
+@pytest.mark.parametrize("name", ["double-butterfly-1", "double-butterfly-2"])
+def test_group_sweep_converged(benchmark, name):
+    # every angle converges: the group's Newton work alone, no dead point to bracket
+    sc = pk.scenes.load(name)
+    theta = sc.input_angle + np.radians(np.linspace(-20.0, 20.0, 361))
+    sw = benchmark(sc.sweep, theta, outputs="all")
+    assert sw.success.all()
+    ref = pk.reference.scene_sweep(sc.to_dict(), theta)
+    assert (ref.status == 0).all()
+    err = max(float(np.abs(sw.points[p] - ref.points[p]).max()) for p in sc.points)
+    assert err < 1e-9 * _size(sc)
+    record(benchmark, f"scene_group_near_{name}",
+           f"planarkin {name}: 361 angles within 20 deg, all solved",
+           nit_mean=float(sw.nit.mean()), max_error=err)  # fmt: skip
+
+
 # --- the plan: only what the outputs need ----------------------------------------------
 
 PLAN = "scene: Watt-II six-bar, one dyad requested vs the whole plan"

@@ -237,6 +237,9 @@ TARGETS = (
                    f"nit:scene_group_{name}", None, "value", "<", 1.5, ratio=None),
             Target(f"{name} sweep, 361 angles (both dead points found): {{target}}",
                    f"scene_group_{name}", None, "value", "<=", 0.3, " ms", 1e-3, ratio=None),
+            Target(f"{name}, 361 angles within 20 deg (all converge): {{target}}",
+                   f"scene_group_near_{name}", None, "value", "<=", 0.15, " ms", 1e-3,
+                   ratio=None),
         )
     ),
     Target("Jansen's leg with loads: every reaction and the input torque (dynamics, 361 "

@@ -352,14 +352,15 @@ impl<'p> Solver<'p> {
         let Op::Group(g) = &self.plan.ops[i] else { unreachable!("op {i} is a group") };
         let n = g.n();
         // (borrowed, not copied: the state holds three tangents)
-        let state = self.groups[i].as_ref().expect("a group has a state");
+        let (across, max_step) = (self.jump.filter(|j| j.op == i), self.opts.max_step);
+        let state = self.groups[i].as_mut().expect("a group has a state");
         if let Some((at, dir)) = state.limit {
             if (theta - at) * dir > 0.0 {
                 return (Status::Limit, f64::NAN);
             }
         }
-        let across = self.jump.filter(|j| j.op == i);
-        let guess = across.map_or_else(|| state.predict(theta, g, self.opts.max_step), |j| j.guess);
+        let guess = across.map_or_else(|| state.predict(theta, g, max_step), |j| j.guess);
+        let state = &*state;
         let (det0, sign0) = (state.det(), state.sign);
         anchors.clear();
         anchors.extend(g.anchors.iter().map(|&a| self.pos[a]));
@@ -395,7 +396,7 @@ impl<'p> Solver<'p> {
             if !on_path {
                 return (Status::BranchJump, out.det);
             }
-            return self.commit_group(i, theta, out, -sign0, anchors, anchor_vel);
+            return self.commit_group(i, theta, &out, -sign0, anchors, anchor_vel);
         }
         // an angle predicted to within the tolerance (most of them, away from dead points)
         // converges at Newton's first evaluation: that evaluation's elimination gives the
@@ -437,7 +438,7 @@ impl<'p> Solver<'p> {
         if status != Status::Converged {
             return (status, out.det);
         }
-        self.commit_group(i, theta, out, sign, anchors, anchor_vel)
+        self.commit_group(i, theta, &out, sign, anchors, anchor_vel)
     }
 
     /// A solution approaching a dead or change point (the conditioning falling) keeps the
@@ -467,7 +468,7 @@ impl<'p> Solver<'p> {
         &mut self,
         i: usize,
         theta: f64,
-        out: GroupSolve,
+        out: &GroupSolve,
         sign: f64,
         anchors: &[Xy],
         anchor_vel: &[Xy],

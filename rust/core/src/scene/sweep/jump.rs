@@ -38,13 +38,13 @@ impl Solver<'_> {
         // two, where there are no others)
         let (f0, f1) = match st.spaced {
             [Some(f0), Some(f1)] => (f0, f1),
-            _ => (t0, t1),
+            _ => ((t0.theta, t0.dphi), (t1.theta, t1.dphi)),
         };
         let mut guess = [0.0; MAX];
         let mut tangent = [0.0; MAX];
         for k in 0..n {
             // Taylor to second order
-            let curv = (f1.dphi[k] - f0.dphi[k]) / (f1.theta - f0.theta);
+            let curv = (f1.1[k] - f0.1[k]) / (f1.0 - f0.0);
             guess[k] = t1.phi[k] + t1.dphi[k] * d + 0.5 * curv * d * d;
             tangent[k] = t1.dphi[k] + curv * d;
         }

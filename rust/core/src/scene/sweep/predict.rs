@@ -25,6 +25,10 @@ pub(super) const BOUNDED: f64 = 1.5;
 /// one: the crossing branch's differ by order one.
 pub(super) const ON_PATH: f64 = 0.1;
 
+/// Abscissae (in units of the step) this close give the quintic the same weights: within
+/// rounding of the prediction, far below the Newton tolerance it only has to meet.
+const RATIOS: f64 = 1e-12;
+
 /// A step across a change point (see `jump`): the group (op `op`), its start and carried tangent there.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Jump {
@@ -134,18 +138,22 @@ pub(super) struct GroupState {
     /// Sign of the conditioning on the branch followed (as drawn; it changes at a change
     /// point).
     pub(super) sign: f64,
-    /// The last two solutions at least `spacing` apart (the older first): the curvature a
+    /// The last two solutions' (input value, tangent) at least `spacing` apart (the older
+    /// first): the curvature a
     /// step across a change point extrapolates with (see `jump`). Its last solutions are
     /// splits a hair apart there, where a tangent is off by about the solution's error over
     /// the conditioning, and two such tangents give no curvature.
-    pub(super) spaced: [Option<Tangent>; 2],
+    pub(super) spaced: [Option<(f64, [f64; MAX])>; 2],
     pub(super) spacing: f64,
+    /// The quintic's weights for the last abscissae it was used with (as ratios to the
+    /// step): a sweep at even steps computes them once.
+    pub(super) weights: Option<([f64; 2], [f64; 5])>,
 }
 
 impl GroupState {
     /// The state at the drawn pose (`theta`), on the branch of conditioning sign `sign`.
     pub(super) fn new(theta: f64, sign: f64, spacing: f64) -> Self {
-        GroupState { theta, tangents: [None; 3], head: 0, limit: None, sign, spaced: [None; 2], spacing }
+        GroupState { theta, tangents: [None; 3], head: 0, limit: None, sign, spaced: [None; 2], spacing, weights: None }
     }
 
     /// The last solution's tangent.
@@ -177,9 +185,9 @@ impl GroupState {
     /// another input value (else the history restarts), and so on down the line.
     pub(super) fn push(&mut self, t: Tangent) {
         match self.spaced[1] {
-            Some(s1) if s1.theta == t.theta => self.spaced[1] = Some(t),
-            Some(s1) if (t.theta - s1.theta).abs() < self.spacing => {}
-            _ => self.spaced = [self.spaced[1], Some(t)],
+            Some((at, _)) if at == t.theta => self.spaced[1] = Some((t.theta, t.dphi)),
+            Some((at, _)) if (t.theta - at).abs() < self.spacing => {}
+            _ => self.spaced = [self.spaced[1], Some((t.theta, t.dphi))],
         }
         match self.tangent() {
             Some(t1) if t1.theta != t.theta => {
@@ -208,7 +216,7 @@ impl GroupState {
     /// often already within the Newton tolerance (99% of Stephenson III's angles, 58% of a
     /// double butterfly's at one-degree steps), and then one evaluation converges (its
     /// correction applied) where the cubic's took a step and a second evaluation.
-    pub(super) fn predict(&self, theta: f64, g: &Group, max_step: f64) -> [f64; MAX] {
+    pub(super) fn predict(&mut self, theta: f64, g: &Group, max_step: f64) -> [f64; MAX] {
         let n = g.n();
         let h = theta - self.theta;
         let mut x = self.phi();
@@ -225,12 +233,19 @@ impl GroupState {
             }
             _ => None,
         };
-        let quintic = t0.zip(tm).map(|(t0, tm)| (t0, tm, Hermite5::new(t0.theta - t1.theta, tm.theta - t1.theta)));
+        let quintic = t0.zip(tm).map(|(t0, tm)| {
+            let ratios = [(t0.theta - t1.theta) / h, (tm.theta - t1.theta) / h];
+            let w = match self.weights {
+                Some((r, w)) if (r[0] - ratios[0]).abs() <= RATIOS && (r[1] - ratios[1]).abs() <= RATIOS => w,
+                _ => Hermite5::weights(ratios),
+            };
+            (t0, tm, ratios, w)
+        });
         for (k, xk) in x.iter_mut().enumerate().take(n) {
             let dx = match (t0, &quintic) {
-                (_, Some((t0, tm, q))) => {
-                    let older = |t: &Tangent| (-g.gap(k, t1.phi[k], t.phi[k]), t.dphi[k]);
-                    q.eval(t1.dphi[k], older(t0), older(tm), h)
+                (_, Some((t0, tm, _, w))) => {
+                    let (v0, vm) = (-g.gap(k, t1.phi[k], t0.phi[k]), -g.gap(k, t1.phi[k], tm.phi[k]));
+                    (w[0] * t1.dphi[k] + w[2] * t0.dphi[k] + w[4] * tm.dphi[k]) * h + w[1] * v0 + w[3] * vm
                 }
                 // the cubic through both solutions with both tangents (Hermite), one step on
                 (Some(t0), None) => {
@@ -251,6 +266,7 @@ impl GroupState {
             }
             *xk += dx;
         }
+        self.weights = quintic.map(|(_, _, r, w)| (r, w)).or(self.weights);
         x
     }
 }
@@ -266,6 +282,21 @@ pub(super) struct Hermite5 {
 }
 
 impl Hermite5 {
+    /// The interpolant is linear in its data: its value one step `h` on is
+    /// `(w0 d1 + w2 s0 + w4 sm) h + w1 v0 + w3 vm` for slope `d1` at 0 and (value, slope)
+    /// `(v0, s0)`, `(vm, sm)` at the two other abscissae, `ratios` times `h` (in units of
+    /// the step, where a slope is one times `h`).
+    pub(super) fn weights(ratios: [f64; 2]) -> [f64; 5] {
+        let q = Hermite5::new(ratios[0], ratios[1]);
+        [
+            q.eval(1.0, (0.0, 0.0), (0.0, 0.0), 1.0),
+            q.eval(0.0, (1.0, 0.0), (0.0, 0.0), 1.0),
+            q.eval(0.0, (0.0, 1.0), (0.0, 0.0), 1.0),
+            q.eval(0.0, (0.0, 0.0), (1.0, 0.0), 1.0),
+            q.eval(0.0, (0.0, 0.0), (0.0, 1.0), 1.0),
+        ]
+    }
+
     pub(super) fn new(a0: f64, am: f64) -> Self {
         let z = [0.0, 0.0, a0, a0, am, am];
         let mut inv = [[0.0; 6]; 6];
@@ -319,6 +350,18 @@ mod tests {
             // remainder: 36 h^6 / 720 |sin(xi)| <= h^6 / 20
             assert!(err <= h.powi(6) / 20.0 + 1e-16, "{err}");
             assert!(err > 0.0);
+        }
+    }
+
+    /// Its weights give the interpolant's value at any step, the step's length scaled out.
+    #[test]
+    pub(super) fn hermite5_weights_give_its_value_at_any_scale() {
+        let (d1, p0, pm) = (0.7, (-0.2, 1.3), (-0.5, -0.4));
+        for (a0, am, h) in [(-0.3, -0.55, 0.25), (-1.0, -2.0, 1e-3), (0.4, 0.9, -0.2)] {
+            let want = Hermite5::new(a0, am).eval(d1, p0, pm, h);
+            let w = Hermite5::weights([a0 / h, am / h]);
+            let got = (w[0] * d1 + w[2] * p0.1 + w[4] * pm.1) * h + w[1] * p0.0 + w[3] * pm.0;
+            assert!((got - want).abs() <= 1e-12 * want.abs().max(1.0), "{got} {want}");
         }
     }
 }

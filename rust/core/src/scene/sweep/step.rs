@@ -167,8 +167,11 @@ impl Solver<'_> {
     pub(super) fn shift(&mut self, by: f64) {
         for g in self.groups.iter_mut().flatten() {
             g.theta += by;
-            for tg in g.tangents.iter_mut().chain(&mut g.spaced).flatten() {
+            for tg in g.tangents.iter_mut().flatten() {
                 tg.theta += by;
+            }
+            for (at, _) in g.spaced.iter_mut().flatten() {
+                *at += by;
             }
             if let Some(l) = g.limit.as_mut() {
                 l.0 += by;
