@@ -77,9 +77,11 @@ class Scene:
 
     def __init__(self, data: Mapping[str, Any]) -> None:
         # the core reads the data (every check and message is the file format's, there)
-        core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, extra = (
-            _kernel.load_scene(data)
-        )
+        self._take(_kernel.load_scene(data))
+
+    def _take(self, loaded: Any) -> None:
+        """Holds what the core's ``load_scene`` (or ``load_scene_json``) returned."""
+        core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, extra = loaded
         moved, unit_table, loads, limits = extra
         pts = dict(points)
         self._core = core
@@ -147,6 +149,16 @@ class Scene:
             raise ValueError(
                 f"{p}: {what}; a scene file is UTF-8 JSON or TOML (save it as UTF-8)"
             ) from None
+        try:
+            # plain JSON is read and checked in the core in one pass; what its reader does not
+            # take (not JSON, a key twice, too deep) Python's reader words, naming the entry
+            loaded = _kernel.load_scene_json(text, p.stem) if p.suffix == ".json" else None
+            if loaded is not None:
+                sc = cls.__new__(cls)
+                sc._take(loaded)
+                return sc
+        except ValueError as e:
+            raise ValueError(f"{p}: {e}") from None
         data = parse(text, p.suffix, str(p))
         if isinstance(data, dict) and data.get("name") is None:
             data["name"] = p.stem

@@ -64,7 +64,28 @@ fn drive_out(d: &Drive) -> DriveOut {
 /// Python's words), a sketch's `lengths` assembled into the exact pose.
 #[pyfunction]
 fn load_scene<'py>(py: Python<'py>, data: &Bound<'_, PyAny>) -> PyResult<Loaded<'py>> {
-    let mut parsed = core_format::parse(&value_of(data, 1)?).map_err(err)?;
+    loaded(py, &value_of(data, 1)?)
+}
+
+/// `load_scene` of a JSON file's text, read in the core (`name` defaulting to `stem`, as
+/// `Scene.load` names a scene); None where the text is not plain JSON the core's reader
+/// takes (Python's `json` then reads it and words the error).
+#[pyfunction]
+fn load_scene_json<'py>(py: Python<'py>, text: &str, stem: &str) -> PyResult<Option<Loaded<'py>>> {
+    let Some(mut data) = core_format::read_json(text) else { return Ok(None) };
+    if let Value::Map(m) = &mut data {
+        let name = Value::Str(stem.to_owned());
+        match m.iter_mut().find(|(k, _)| k.as_str() == Some("name")) {
+            Some((_, v)) if matches!(v, Value::Null) => *v = name,
+            Some(_) => {}
+            None => m.push((Value::Str("name".into()), name)),
+        }
+    }
+    loaded(py, &data).map(Some)
+}
+
+fn loaded<'py>(py: Python<'py>, data: &Value) -> PyResult<Loaded<'py>> {
+    let mut parsed = core_format::parse(data).map_err(err)?;
     let moved = match parsed.lengths {
         None => None,
         Some(_) => Signals::detach(py, |signals| parsed.assemble(signals))?,
@@ -237,5 +258,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_class::<PyPlan>()?;
     m.add_function(wrap_pyfunction!(load_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(load_scene_json, m)?)?;
     Ok(())
 }
