@@ -230,8 +230,8 @@ _Joint = tuple[str, str, tuple[str, str]]
 _Loaded = tuple[
     Scene,
     tuple[str | None, str | None, str | None],
-    list[tuple[str, tuple[float, float]]],
-    list[tuple[str, list[str]]],
+    dict[str, tuple[float, float]],
+    dict[str, tuple[str, ...]],
     str,
     list[tuple[str, str]],
     list[tuple[str, str]] | None,

@@ -83,19 +83,16 @@ class Scene:
         """Holds what the core's ``load_scene`` (or ``load_scene_json``) returned."""
         core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, extra = loaded
         moved, unit_table, loads, limits = extra
-        pts = dict(points)
         self._core = core
         self._max_step = core.max_step  # the default, read once (every sweep takes it)
-        self._moved = (
-            dict.fromkeys(pts, 0.0) if moved is None else dict(zip(pts, moved, strict=True))
-        )
+        self._moved: list[float] | None = moved  # a dict when asked for (`moved`)
         name, description, units = text
         self._data: dict[str, Any] = {
             "name": name,
             "description": description,
             "units": units,
-            "points": pts,
-            "links": {n: tuple(v) for n, v in links},
+            "points": points,
+            "links": links,
             "ground": ground,
             "input": dict(inp),
             "output": None if out is None else dict(out),
@@ -300,7 +297,9 @@ class Scene:
     def moved(self) -> dict[str, float]:
         """Point name -> how far it moved from the sketch to the exact pose (scene units;
         0 for ground points and for a scene without ``lengths``)."""
-        return dict(self._moved)
+        if self._moved is None:
+            return dict.fromkeys(self._data["points"], 0.0)
+        return dict(zip(self._data["points"], self._moved, strict=True))
 
     @property
     def outputs(self) -> tuple[str, ...] | None:

@@ -7,6 +7,7 @@ use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3};
 use planarkin_core::scene::format::{self as core_format, Drive, Parsed, Value};
 use planarkin_core::scene::Scene;
 use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyString, PyTuple};
 
 // As in the core: this entry (the `Scene` class) calls `sweep` (the `Plan` class),
 // `branches` and `gradient`; `format` converts Python data for the file format.
@@ -35,14 +36,15 @@ type Joint = (String, String, (String, String));
 /// An input or output as the entries of its table, in order.
 type DriveOut = Vec<(String, String)>;
 /// What `load_scene` reads besides the scene: (name, description, units), the points
-/// (exact for a sketch), links, ground, input, output, outputs, slots, prismatic pairs,
+/// (a dict name -> (x, y), exact for a sketch), links (a dict name -> tuple of point names,
+/// the same str objects), ground, input, output, outputs, slots, prismatic pairs,
 /// lengths, how far a sketch's points moved, and the `units` table, `loads` and `limits` (plain
 /// data, normalised by the core; None where not given).
 type Loaded<'py> = (
     PyScene,
     (Option<String>, Option<String>, Option<String>),
-    Vec<(String, (f64, f64))>,
-    Vec<(String, Vec<String>)>,
+    Bound<'py, PyDict>,
+    Bound<'py, PyDict>,
     String,
     DriveOut,
     Option<DriveOut>,
@@ -96,8 +98,6 @@ fn loaded<'py>(py: Python<'py>, data: &Value) -> PyResult<Loaded<'py>> {
         unit_table.map_or_else(|| Ok(none()), |u| format::to_py(py, &u.to_value()))?,
         loads.map_or_else(|| Ok(none()), |l| format::to_py(py, &l.to_value()))?,
     );
-    let points = spec.points.iter().map(|(n, [x, y])| (n.clone(), (*x, *y))).collect();
-    let links = spec.links.clone();
     let ground = spec.ground.clone();
     let joint = |(n, (a, g, l)): (&String, (&String, &String, &(String, String)))| {
         (n.clone(), (a.clone(), g.clone(), l.clone()))
@@ -105,6 +105,7 @@ fn loaded<'py>(py: Python<'py>, data: &Value) -> PyResult<Loaded<'py>> {
     let slots = spec.slots.iter().map(|(n, j)| joint((n, (&j.point, &j.guide, &j.line)))).collect();
     let prismatic = spec.prismatic.iter().map(|(n, j)| joint((n, (&j.link, &j.guide, &j.line)))).collect();
     let inner = Scene::new(spec).and_then(|s| s.with_limits(&limits)).map_err(err)?;
+    let (points, links) = drawing(py, &inner)?;
     let limits = if limits.is_empty() {
         none()
     } else {
@@ -127,6 +128,21 @@ fn loaded<'py>(py: Python<'py>, data: &Value) -> PyResult<Loaded<'py>> {
         lengths,
         (moved, table, loads, limits),
     ))
+}
+
+/// The scene's points (name -> (x, y)) and links (name -> tuple of point names) as Python
+/// dicts, each point's name one str object wherever it appears.
+fn drawing<'py>(py: Python<'py>, sc: &Scene) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+    let names: Vec<Bound<'py, PyString>> = sc.point_names().iter().map(|n| PyString::new(py, n)).collect();
+    let points = PyDict::new(py);
+    for (n, [x, y]) in names.iter().zip(sc.drawn()) {
+        points.set_item(n, (*x, *y))?;
+    }
+    let links = PyDict::new(py);
+    for l in sc.links() {
+        links.set_item(&l.name, PyTuple::new(py, l.points.iter().map(|&p| &names[p]))?)?;
+    }
+    Ok((points, links))
 }
 
 #[pymethods]
