@@ -131,7 +131,9 @@ class Scene:
 
     @classmethod
     def load(cls, path: str | Path) -> Scene:
-        """Reads a ``.json`` or ``.toml`` scene file; every error names the file."""
+        """Reads a ``.json`` or ``.toml`` scene file; every error names the file. Plain JSON
+        is read and checked in the core in one pass; other text goes through Python's
+        ``json`` (or ``tomllib``), whose messages the errors quote."""
         p = Path(path)
         if p.suffix not in (".json", ".toml"):
             raise ValueError(f"path must end in .json or .toml, got {str(path)!r}")
