@@ -13,8 +13,9 @@ use crate::scene::vec2::{sub, Xy};
 /// Indices by name.
 pub(super) type Index<'a> = HashMap<&'a str, usize>;
 
-/// The points by name (`names` and `drawn`: the spec's points taken apart, nothing copied);
-/// names must be distinct and coordinates finite, the first point that is not refused.
+/// The points by name (`names` and `drawn`: the spec's points taken apart, nothing copied).
+/// Names must be distinct and coordinates finite: the error names the first point, in the
+/// order given, that breaks either.
 pub(super) fn points<'a>(names: &'a [String], drawn: &[Xy]) -> Result<Index<'a>, Error> {
     let mut index: Index<'_> = HashMap::with_capacity(names.len());
     for (i, (name, xy)) in names.iter().zip(drawn).enumerate() {
