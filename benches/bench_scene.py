@@ -1,11 +1,13 @@
 """Scenes side by side: Jansen's leg (foot requested) by planarkin, a vectorized NumPy chain of
 circle intersections and pylinkage (numba); groups that no dyad reaches (Stephenson III,
 the double butterflies) with iterations per point; a plan that needs one dyad against the
-whole six-bar; and every assembly, a traced circuit and all circuits of a double butterfly.
-Correctness is checked outside the timed calls."""
+whole six-bar; every assembly, a traced circuit and all circuits of a double butterfly; and
+loading a 16 000-point file against json.loads of its text. Correctness is checked outside
+the timed calls."""
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -213,3 +215,44 @@ def test_gradient_forward_differences(benchmark):
     benchmark(fd)
     record(benchmark, "scene_gradient_fd", f"forward differences: 1 + {len(labels)} sweeps "
            "of redrawn scenes")  # fmt: skip
+
+
+# --- loading a file: the core's reader and checks against json.loads --------------------------
+
+LOAD = "scene: loading a 16 000-point link from a JSON file (700 kB)"
+
+
+@pytest.fixture(scope="module")
+def big_file(tmp_path_factory):
+    """One link carrying 16 000 points besides its pivot and first point, each offset from
+    the last (none coincide), written as json.dumps writes it."""
+    n = 16_000
+    points = {"O": [0.0, 0.0], "X": [1.0, 0.0], "A": [0.3, 0.4]}
+    points |= {f"p{i}": [0.31 + 1e-3 * i, 0.4 + 5e-4 * i] for i in range(n)}
+    data = {
+        "points": points,
+        "links": {"ground": ["O", "X"], "crank": ["O", "A", *(f"p{i}" for i in range(n))]},
+        "ground": "ground",
+        "input": {"link": "crank", "pivot": "O"},
+    }
+    path = tmp_path_factory.mktemp("load") / "link16000.json"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    return path, data
+
+
+@pytest.mark.benchmark(group=LOAD)
+def test_load_planarkin(benchmark, big_file):
+    path, data = big_file
+    sc = benchmark(pk.Scene.load, path)
+    assert sc.points == {k: tuple(v) for k, v in data["points"].items()}
+    record(benchmark, "scene_load_16000", "planarkin pk.Scene.load(path): read, checked, "
+           "the plan proven (the file read from disk)")  # fmt: skip
+
+
+@pytest.mark.benchmark(group=LOAD)
+def test_load_json_loads(benchmark, big_file):
+    path, data = big_file
+    text = path.read_text(encoding="utf-8")
+    assert benchmark(json.loads, text) == data
+    record(benchmark, "scene_load_json", "json.loads(text) of the same file (the text "
+           "already read)")  # fmt: skip

@@ -253,6 +253,8 @@ TARGETS = (
            "finite-paths:scene_assemblies", None, "value", ">=", 60, "%", 0.01, ratio="{:.0%}"),
     Target("double butterfly assemblies: {target}",
            "scene_assemblies", None, "value", "<=", 8, " ms", 1e-3, ratio=None),
+    Target("loading a 16 000-point link: {target} json.loads",
+           "scene_load_16000", "scene_load_json", "ratio", "<=", 3, "x", ratio="{:.2f}x"),
     Target("exact gradients (16 coordinates x 1001 angles) vs forward differences",
            "scene_gradient_exact", "scene_gradient_fd", "speedup", None, None,
            ratio="{:.1f}x faster"),

@@ -52,6 +52,7 @@ __all__ = [
     "atlas_shard",
     "closed_form_batch",
     "load_scene",
+    "load_scene_json",
     "set_simd",
     "simd_available",
     "simd_enabled",
@@ -226,13 +227,11 @@ class Scene:
 
 _Joint = tuple[str, str, tuple[str, str]]
 
-def load_scene(
-    data: object,
-) -> tuple[
+_Loaded = tuple[
     Scene,
     tuple[str | None, str | None, str | None],
-    list[tuple[str, tuple[float, float]]],
-    list[tuple[str, list[str]]],
+    dict[str, tuple[float, float]],
+    dict[str, tuple[str, ...]],
     str,
     list[tuple[str, str]],
     list[tuple[str, str]] | None,
@@ -241,7 +240,10 @@ def load_scene(
     list[tuple[str, _Joint]],
     list[tuple[str, str, float]] | None,
     tuple[list[float] | None, dict[str, str] | None, dict[str, Any] | None, dict[str, Any] | None],
-]: ...
+]
+
+def load_scene(data: object) -> _Loaded: ...
+def load_scene_json(text: str, stem: str) -> _Loaded | None: ...
 
 @final
 class Plan:

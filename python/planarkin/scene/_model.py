@@ -77,23 +77,22 @@ class Scene:
 
     def __init__(self, data: Mapping[str, Any]) -> None:
         # the core reads the data (every check and message is the file format's, there)
-        core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, extra = (
-            _kernel.load_scene(data)
-        )
+        self._take(_kernel.load_scene(data))
+
+    def _take(self, loaded: Any) -> None:
+        """Holds what the core's ``load_scene`` (or ``load_scene_json``) returned."""
+        core, text, points, links, ground, inp, out, outputs, slots, prism, lengths, extra = loaded
         moved, unit_table, loads, limits = extra
-        pts = dict(points)
         self._core = core
         self._max_step = core.max_step  # the default, read once (every sweep takes it)
-        self._moved = (
-            dict.fromkeys(pts, 0.0) if moved is None else dict(zip(pts, moved, strict=True))
-        )
+        self._moved: list[float] | None = moved  # a dict when asked for (`moved`)
         name, description, units = text
         self._data: dict[str, Any] = {
             "name": name,
             "description": description,
             "units": units,
-            "points": pts,
-            "links": {n: tuple(v) for n, v in links},
+            "points": points,
+            "links": links,
             "ground": ground,
             "input": dict(inp),
             "output": None if out is None else dict(out),
@@ -132,7 +131,9 @@ class Scene:
 
     @classmethod
     def load(cls, path: str | Path) -> Scene:
-        """Reads a ``.json`` or ``.toml`` scene file; every error names the file."""
+        """Reads a ``.json`` or ``.toml`` scene file; every error names the file. Plain JSON
+        is read and checked in the core in one pass; other text goes through Python's
+        ``json`` (or ``tomllib``), whose messages the errors quote."""
         p = Path(path)
         if p.suffix not in (".json", ".toml"):
             raise ValueError(f"path must end in .json or .toml, got {str(path)!r}")
@@ -147,6 +148,16 @@ class Scene:
             raise ValueError(
                 f"{p}: {what}; a scene file is UTF-8 JSON or TOML (save it as UTF-8)"
             ) from None
+        try:
+            # plain JSON is read and checked in the core in one pass; what its reader does not
+            # take (not JSON, a key twice, too deep) Python's reader words, naming the entry
+            loaded = _kernel.load_scene_json(text, p.stem) if p.suffix == ".json" else None
+            if loaded is not None:
+                sc = cls.__new__(cls)
+                sc._take(loaded)
+                return sc
+        except ValueError as e:
+            raise ValueError(f"{p}: {e}") from None
         data = parse(text, p.suffix, str(p))
         if isinstance(data, dict) and data.get("name") is None:
             data["name"] = p.stem
@@ -288,7 +299,9 @@ class Scene:
     def moved(self) -> dict[str, float]:
         """Point name -> how far it moved from the sketch to the exact pose (scene units;
         0 for ground points and for a scene without ``lengths``)."""
-        return dict(self._moved)
+        if self._moved is None:
+            return dict.fromkeys(self._data["points"], 0.0)
+        return dict(zip(self._data["points"], self._moved, strict=True))
 
     @property
     def outputs(self) -> tuple[str, ...] | None:

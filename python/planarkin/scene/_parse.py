@@ -1,7 +1,7 @@
-"""The parse door of scene files and dicts: JSON or TOML text to plain data, every way it
-can go wrong a one-line ValueError naming the file and the entry (a key given twice,
-nesting deeper than a scene has, a number beyond the float range, text that is not JSON or
-TOML)."""
+"""The parse door of TOML scene files, and of JSON ones the core's reader leaves to Python
+(``load_scene_json``: text that is not plain JSON): text to plain data, every way it can
+go wrong a one-line ValueError naming the file and the entry (a key given twice, nesting
+deeper than a scene has, a number beyond the float range, text that is not JSON or TOML)."""
 
 from __future__ import annotations
 

@@ -7,6 +7,7 @@ use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3};
 use planarkin_core::scene::format::{self as core_format, Drive, Parsed, Value};
 use planarkin_core::scene::Scene;
 use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyString, PyTuple};
 
 // As in the core: this entry (the `Scene` class) calls `sweep` (the `Plan` class),
 // `branches` and `gradient`; `format` converts Python data for the file format.
@@ -35,14 +36,15 @@ type Joint = (String, String, (String, String));
 /// An input or output as the entries of its table, in order.
 type DriveOut = Vec<(String, String)>;
 /// What `load_scene` reads besides the scene: (name, description, units), the points
-/// (exact for a sketch), links, ground, input, output, outputs, slots, prismatic pairs,
+/// (a dict name -> (x, y), exact for a sketch), links (a dict name -> tuple of point names,
+/// the same str objects), ground, input, output, outputs, slots, prismatic pairs,
 /// lengths, how far a sketch's points moved, and the `units` table, `loads` and `limits` (plain
 /// data, normalised by the core; None where not given).
 type Loaded<'py> = (
     PyScene,
     (Option<String>, Option<String>, Option<String>),
-    Vec<(String, (f64, f64))>,
-    Vec<(String, Vec<String>)>,
+    Bound<'py, PyDict>,
+    Bound<'py, PyDict>,
     String,
     DriveOut,
     Option<DriveOut>,
@@ -64,7 +66,28 @@ fn drive_out(d: &Drive) -> DriveOut {
 /// Python's words), a sketch's `lengths` assembled into the exact pose.
 #[pyfunction]
 fn load_scene<'py>(py: Python<'py>, data: &Bound<'_, PyAny>) -> PyResult<Loaded<'py>> {
-    let mut parsed = core_format::parse(&value_of(data, 1)?).map_err(err)?;
+    loaded(py, &value_of(data, 1)?)
+}
+
+/// `load_scene` of a JSON file's text, read in the core (`name` defaulting to `stem`, as
+/// `Scene.load` names a scene); None where the text is not plain JSON the core's reader
+/// takes (Python's `json` then reads it and words the error).
+#[pyfunction]
+fn load_scene_json<'py>(py: Python<'py>, text: &str, stem: &str) -> PyResult<Option<Loaded<'py>>> {
+    let Some(mut data) = core_format::read_json(text) else { return Ok(None) };
+    if let Value::Map(m) = &mut data {
+        let name = Value::Str(stem.to_owned());
+        match m.iter_mut().find(|(k, _)| k.as_str() == Some("name")) {
+            Some((_, v)) if matches!(v, Value::Null) => *v = name,
+            Some(_) => {}
+            None => m.push((Value::Str("name".into()), name)),
+        }
+    }
+    loaded(py, &data).map(Some)
+}
+
+fn loaded<'py>(py: Python<'py>, data: &Value) -> PyResult<Loaded<'py>> {
+    let mut parsed = core_format::parse(data).map_err(err)?;
     let moved = match parsed.lengths {
         None => None,
         Some(_) => Signals::detach(py, |signals| parsed.assemble(signals))?,
@@ -75,8 +98,6 @@ fn load_scene<'py>(py: Python<'py>, data: &Bound<'_, PyAny>) -> PyResult<Loaded<
         unit_table.map_or_else(|| Ok(none()), |u| format::to_py(py, &u.to_value()))?,
         loads.map_or_else(|| Ok(none()), |l| format::to_py(py, &l.to_value()))?,
     );
-    let points = spec.points.iter().map(|(n, [x, y])| (n.clone(), (*x, *y))).collect();
-    let links = spec.links.clone();
     let ground = spec.ground.clone();
     let joint = |(n, (a, g, l)): (&String, (&String, &String, &(String, String)))| {
         (n.clone(), (a.clone(), g.clone(), l.clone()))
@@ -84,6 +105,7 @@ fn load_scene<'py>(py: Python<'py>, data: &Bound<'_, PyAny>) -> PyResult<Loaded<
     let slots = spec.slots.iter().map(|(n, j)| joint((n, (&j.point, &j.guide, &j.line)))).collect();
     let prismatic = spec.prismatic.iter().map(|(n, j)| joint((n, (&j.link, &j.guide, &j.line)))).collect();
     let inner = Scene::new(spec).and_then(|s| s.with_limits(&limits)).map_err(err)?;
+    let (points, links) = drawing(py, &inner)?;
     let limits = if limits.is_empty() {
         none()
     } else {
@@ -106,6 +128,21 @@ fn load_scene<'py>(py: Python<'py>, data: &Bound<'_, PyAny>) -> PyResult<Loaded<
         lengths,
         (moved, table, loads, limits),
     ))
+}
+
+/// The scene's points (name -> (x, y)) and links (name -> tuple of point names) as Python
+/// dicts, each point's name one str object wherever it appears.
+fn drawing<'py>(py: Python<'py>, sc: &Scene) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+    let names: Vec<Bound<'py, PyString>> = sc.point_names().iter().map(|n| PyString::new(py, n)).collect();
+    let points = PyDict::new(py);
+    for (n, [x, y]) in names.iter().zip(sc.drawn()) {
+        points.set_item(n, (*x, *y))?;
+    }
+    let links = PyDict::new(py);
+    for l in sc.links() {
+        links.set_item(&l.name, PyTuple::new(py, l.points.iter().map(|&p| &names[p]))?)?;
+    }
+    Ok((points, links))
 }
 
 #[pymethods]
@@ -237,5 +274,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_class::<PyPlan>()?;
     m.add_function(wrap_pyfunction!(load_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(load_scene_json, m)?)?;
     Ok(())
 }

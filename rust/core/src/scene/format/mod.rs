@@ -1,12 +1,14 @@
 //! The scene file format, once for every binding: its keys, the data's checks and their
 //! messages (Python's words, quoting Python's `repr` of what was given), and the defaults
-//! a scene is solved with. Bindings convert their data to a [`Value`] and call [`parse`].
+//! a scene is solved with. Bindings convert their data to a [`Value`] (a JSON file's text:
+//! [`read_json`]) and call [`parse`].
 //!
-//! Inside: `value` (the data and its `repr`) is the leaf; `parse` reads it into a
-//! [`SceneSpec`]; `defaults` and `output` serve what a binding
+//! Inside: `value` (the data and its `repr`) is the leaf; `json` reads a file's text into
+//! it; `parse` reads it into a [`SceneSpec`]; `defaults` and `output` serve what a binding
 //! computes with a scene once it is built.
 
 mod defaults;
+mod json;
 mod limits;
 mod loads;
 mod output;
@@ -20,6 +22,7 @@ pub use defaults::{
     default_inputs, homotopy_options, linspace, max_step, size, sweep_options, trace_options, MAX_ITER, MAX_STEP, RUNS,
     SEED, SWEEP_LEN, TOL, TRACE_MAX_POINTS, TRACE_STEP,
 };
+pub use json::read_json;
 pub use limits::{Bounded, LimitSpec};
 pub use loads::{Center, Element, Loads, Mass, Profile, Target, Units, LOAD_KEYS};
 pub use output::linear_output;

@@ -125,6 +125,26 @@ fn lengths(d: Entries<'_>) -> Result<Option<Vec<LengthSpec>>, Error> {
     Ok(Some(out))
 }
 
+/// Whether `data` nests a list or mapping deeper than [`MAX_DEPTH`]: [`too_deep`]'s walk
+/// without the names (asked only of data refused); no recursion.
+fn nests_too_deep(data: &Value) -> bool {
+    let mut todo: Vec<(&Value, usize)> = vec![(data, 1)];
+    while let Some((v, depth)) = todo.pop() {
+        if let Some(m) = v.as_map() {
+            if depth > MAX_DEPTH {
+                return true;
+            }
+            todo.extend(m.iter().map(|(_, x)| (x, depth + 1)));
+        } else if let Some(l) = v.as_list() {
+            if depth > MAX_DEPTH {
+                return true;
+            }
+            todo.extend(l.iter().map(|x| (x, depth + 1)));
+        }
+    }
+    false
+}
+
 /// The first list or mapping nested deeper than [`MAX_DEPTH`], by its dotted name
 /// (parents first, in order, as Python's walk finds it); no recursion.
 fn too_deep(data: &Value) -> Option<String> {
@@ -148,13 +168,23 @@ fn too_deep(data: &Value) -> Option<String> {
     None
 }
 
+/// A point's coordinate: a double as it is (most are), anything else by [`real`], which
+/// names the entry.
+fn coordinate(v: &Value, name: &str, k: usize) -> Result<f64, Error> {
+    match v {
+        Value::Float(x) => Ok(*x),
+        Value::Int(i) => Ok(*i as f64),
+        _ => real(&format!("points.{name}[{k}]"), v),
+    }
+}
+
 /// The scene's data (the file format's keys) as the core's spec and what the spec does not
 /// hold; every error names the entry, in the words Python's `planarkin.Scene` has always used.
 pub fn parse(data: &Value) -> Result<Parsed, Error> {
     let Some(d) = data.as_map() else {
         return fail("scene", format!("must be a mapping, got {}", data.type_name()));
     };
-    if let Some(name) = too_deep(data) {
+    if let Some(name) = nests_too_deep(data).then(|| too_deep(data)).flatten() {
         return fail("scene", format!("{name} nests deeper than {MAX_DEPTH} levels (a scene has at most 4)"));
     }
     let unknown: Vec<String> =
@@ -184,8 +214,7 @@ pub fn parse(data: &Value) -> Result<Parsed, Error> {
         let Some([x, y]) = xy else {
             return fail(format!("points.{name}"), format!("must be a pair [x, y], got {}", v.repr()));
         };
-        let x = real(&format!("points.{name}[0]"), x)?;
-        let y = real(&format!("points.{name}[1]"), y)?;
+        let (x, y) = (coordinate(x, &name, 0)?, coordinate(y, &name, 1)?);
         points.push((name, [x, y]));
     }
     let mut lk = Vec::with_capacity(links.len());

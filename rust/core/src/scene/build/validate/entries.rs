@@ -13,10 +13,12 @@ use crate::scene::vec2::{sub, Xy};
 /// Indices by name.
 pub(super) type Index<'a> = HashMap<&'a str, usize>;
 
-/// The points by name, their drawn coordinates and names.
-pub(super) fn points(points: &[(String, Xy)]) -> Result<(Index<'_>, Vec<Xy>, Vec<String>), Error> {
-    let mut index: Index<'_> = HashMap::new();
-    for (i, (name, xy)) in points.iter().enumerate() {
+/// The points by name (`names` and `drawn`: the spec's points taken apart, nothing copied).
+/// Names must be distinct and coordinates finite: the error names the first point, in the
+/// order given, that breaks either.
+pub(super) fn points<'a>(names: &'a [String], drawn: &[Xy]) -> Result<Index<'a>, Error> {
+    let mut index: Index<'_> = HashMap::with_capacity(names.len());
+    for (i, (name, xy)) in names.iter().zip(drawn).enumerate() {
         if index.insert(name.as_str(), i).is_some() {
             return Err(Error::scene(format!("points.{name}"), "is given twice"));
         }
@@ -24,9 +26,7 @@ pub(super) fn points(points: &[(String, Xy)]) -> Result<(Index<'_>, Vec<Xy>, Vec
             return Err(Error::scene(format!("points.{name}"), format!("coordinates must be finite, got {xy:?}")));
         }
     }
-    let drawn: Vec<Xy> = points.iter().map(|p| p.1).collect();
-    let names: Vec<String> = points.iter().map(|p| p.0.clone()).collect();
-    Ok((index, drawn, names))
+    Ok(index)
 }
 
 /// The links by name and as lists of point indices.
@@ -38,7 +38,7 @@ pub(super) fn links<'s>(
     if links.is_empty() {
         return Err(Error::scene("links", "the scene has no links"));
     }
-    let mut link_index: HashMap<&str, usize> = HashMap::new();
+    let mut link_index: HashMap<&str, usize> = HashMap::with_capacity(links.len());
     let mut parsed = Vec::with_capacity(links.len());
     // the link (plus one) that last listed each point: a repeat within a link in O(1)
     let mut listed_by = vec![0usize; npoints];

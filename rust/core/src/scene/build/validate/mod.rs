@@ -37,8 +37,9 @@ pub(crate) fn structure(spec: SceneSpec) -> Result<Scene, Error> {
             return Err(Error::scene(what, format!("{n} entries; a scene may have at most {MAX_ENTRIES}")));
         }
     }
-    let (index, drawn, names) = entries::points(&points)?;
-    let (link_index, parsed) = entries::links(&links, &index, points.len())?;
+    let (names, drawn): (Vec<String>, Vec<_>) = points.into_iter().unzip();
+    let index = entries::points(&names, &drawn)?;
+    let (link_index, parsed) = entries::links(&links, &index, names.len())?;
     let (pre, size) = geometry::measure(&parsed, &drawn, &names)?;
 
     let mut point_links = vec![Vec::new(); names.len()];
