@@ -245,6 +245,24 @@ TARGETS = (
     Target("Jansen's leg with loads: every reaction and the input torque (dynamics, 361 "
            "angles) within {target} its kinematic sweep (velocities and accelerations)",
            "forces_dynamics", "forces_sweep", "ratio", "<=", 3, "x", ratio="{:.1f}x"),
+    *(
+        t
+        for name, peer in (
+            ("jansen", "scene_jansen_pylinkage"),
+            ("slider-crank", "slider_pylinkage"),
+            ("watt2", "order_watt2_pylinkage"),
+        )
+        for t in (
+            Target(f"{name}, a full turn from 30 deg away: within {{target}} of the drawn start",
+                   f"order_{name}_from_30_deg", f"order_{name}_drawn", "ratio", "<=", 1.3, "x",
+                   ratio="{:.2f}x"),
+            Target(f"{name}, a full turn shuffled: within {{target}} of the drawn start",
+                   f"order_{name}_shuffled", f"order_{name}_drawn", "ratio", "<=", 1.3, "x",
+                   ratio="{:.2f}x"),
+            Target(f"{name} from 30 deg away: {{target}} faster than pylinkage + numba",
+                   f"order_{name}_from_30_deg", peer, "speedup", ">=", 5, "x"),
+        )
+    ),
     Target("slider-crank (piston, 361 angles) {target} faster than pylinkage + numba (RRPDyad)",
            "slider_pk", "slider_pylinkage", "speedup", ">=", 3, "x"),
     Target("slider-crank faster than the NumPy closed form written as a user would",

@@ -60,30 +60,65 @@ pub(super) fn other(theta: &[f64], theta0: f64, ks: impl Iterator<Item = usize>)
 /// an angle, when the values cover the whole turn that way (taken modulo a turn, the gaps
 /// between neighbours at most `max_step`): then a column sweep whose every step is far from
 /// a dead point is the motion reached either way, and the values' order does not matter.
+/// One pass and no sort ([`steps_within`]): a sweep from any start, or shuffled, costs
+/// about what one from the drawn value does.
 pub(super) fn covered(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -> bool {
-    let gaps_ok = |run: &Run| {
-        let mut at = theta0;
-        run.iter().all(|&(_, t)| {
-            let ok = (t - at).abs() <= max_step;
-            at = t;
-            ok
-        })
-    };
-    let [up, down] = direct(theta, theta0);
-    if gaps_ok(&up) && gaps_ok(&down) {
+    let finite = || theta.iter().copied().filter(|t| t.is_finite());
+    let up = || finite().filter(|&t| t >= theta0).map(|t| t - theta0);
+    let down = || finite().filter(|&t| t < theta0).map(|t| theta0 - t);
+    if steps_within(up, max_step, None) && steps_within(down, max_step, None) {
         return true;
     }
-    if linear {
+    // (the turn's ends: a value a whole number of turns away is the drawn one, at 0)
+    !linear && steps_within(|| finite().map(|t| turned(t - theta0)), max_step, Some(TAU))
+}
+
+/// `x.rem_euclid(TAU)`, bit for bit, with no division within a turn either way of 0 (fmod
+/// is exact there: x itself, x + TAU, or x - TAU by Sterbenz's lemma).
+#[inline]
+fn turned(x: f64) -> f64 {
+    if (0.0..TAU).contains(&x) {
+        x
+    } else if (-TAU..0.0).contains(&x) || (TAU..2.0 * TAU).contains(&x) {
+        x.rem_euclid(TAU).max(0.0)
+    } else {
+        x.rem_euclid(TAU)
+    }
+}
+
+/// Whether the nonnegative offsets `xs()` (in any order), visited in increasing order from
+/// 0 and then on to `end` (if given), step by at most `max_step`. Exact and in linear time:
+/// the offsets fall in buckets half a step wide, where neighbours in one bucket are closer
+/// than a step, so only the gaps between the last of a bucket and the first of the next one
+/// that holds any need checking. More than a step per offset is never covered.
+fn steps_within<I: Iterator<Item = f64>>(xs: impl Fn() -> I, max_step: f64, end: Option<f64>) -> bool {
+    let (mut n, mut lo, mut hi) = (0usize, end.unwrap_or(f64::INFINITY), end.unwrap_or(0.0));
+    for x in xs() {
+        n += 1;
+        (lo, hi) = (lo.min(x), hi.max(x));
+    }
+    if hi == 0.0 {
+        return true;
+    }
+    // (the first step, and enough offsets to span the rest)
+    if !(lo <= max_step && hi <= (n + 1) as f64 * max_step) {
         return false;
     }
-    let mut turn: Vec<f64> = theta.iter().filter(|t| t.is_finite()).map(|t| (t - theta0).rem_euclid(TAU)).collect();
-    turn.sort_by(f64::total_cmp);
+    let width = 0.5 * max_step;
+    let buckets = (hi / width) as usize + 1;
+    let mut span = vec![(f64::INFINITY, f64::NEG_INFINITY); buckets];
+    for x in xs() {
+        let b = &mut span[((x / width) as usize).min(buckets - 1)];
+        *b = (b.0.min(x), b.1.max(x));
+    }
     let mut at = 0.0;
-    turn.iter().chain(std::iter::once(&TAU)).all(|&x| {
-        let ok = x - at <= max_step;
-        at = x;
-        ok
-    })
+    for &(lo, top) in span.iter().filter(|b| b.0 <= b.1) {
+        if lo - at > max_step {
+            return false;
+        }
+        at = top;
+    }
+    end.is_none_or(|e| e - at <= max_step)
 }
 
 #[cfg(test)]
@@ -120,5 +155,58 @@ mod tests {
         assert!(covered(&shifted, 0.0, 1.5 * step, false));
         let half: Vec<f64> = (0..n / 2).map(|k| 0.5 + k as f64 * step).collect();
         assert!(!covered(&half, 0.0, 1.5 * step, false));
+    }
+
+    /// The bucket pass answers as sorting and walking the gaps does, on shuffled values with
+    /// gaps on either side of the step, repeats, values a turn or more away, and NaN.
+    #[test]
+    fn coverage_in_one_pass_agrees_with_sorting() {
+        let sorted_check = |theta: &[f64], theta0: f64, max_step: f64, linear: bool| {
+            let walk = |mut xs: Vec<f64>, end: Option<f64>| {
+                xs.sort_by(f64::total_cmp);
+                let mut at = 0.0;
+                xs.iter().chain(end.as_ref()).all(|&x| {
+                    let ok = x - at <= max_step;
+                    at = x;
+                    ok
+                })
+            };
+            let fin: Vec<f64> = theta.iter().copied().filter(|t| t.is_finite()).collect();
+            let up = fin.iter().filter(|&&t| t >= theta0).map(|t| t - theta0).collect();
+            let down = fin.iter().filter(|&&t| t < theta0).map(|t| theta0 - t).collect();
+            (walk(up, None) && walk(down, None))
+                || (!linear && walk(fin.iter().map(|t| (t - theta0).rem_euclid(TAU)).collect(), Some(TAU)))
+        };
+        let mut state = 0x2545f4914f6cdd1d_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut agreed = [0usize; 2];
+        for case in 0..4000 {
+            let n = 2 + (next() * 60.0) as usize;
+            let max_step = TAU / (n - 1) as f64 * (0.9 + 0.6 * next());
+            let theta0 = next() * 4.0 - 2.0;
+            let start = theta0 + (next() - 0.5) * 20.0;
+            let mut theta: Vec<f64> =
+                (0..n).map(|k| start + k as f64 * TAU / (n - 1) as f64 * (0.9 + 0.2 * next())).collect();
+            if case % 7 == 0 {
+                theta[n / 2] = f64::NAN;
+            }
+            if case % 5 == 0 {
+                theta.push(theta[0] + 3.0 * TAU);
+            }
+            for k in (1..theta.len()).rev() {
+                theta.swap(k, (next() * (k + 1) as f64) as usize);
+            }
+            let linear = case % 3 == 0;
+            let want = sorted_check(&theta, theta0, max_step, linear);
+            assert_eq!(covered(&theta, theta0, max_step, linear), want, "case {case}");
+            agreed[want as usize] += 1;
+        }
+        // both answers were exercised
+        assert!(agreed[0] > 100 && agreed[1] > 100, "{agreed:?}");
     }
 }
