@@ -92,23 +92,30 @@ fn turned(x: f64) -> f64 {
 /// than a step, so only the gaps between the last of a bucket and the first of the next one
 /// that holds any need checking. More than a step per offset is never covered.
 fn steps_within<I: Iterator<Item = f64>>(xs: impl Fn() -> I, max_step: f64, end: Option<f64>) -> bool {
+    // one pass: offsets already in increasing order (a sweep from its start on) are
+    // answered there; the others need their count and range for the buckets
+    let (mut at, mut sorted, mut ok) = (0.0, true, true);
     let (mut n, mut lo, mut hi) = (0usize, end.unwrap_or(f64::INFINITY), end.unwrap_or(0.0));
     for x in xs() {
+        sorted &= x >= at;
+        ok &= x - at <= max_step;
+        at = x;
         n += 1;
         (lo, hi) = (lo.min(x), hi.max(x));
     }
-    if hi == 0.0 {
-        return true;
+    if sorted {
+        return ok && end.is_none_or(|e| e - at <= max_step);
     }
     // (the first step, and enough offsets to span the rest)
     if !(lo <= max_step && hi <= (n + 1) as f64 * max_step) {
         return false;
     }
-    let width = 0.5 * max_step;
-    let buckets = (hi / width) as usize + 1;
+    // (by a product: a bucket's width is within rounding of half a step, well below one)
+    let per = 2.0 / max_step;
+    let buckets = (hi * per) as usize + 1;
     let mut span = vec![(f64::INFINITY, f64::NEG_INFINITY); buckets];
     for x in xs() {
-        let b = &mut span[((x / width) as usize).min(buckets - 1)];
+        let b = &mut span[((x * per) as usize).min(buckets - 1)];
         *b = (b.0.min(x), b.1.max(x));
     }
     let mut at = 0.0;
