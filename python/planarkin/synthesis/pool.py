@@ -109,6 +109,10 @@ def stop_pool(ex: Executor) -> None:
         return
     # before 3.14 a process pool's workers have no public handle
     processes = list((getattr(ex, "_processes", None) or {}).values())
+    # the queued starts cancelled here and now: shutdown(cancel_futures=True) leaves that to
+    # the pool's manager thread, which may not have run when this returns
+    for item in list((getattr(ex, "_pending_work_items", None) or {}).values()):
+        item.future.cancel()
     ex.shutdown(wait=False, cancel_futures=True)
     for p in processes:
         if p.is_alive():
