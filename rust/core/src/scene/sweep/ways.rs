@@ -64,13 +64,66 @@ pub(super) fn other(theta: &[f64], theta0: f64, ks: impl Iterator<Item = usize>)
 /// about what one from the drawn value does.
 pub(super) fn covered(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -> bool {
     let finite = || theta.iter().copied().filter(|t| t.is_finite());
-    let up = || finite().filter(|&t| t >= theta0).map(|t| t - theta0);
-    let down = || finite().filter(|&t| t < theta0).map(|t| theta0 - t);
-    if steps_within(up, max_step, None) && steps_within(down, max_step, None) {
-        return true;
+    // both direct ways walked in one pass; where their offsets come in increasing order
+    // (a sweep from the drawn value, either way) that pass answers
+    let (mut up, mut down) = (Walk::new(max_step, None), Walk::new(max_step, None));
+    for t in finite() {
+        if t >= theta0 {
+            up.visit(t - theta0);
+        } else {
+            down.visit(theta0 - t);
+        }
     }
+    let direct = match (up.answer(), down.answer()) {
+        (Some(a), Some(b)) => a && b,
+        _ => {
+            let up = || finite().filter(|&t| t >= theta0).map(|t| t - theta0);
+            let down = || finite().filter(|&t| t < theta0).map(|t| theta0 - t);
+            steps_within(up, max_step, None) && steps_within(down, max_step, None)
+        }
+    };
     // (the turn's ends: a value a whole number of turns away is the drawn one, at 0)
-    !linear && steps_within(|| finite().map(|t| turned(t - theta0)), max_step, Some(TAU))
+    direct || (!linear && steps_within(|| finite().map(|t| turned(t - theta0)), max_step, Some(TAU)))
+}
+
+/// One pass over nonnegative offsets from 0: whether they came in increasing order, in
+/// steps of at most `max_step` (and on to `end`), and their count and range.
+struct Walk {
+    max_step: f64,
+    end: Option<f64>,
+    at: f64,
+    sorted: bool,
+    ok: bool,
+    n: usize,
+    lo: f64,
+    hi: f64,
+}
+
+impl Walk {
+    fn new(max_step: f64, end: Option<f64>) -> Self {
+        let (lo, hi) = (end.unwrap_or(f64::INFINITY), end.unwrap_or(0.0));
+        Walk { max_step, end, at: 0.0, sorted: true, ok: true, n: 0, lo, hi }
+    }
+
+    #[inline]
+    fn visit(&mut self, x: f64) {
+        self.sorted &= x >= self.at;
+        self.ok &= x - self.at <= self.max_step;
+        self.at = x;
+        self.n += 1;
+        // (finite offsets: plain comparisons)
+        if x < self.lo {
+            self.lo = x;
+        }
+        if x > self.hi {
+            self.hi = x;
+        }
+    }
+
+    /// The answer where the offsets came in increasing order (None: they did not).
+    fn answer(&self) -> Option<bool> {
+        self.sorted.then(|| self.ok && self.end.is_none_or(|e| e - self.at <= self.max_step))
+    }
 }
 
 /// `x.rem_euclid(TAU)`, bit for bit, with no division within a turn either way of 0 (fmod
@@ -94,18 +147,14 @@ fn turned(x: f64) -> f64 {
 fn steps_within<I: Iterator<Item = f64>>(xs: impl Fn() -> I, max_step: f64, end: Option<f64>) -> bool {
     // one pass: offsets already in increasing order (a sweep from its start on) are
     // answered there; the others need their count and range for the buckets
-    let (mut at, mut sorted, mut ok) = (0.0, true, true);
-    let (mut n, mut lo, mut hi) = (0usize, end.unwrap_or(f64::INFINITY), end.unwrap_or(0.0));
+    let mut walk = Walk::new(max_step, end);
     for x in xs() {
-        sorted &= x >= at;
-        ok &= x - at <= max_step;
-        at = x;
-        n += 1;
-        (lo, hi) = (lo.min(x), hi.max(x));
+        walk.visit(x);
     }
-    if sorted {
-        return ok && end.is_none_or(|e| e - at <= max_step);
+    if let Some(answer) = walk.answer() {
+        return answer;
     }
+    let (n, lo, hi) = (walk.n, walk.lo, walk.hi);
     // (the first step, and enough offsets to span the rest)
     if !(lo <= max_step && hi <= (n + 1) as f64 * max_step) {
         return false;
