@@ -107,12 +107,13 @@ impl Scene {
         let frame: Vec<Xy> = poses.iter().map(|&p| self.to_frame(p)).collect();
         let h = DET_STEP;
         let mut moved = vec![[0.0; 2]; np];
+        // one copy of the scene, each coordinate moved and put back in turn
+        let mut sc = self.clone();
         for (f, &(p, k)) in free.iter().enumerate() {
             let mut dets = [vec![0.0; n], vec![0.0; n]];
             for (side, sg) in [1.0, -1.0].into_iter().enumerate() {
-                let mut sc = self.clone();
-                sc.xy[p][k] += sg * h;
-                sc.drawn[p][k] += sg * h * self.scale;
+                sc.xy[p][k] = self.xy[p][k] + sg * h;
+                sc.drawn[p][k] = self.drawn[p][k] + sg * h * self.scale;
                 let plan = sc.plan(outputs)?;
                 for (i, pose) in frame.chunks(np).enumerate() {
                     for (q, (m, x)) in moved.iter_mut().zip(pose).enumerate() {
@@ -123,6 +124,7 @@ impl Scene {
                     dets[side][i] = plan.dets_at(&moved).0;
                 }
             }
+            (sc.xy[p][k], sc.drawn[p][k]) = (self.xy[p][k], self.drawn[p][k]);
             for (i, o) in out.iter_mut().skip(f).step_by(nf).enumerate() {
                 *o = (dets[0][i] - dets[1][i]) / (2.0 * h * self.scale);
             }

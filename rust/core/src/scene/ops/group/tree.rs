@@ -91,13 +91,19 @@ impl Group {
         for &l in links {
             inset[l] = true;
         }
-        let mut m = std::collections::HashMap::<usize, i64>::new();
+        // links at each point (a count per point: the compiler asks this of many subsets)
+        let mut m = vec![0i64; sc.xy.len()];
         for &l in links {
             for &p in &sc.links[l].points {
-                *m.entry(p).or_default() += 1;
+                m[p] += 1;
             }
         }
-        let c: i64 = m.iter().map(|(&p, &k)| if known[p] { 2 * k } else { 2 * (k - 1) }).sum();
+        let c: i64 = m
+            .iter()
+            .enumerate()
+            .filter(|&(_, &k)| k > 0)
+            .map(|(p, &k)| if known[p] { 2 * k } else { 2 * (k - 1) })
+            .sum();
         let (slots, prismatic) = Self::joints_of(sc, &inset, known, held);
         let is_input = |k: LinearKind, i: usize| sc.linear.is_some_and(|l| l.kind == k && l.index == i);
         let holds = slots.iter().any(|&i| is_input(LinearKind::Slot, i))
