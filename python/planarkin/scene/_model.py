@@ -69,7 +69,7 @@ class Scene:
     (361, 2)
     """
 
-    __slots__ = ("_core", "_data", "_forces", "_max_step", "_moved", "_plans", "_theta")
+    __slots__ = ("_core", "_data", "_forces", "_max_step", "_moved", "_plans", "_svg", "_theta")
 
     #: Other tools' formats, set by ``planarkin.interop`` (the scene subject imports none):
     #: format name -> (reader, writer) behind ``from_pyslvs`` and ``to_pyslvs``.
@@ -86,6 +86,8 @@ class Scene:
         self._core = core
         self._max_step = core.max_step  # the default, read once (every sweep takes it)
         self._moved: list[float] | None = moved  # a dict when asked for (`moved`)
+        # the links a sweep's notebook picture draws, and the ground (once, not per sweep)
+        self._svg = (tuple(v for k, v in links.items() if k != ground), links[ground])
         name, description, units = text
         self._data: dict[str, Any] = {
             "name": name,
@@ -502,9 +504,7 @@ class Scene:
         )  # fmt: skip
         # the notebook picture draws the links whose points are reported (not a field:
         # the picture's, not the result's)
-        d = self._data
-        sw.__dict__["_svg_links"] = tuple(v for k, v in d["links"].items() if k != d["ground"])
-        sw.__dict__["_svg_ground"] = d["links"][d["ground"]]
+        sw.__dict__["_svg_links"], sw.__dict__["_svg_ground"] = self._svg
         return sw
 
     def _output_of(
