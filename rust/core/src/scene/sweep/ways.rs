@@ -74,14 +74,8 @@ pub(super) fn covered(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -
             down.visit(theta0 - t);
         }
     }
-    let direct = match (up.answer(), down.answer()) {
-        (Some(a), Some(b)) => a && b,
-        _ => {
-            let up = || finite().filter(|&t| t >= theta0).map(|t| t - theta0);
-            let down = || finite().filter(|&t| t < theta0).map(|t| theta0 - t);
-            steps_within(up, max_step, None) && steps_within(down, max_step, None)
-        }
-    };
+    let direct = up.covers(|| finite().filter(|&t| t >= theta0).map(|t| t - theta0))
+        && down.covers(|| finite().filter(|&t| t < theta0).map(|t| theta0 - t));
     // (the turn's ends: a value a whole number of turns away is the drawn one, at 0)
     direct || (!linear && steps_within(|| finite().map(|t| turned(t - theta0)), max_step, Some(TAU)))
 }
@@ -126,55 +120,59 @@ impl Walk {
     }
 }
 
-/// `x.rem_euclid(TAU)`, bit for bit, with no division within a turn either way of 0 (fmod
-/// is exact there: x itself, x + TAU, or x - TAU by Sterbenz's lemma).
+/// `x.rem_euclid(TAU)`, with no fmod for an offset already within the turn.
 #[inline]
 fn turned(x: f64) -> f64 {
     if (0.0..TAU).contains(&x) {
         x
-    } else if (-TAU..0.0).contains(&x) || (TAU..2.0 * TAU).contains(&x) {
-        x.rem_euclid(TAU).max(0.0)
     } else {
         x.rem_euclid(TAU)
     }
 }
 
 /// Whether the nonnegative offsets `xs()` (in any order), visited in increasing order from
-/// 0 and then on to `end` (if given), step by at most `max_step`. Exact and in linear time:
-/// the offsets fall in buckets half a step wide, where neighbours in one bucket are closer
-/// than a step, so only the gaps between the last of a bucket and the first of the next one
-/// that holds any need checking. More than a step per offset is never covered.
+/// 0 and then on to `end` (if given), step by at most `max_step` ([`Walk::covers`]).
 fn steps_within<I: Iterator<Item = f64>>(xs: impl Fn() -> I, max_step: f64, end: Option<f64>) -> bool {
-    // one pass: offsets already in increasing order (a sweep from its start on) are
-    // answered there; the others need their count and range for the buckets
     let mut walk = Walk::new(max_step, end);
     for x in xs() {
         walk.visit(x);
     }
-    if let Some(answer) = walk.answer() {
-        return answer;
-    }
-    let (n, lo, hi) = (walk.n, walk.lo, walk.hi);
-    // (the first step, and enough offsets to span the rest)
-    if !(lo <= max_step && hi <= (n + 1) as f64 * max_step) {
-        return false;
-    }
-    // (by a product: a bucket's width is within rounding of half a step, well below one)
-    let per = 2.0 / max_step;
-    let buckets = (hi * per) as usize + 1;
-    let mut span = vec![(f64::INFINITY, f64::NEG_INFINITY); buckets];
-    for x in xs() {
-        let b = &mut span[((x * per) as usize).min(buckets - 1)];
-        *b = (b.0.min(x), b.1.max(x));
-    }
-    let mut at = 0.0;
-    for &(lo, top) in span.iter().filter(|b| b.0 <= b.1) {
-        if lo - at > max_step {
+    walk.covers(xs)
+}
+
+impl Walk {
+    /// Whether the offsets this walk visited, `xs()` again, step by at most a step in
+    /// increasing order: the walk's answer where they came in order; otherwise exact and
+    /// in linear time, the offsets in buckets half a step wide, where neighbours in one
+    /// bucket are closer than a step, so only the gaps between the last of a bucket and the
+    /// first of the next one that holds any need checking. More than a step per offset is
+    /// never covered.
+    fn covers<I: Iterator<Item = f64>>(&self, xs: impl Fn() -> I) -> bool {
+        if let Some(answer) = self.answer() {
+            return answer;
+        }
+        let (max_step, n, lo, hi) = (self.max_step, self.n, self.lo, self.hi);
+        // (the first step, and enough offsets to span the rest)
+        if !(lo <= max_step && hi <= (n + 1) as f64 * max_step) {
             return false;
         }
-        at = top;
+        // (by a product: a bucket's width is within rounding of half a step, well below one)
+        let per = 2.0 / max_step;
+        let buckets = (hi * per) as usize + 1;
+        let mut span = vec![(f64::INFINITY, f64::NEG_INFINITY); buckets];
+        for x in xs() {
+            let b = &mut span[((x * per) as usize).min(buckets - 1)];
+            *b = (b.0.min(x), b.1.max(x));
+        }
+        let mut at = 0.0;
+        for &(lo, top) in span.iter().filter(|b| b.0 <= b.1) {
+            if lo - at > max_step {
+                return false;
+            }
+            at = top;
+        }
+        self.end.is_none_or(|e| e - at <= max_step)
     }
-    end.is_none_or(|e| e - at <= max_step)
 }
 
 #[cfg(test)]
