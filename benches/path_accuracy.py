@@ -18,6 +18,7 @@ import planarkin as pk
 from planarkin.synthesis.path import CurveTarget, load_target
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "tests"))  # _support
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "synthesis", "path"))
 from _path_linkages import fourbar_curve, slider_curve  # noqa: E402
 
