@@ -283,14 +283,6 @@ def test_bad_options_are_one_line_errors(target_csv, fake, args, words):
     assert not fake.calls
 
 
-def test_a_build_without_the_pipeline_says_so(target_csv, monkeypatch):
-    monkeypatch.delattr(path_api, "path", raising=False)
-    code, _, err = run_cli("synthesize", "path", str(target_csv))
-    assert code == 1
-    assert err == ("planarkin: error: planarkin.synthesis.path.path is not in this build of "
-                   "planarkin\n")  # fmt: skip
-
-
 def test_ackermann_is_still_a_synthesis_problem():
     from planarkin.face.cli import build_parser
 

@@ -244,12 +244,9 @@ def run(args: argparse.Namespace) -> int:
     )
     from ...synthesis import path as path_api
 
-    synthesize = getattr(path_api, "path", None)  # the pipeline, where this build has it
-    if synthesize is None:
-        raise ImportError("planarkin.synthesis.path.path is not in this build of planarkin")
     bars = _Stages(args.quiet)
     try:
-        res = synthesize(
+        res = path_api.path(
             target,
             topology=args.topology,
             designs=args.designs,
