@@ -34,8 +34,7 @@ KIDNEY = "M 0 0 C 20 -25, 60 -25, 80 0 C 95 20, 70 45, 40 30 C 10 45, -15 20, 0 
 
 
 def _scene_curve(name: str, link: str, at: tuple[float, float], n: int) -> np.ndarray:
-    with open(os.path.join(HERE, "..", "python/planarkin/scene/builtin", f"{name}.json")) as f:
-        d = json.load(f)
+    d = pk.scenes.load(name).to_dict()
     d["points"]["P"] = list(at)
     d["links"][link].append("P")
     sc = pk.Scene(d)
