@@ -15,6 +15,7 @@ import planarkin as pk
 from conftest import record
 from planarkin.synthesis.path import CurveTarget
 
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests"))  # _support
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests", "synthesis", "path"))
 from _path_linkages import fourbar_curve  # noqa: E402
 

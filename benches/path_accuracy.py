@@ -18,6 +18,7 @@ import planarkin as pk
 from planarkin.synthesis.path import CurveTarget, load_target
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "tests"))  # _support
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "synthesis", "path"))
 from _path_linkages import fourbar_curve, slider_curve  # noqa: E402
 
@@ -33,8 +34,7 @@ KIDNEY = "M 0 0 C 20 -25, 60 -25, 80 0 C 95 20, 70 45, 40 30 C 10 45, -15 20, 0 
 
 
 def _scene_curve(name: str, link: str, at: tuple[float, float], n: int) -> np.ndarray:
-    with open(os.path.join(HERE, "..", "python/planarkin/scene/builtin", f"{name}.json")) as f:
-        d = json.load(f)
+    d = pk.scenes.load(name).to_dict()
     d["points"]["P"] = list(at)
     d["links"][link].append("P")
     sc = pk.Scene(d)

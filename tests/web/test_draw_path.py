@@ -13,6 +13,7 @@ import time
 import numpy as np
 import planarkin as pk
 import pytest
+from _support import dyad_point
 
 pytestmark = pytest.mark.slow
 
@@ -38,14 +39,9 @@ def _coupler(params: np.ndarray, sign: float, theta: np.ndarray) -> np.ndarray:
     angles theta: B where the circles about A (radius r3) and O4 (radius r4) meet, on the
     side `sign` of A -> O4 (+1 to its left); P = A + u (B - A) + v perp(B - A)."""
     r2, r3, r4, u, v = params
-    a = r2 * np.exp(1j * theta)
-    d = 1.0 - a
-    dist = np.abs(d)
-    along = (r3**2 - r4**2 + dist**2) / (2 * dist)
-    h = sign * np.sqrt(r3**2 - along**2)
-    b = a + d / dist * (along + 1j * h)
-    p = a + (u + 1j * v) * (b - a)
-    return np.column_stack([p.real, p.imag])
+    a = r2 * np.column_stack([np.cos(theta), np.sin(theta)])
+    ab = dyad_point(a, r3, np.broadcast_to([1.0, 0.0], a.shape), r4, sign) - a
+    return a + u * ab + v * np.column_stack([-ab[:, 1], ab[:, 0]])
 
 
 def _drawn(closed: bool) -> np.ndarray:

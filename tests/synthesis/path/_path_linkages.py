@@ -8,6 +8,7 @@ import math
 from typing import Any
 
 import numpy as np
+from _support import dyad_point
 
 
 def fourbar_curve(
@@ -15,17 +16,12 @@ def fourbar_curve(
     theta: Any, side: float = 1.0,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
     """(A, B, P) at crank angles ``theta``: B where the circles about A (r3) and O4 (r4)
-    meet, on ``side`` of A -> O4; P at (pu, pv) in the coupler's frame (A, along A -> B)."""
+    meet, on ``side`` of A -> O4 (+1: left); P at (pu, pv) in the coupler's frame (A,
+    along A -> B)."""
     o2, o4 = np.asarray(o2, float), np.asarray(o4, float)
     t = np.asarray(theta, float)
     a = o2 + r2 * np.stack([np.cos(t), np.sin(t)], -1)
-    d = o4 - a
-    dd = np.hypot(d[:, 0], d[:, 1])
-    x = (dd**2 + r3**2 - r4**2) / (2 * dd)
-    h = np.sqrt(r3**2 - x**2)
-    e = d / dd[:, None]
-    n = np.stack([-e[:, 1], e[:, 0]], -1)
-    b = a + x[:, None] * e + side * h[:, None] * n
+    b = dyad_point(a, r3, np.broadcast_to(o4, a.shape), r4, side)
     u = (b - a) / r3
     w = np.stack([-u[:, 1], u[:, 0]], -1)
     return a, b, a + pu * u + pv * w

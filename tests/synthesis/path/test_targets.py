@@ -18,6 +18,13 @@ from scipy.optimize import brentq
 SQUARE = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])
 
 
+def _refused_in_one_line(words: str, call, *args, **kw) -> None:  # noqa: ANN001, ANN003
+    """``call(*args, **kw)`` raises a ValueError of one line that holds ``words``."""
+    with pytest.raises(ValueError) as e:
+        call(*args, **kw)
+    assert words in str(e.value) and "\n" not in str(e.value)
+
+
 # --- construction ------------------------------------------------------------------------
 
 
@@ -38,9 +45,7 @@ SQUARE = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])
     ],
 )
 def test_bad_targets_are_refused_in_one_line(points, kind, inputs, words):
-    with pytest.raises(ValueError) as e:
-        CurveTarget(points, kind, inputs)
-    assert words in str(e.value) and "\n" not in str(e.value)
+    _refused_in_one_line(words, CurveTarget, points, kind, inputs)
 
 
 def test_a_closed_target_may_cross_itself():
@@ -179,9 +184,7 @@ def test_csv_without_header(tmp_path):
 def test_bad_csv_is_refused_in_one_line(tmp_path, text, words):
     p = tmp_path / "t.csv"
     p.write_text(text, encoding="utf-8")
-    with pytest.raises(ValueError) as e:
-        load_target(p)
-    assert words in str(e.value) and "\n" not in str(e.value)
+    _refused_in_one_line(words, load_target, p)
 
 
 def test_json_array_and_object(tmp_path):
@@ -211,9 +214,7 @@ def test_json_array_and_object(tmp_path):
 def test_bad_json_is_refused_in_one_line(tmp_path, data, words):
     p = tmp_path / "t.json"
     p.write_text(json.dumps(data), encoding="utf-8")
-    with pytest.raises(ValueError) as e:
-        load_target(p, timing=True)
-    assert words in str(e.value) and "\n" not in str(e.value)
+    _refused_in_one_line(words, load_target, p, timing=True)
 
 
 def test_unknown_files_and_kinds_are_refused(tmp_path):
@@ -345,9 +346,7 @@ def test_svg_file_with_xml_and_a_file_of_path_data(tmp_path):
 def test_bad_svg_path_data_is_refused_in_one_line(tmp_path, d, words):
     p = tmp_path / "d.svg"  # a file holding only path data (a string must start with M)
     p.write_text(d, encoding="utf-8")
-    with pytest.raises(ValueError) as e:
-        load_target(p)
-    assert words in str(e.value) and "\n" not in str(e.value)
+    _refused_in_one_line(words, load_target, p)
 
 
 def test_svg_files_refused(tmp_path):

@@ -19,7 +19,7 @@ from typing import Any
 from ...synthesis.path.results import PathResult, staged
 from ...synthesis.path.targets import KINDS, SVG_SAMPLES, load_target
 from ..progress import bar, shown
-from ._common import figure_file, format_argument, json_text, quiet_argument
+from ._common import figure_file, format_argument, json_text, out_argument, quiet_argument
 
 #: the topologies a path synthesis draws from ("auto": every one, the best kept)
 TOPOLOGIES = ("four-bar", "slider-crank", "watt2", "stephenson3", "auto")
@@ -133,13 +133,7 @@ def add_parser(problems: argparse._SubParsersAction) -> argparse.ArgumentParser:
         metavar="N",
         help="points an SVG path is sampled into, at equal arc length (default: %(default)s)",
     )
-    p.add_argument(
-        "--out",
-        type=Path,
-        default=OUT,
-        metavar="DIR",
-        help="output folder (default: %(default)s)",
-    )
+    out_argument(p, str(OUT))
     p.add_argument(
         "--no-figures", action="store_true", help="write the designs and report.json only"
     )
@@ -250,12 +244,9 @@ def run(args: argparse.Namespace) -> int:
     )
     from ...synthesis import path as path_api
 
-    synthesize = getattr(path_api, "path", None)  # the pipeline, where this build has it
-    if synthesize is None:
-        raise ImportError("planarkin.synthesis.path.path is not in this build of planarkin")
     bars = _Stages(args.quiet)
     try:
-        res = synthesize(
+        res = path_api.path(
             target,
             topology=args.topology,
             designs=args.designs,
