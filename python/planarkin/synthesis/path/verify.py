@@ -286,13 +286,16 @@ def _circuit_defect(
     d[own] = np.minimum(d[own], dist)
     # the fit's own level: how near the union of the circuits passes the points
     tol = max(CIRCUIT_GAP * size, CIRCUIT_NOISE * float(np.median(d.min(axis=0))))
-    on = set()
-    for i in range(q.shape[0]):
-        c = int(np.argmin(d[:, i]))
-        others = np.delete(d[:, i], c)
-        if d[c, i] <= tol and np.all(others - d[c, i] > tol):
-            on.add(c)
-    return len(on) > 1
+    # each point's nearest circuit counts where it is within tol and every other is farther
+    # by more than tol
+    cols = np.arange(d.shape[1])
+    near = np.argmin(d, axis=0)
+    best = d[near, cols]
+    others = d.copy()
+    others[near, cols] = np.inf
+    with np.errstate(invalid="ignore"):  # inf - inf where no circuit is finite: not on
+        on = (best <= tol) & np.all(others - best > tol, axis=0)
+    return np.unique(near[on]).size > 1
 
 
 def _full_turn(
