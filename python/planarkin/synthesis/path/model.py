@@ -428,10 +428,9 @@ class PathModel:
     def _constraints(self, u: np.ndarray, val: dict[str, Any]) -> np.ndarray:
         det = val["det"]
         margin = np.where(np.isfinite(det), self.det_sign * det - self.floor, -1.0)
-        pick = np.zeros(self.nseg, dtype=int)
-        for i in range(self.nseg):
-            idx = np.flatnonzero(self.seg == i)
-            pick[i] = idx[int(np.argmin(margin[idx]))]
+        # each segment's tightest sample: ordered by segment, then margin (stable, so the
+        # first of equal margins), segment i's samples begin at at[i]
+        pick = np.lexsort((margin, self.seg))[self.at[: self.nseg]]
         val["pick"] = pick
         # a four-bar's full turn has its floor exactly in the lengths (``bars``): the
         # samples would only add rows that are -1, with no derivative, where it does not
