@@ -14,7 +14,7 @@ from scipy.optimize import minimize_scalar
 
 from ..._kernel import TRACE_STEP
 from ...scene import Scene
-from .model import direction
+from .model import _check, direction
 from .results import Defects, PathError
 from .targets import CurveTarget
 
@@ -55,11 +55,6 @@ class Verification:
     ok: bool
     distances: np.ndarray
     converged: bool
-
-
-def _check(cond: bool, name: str, message: str) -> None:
-    if not cond:
-        raise ValueError(f"{name}: {message}")
 
 
 def _polyline_distance(q: np.ndarray, line: np.ndarray) -> np.ndarray:
