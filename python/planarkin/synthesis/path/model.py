@@ -194,11 +194,11 @@ def _monotone(cost: np.ndarray, firsts: np.ndarray | None, span: int) -> tuple[n
         d[np.arange(k), firsts] = cost[0, firsts]
         lim = (cols[None] >= firsts[:, None]) & (cols[None] < firsts[:, None] + span)
     back = np.zeros((n, d.shape[0], big), dtype=np.int64)
+    # the previous row's column each column looks back to (column 0: none, read as 0)
+    arg = np.concatenate([[0], np.arange(big - 1)])[None]
     for i in range(1, n):
         # the best of the previous row strictly before each column
         prev = np.concatenate([np.full((d.shape[0], 1), np.inf), d[:, :-1]], axis=1)
-        arg = np.concatenate([np.zeros((d.shape[0], 1), dtype=np.int64),
-                              np.arange(big - 1)[None].repeat(d.shape[0], 0)], axis=1)  # fmt: skip
         acc = np.minimum.accumulate(prev, axis=1)
         # where the running minimum was set
         first = prev == acc
