@@ -49,11 +49,8 @@ class AtlasFiles:
 
 
 def _sha256(path: Path) -> str:
-    h = hashlib.sha256()
     with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
+        return hashlib.file_digest(f, "sha256").hexdigest()
 
 
 def make_shard(out: str, topology: str, seed: int, start: int, count: int, file: str) -> dict:

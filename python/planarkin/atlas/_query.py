@@ -59,12 +59,16 @@ def descriptor_variants(points: np.ndarray, closed: bool) -> np.ndarray:
 
 def _subset(atlas: Any, closed: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The rows a target may use, their descriptors and those's squared norms (kept with
-    the atlas): a closed
-    target needs an input that turns fully; an open one may use any."""
+    the atlas): a closed target needs an input that turns fully; an open one may use any."""
     key = f"rows-{closed}"
     if key not in atlas._indexes:
-        rows = np.flatnonzero(atlas.full_turn) if closed else np.arange(len(atlas))
-        base = np.ascontiguousarray(atlas.descriptor[rows])
+        if closed:
+            rows = np.flatnonzero(atlas.full_turn)
+            base = np.ascontiguousarray(atlas.descriptor[rows])
+        else:
+            # every row: the atlas's own (contiguous) descriptors, not a copy of them
+            rows = np.arange(len(atlas))
+            base = np.ascontiguousarray(atlas.descriptor)
         atlas._indexes[key] = (rows, base, np.einsum("ij,ij->i", base, base))
     return atlas._indexes[key]
 

@@ -22,7 +22,7 @@ def openblas() -> list[tuple[Any, Any]]:
     loaded. Linux only (the loaded libraries are read from /proc/self/maps); elsewhere
     none."""
     global _OPENBLAS
-    if _OPENBLAS:
+    if _OPENBLAS is not None:  # found before (none found is an answer too)
         return _OPENBLAS
     # NumPy's OpenBLAS and SciPy's (SLSQP's) loaded first, so that both are found
     for name in ("numpy", "scipy.linalg"):
@@ -31,7 +31,8 @@ def openblas() -> list[tuple[Any, Any]]:
         with open("/proc/self/maps", encoding="utf-8", errors="replace") as f:
             paths = {ln.split()[-1] for ln in f if "openblas" in ln.lower() and "/" in ln}
     except OSError:
-        return []
+        _OPENBLAS = []
+        return _OPENBLAS
     found = []
     for path in sorted(paths):
         try:
@@ -51,7 +52,7 @@ def openblas() -> list[tuple[Any, Any]]:
 #: the name prefixes and suffixes of OpenBLAS's thread-count functions in the builds NumPy
 #: and SciPy bundle and in a system one
 _NAMES = (("scipy_openblas", "64_"), ("scipy_openblas", ""), ("openblas", "64_"), ("openblas", ""))
-_OPENBLAS: list[tuple[Any, Any]] = []
+_OPENBLAS: list[tuple[Any, Any]] | None = None
 
 
 def one_blas_thread() -> int:

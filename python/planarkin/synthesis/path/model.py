@@ -194,11 +194,11 @@ def _monotone(cost: np.ndarray, firsts: np.ndarray | None, span: int) -> tuple[n
         d[np.arange(k), firsts] = cost[0, firsts]
         lim = (cols[None] >= firsts[:, None]) & (cols[None] < firsts[:, None] + span)
     back = np.zeros((n, d.shape[0], big), dtype=np.int64)
+    # the previous row's column each column looks back to (column 0: none, read as 0)
+    arg = np.concatenate([[0], np.arange(big - 1)])[None]
     for i in range(1, n):
         # the best of the previous row strictly before each column
         prev = np.concatenate([np.full((d.shape[0], 1), np.inf), d[:, :-1]], axis=1)
-        arg = np.concatenate([np.zeros((d.shape[0], 1), dtype=np.int64),
-                              np.arange(big - 1)[None].repeat(d.shape[0], 0)], axis=1)  # fmt: skip
         acc = np.minimum.accumulate(prev, axis=1)
         # where the running minimum was set
         first = prev == acc
@@ -428,10 +428,9 @@ class PathModel:
     def _constraints(self, u: np.ndarray, val: dict[str, Any]) -> np.ndarray:
         det = val["det"]
         margin = np.where(np.isfinite(det), self.det_sign * det - self.floor, -1.0)
-        pick = np.zeros(self.nseg, dtype=int)
-        for i in range(self.nseg):
-            idx = np.flatnonzero(self.seg == i)
-            pick[i] = idx[int(np.argmin(margin[idx]))]
+        # each segment's tightest sample: ordered by segment, then margin (stable, so the
+        # first of equal margins), segment i's samples begin at at[i]
+        pick = np.lexsort((margin, self.seg))[self.at[: self.nseg]]
         val["pick"] = pick
         # a four-bar's full turn has its floor exactly in the lengths (``bars``): the
         # samples would only add rows that are -1, with no derivative, where it does not

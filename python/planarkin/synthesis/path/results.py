@@ -10,9 +10,7 @@ import math
 import os
 import re
 import shutil
-import signal
 import tempfile
-import threading
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..pool import SigintDeferred
 from ..results import versions
 from .targets import CurveTarget
 
@@ -227,7 +226,7 @@ def staged(out_dir: str | Path) -> Iterator[Path]:
     tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".partial", dir=out.parent))
     try:
         yield tmp
-        with _held_interrupt():
+        with SigintDeferred():  # the files move in whole
             _publish(tmp, out)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
@@ -241,20 +240,3 @@ def _publish(tmp: Path, out: Path) -> None:
             old.unlink()
     for n in sorted(names, key=lambda n: n == REPORT_JSON):  # the report, which lists the
         os.replace(tmp / n, out / n)  # rest, last
-
-
-@contextlib.contextmanager
-def _held_interrupt() -> Iterator[None]:
-    """Ctrl-C during the block is raised when it ends (main thread only), so that the
-    files move in whole."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    caught: list[object] = []
-    previous = signal.signal(signal.SIGINT, lambda *a: caught.append(a))
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
-    if caught:
-        raise KeyboardInterrupt

@@ -14,7 +14,7 @@ from scipy.optimize import minimize_scalar
 
 from ..._kernel import TRACE_STEP
 from ...scene import Scene
-from .model import direction
+from .model import _check, direction
 from .results import Defects, PathError
 from .targets import CurveTarget
 
@@ -55,11 +55,6 @@ class Verification:
     ok: bool
     distances: np.ndarray
     converged: bool
-
-
-def _check(cond: bool, name: str, message: str) -> None:
-    if not cond:
-        raise ValueError(f"{name}: {message}")
 
 
 def _polyline_distance(q: np.ndarray, line: np.ndarray) -> np.ndarray:
@@ -286,13 +281,16 @@ def _circuit_defect(
     d[own] = np.minimum(d[own], dist)
     # the fit's own level: how near the union of the circuits passes the points
     tol = max(CIRCUIT_GAP * size, CIRCUIT_NOISE * float(np.median(d.min(axis=0))))
-    on = set()
-    for i in range(q.shape[0]):
-        c = int(np.argmin(d[:, i]))
-        others = np.delete(d[:, i], c)
-        if d[c, i] <= tol and np.all(others - d[c, i] > tol):
-            on.add(c)
-    return len(on) > 1
+    # each point's nearest circuit counts where it is within tol and every other is farther
+    # by more than tol
+    cols = np.arange(d.shape[1])
+    near = np.argmin(d, axis=0)
+    best = d[near, cols]
+    others = d.copy()
+    others[near, cols] = np.inf
+    with np.errstate(invalid="ignore"):  # inf - inf where no circuit is finite: not on
+        on = (best <= tol) & np.all(others - best > tol, axis=0)
+    return np.unique(near[on]).size > 1
 
 
 def _full_turn(
