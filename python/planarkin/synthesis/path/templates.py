@@ -4,6 +4,7 @@ shift), with the links, input and tracer each topology has."""
 
 from __future__ import annotations
 
+import copy
 import math
 from typing import Any
 
@@ -90,7 +91,8 @@ def scene_dict(
     if topology == "slider-crank":
         x = a + b  # the slide line's direction from O2: +x of the entry's frame
         points["X"] = [float(x.real), float(x.imag)]
-    links, extra = _SHAPES[topology]
+    # (a copy: a caller may edit the dict it gets without editing the template)
+    links, extra = copy.deepcopy(_SHAPES[topology])
     return {
         "name": name,
         "description": description,
