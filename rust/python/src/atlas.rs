@@ -7,7 +7,6 @@ use planarkin_core::atlas::{
     build_shard, coupler_curve, describe, match_curves, match_many, pose, pose_names, Curve, Placement, Search,
     Topology, DESCRIPTOR, HARMONICS, SAMPLES,
 };
-use planarkin_core::scene::Xy;
 use planarkin_core::Error;
 use pyo3::prelude::*;
 
@@ -18,9 +17,14 @@ fn topology(name: &str) -> PyResult<Topology> {
     Topology::from_name(name).map_err(err)
 }
 
-/// A candidate's parameters and signs, checked against its topology: copied (a dozen
-/// numbers), so any layout will do, a strided view or a buffer Dask unpickled unaligned.
-fn row(t: Topology, p: &PyReadonlyArray1<'_, f64>, s: &PyReadonlyArray1<'_, f64>) -> PyResult<(Vec<f64>, Vec<f64>)> {
+/// A candidate's topology, parameters and signs, checked against each other: copied (a
+/// dozen numbers), so any layout will do, a strided view or a buffer Dask unpickled unaligned.
+fn row(
+    name: &str,
+    p: &PyReadonlyArray1<'_, f64>,
+    s: &PyReadonlyArray1<'_, f64>,
+) -> PyResult<(Topology, Vec<f64>, Vec<f64>)> {
+    let t = topology(name)?;
     let (p, s) = (p.as_array().to_vec(), s.as_array().to_vec());
     let bad = |name: &str, got, expected| err(Error::Shape { name: name.into(), got, expected });
     if p.len() != t.params() {
@@ -29,7 +33,13 @@ fn row(t: Topology, p: &PyReadonlyArray1<'_, f64>, s: &PyReadonlyArray1<'_, f64>
     if s.len() != t.signs() {
         return Err(bad("signs", s.len(), t.signs()));
     }
-    Ok((p, s))
+    Ok((t, p, s))
+}
+
+/// `offsets` starts and a target resampled to `resolution` points, searched finely near
+/// the best from [`Search::FINE`]'s resolution on.
+fn search(offsets: usize, resolution: usize) -> Search {
+    Search { offsets, resolution, local: resolution >= Search::FINE.resolution }
 }
 
 type ShardOut<'py> = (Arr2<'py, f64>, Arr2<'py, i8>, Arr1<'py, bool>, Arr1<'py, f64>, Arr2<'py, f32>);
@@ -79,9 +89,7 @@ fn atlas_curve<'py>(
     signs: PyReadonlyArray1<'py, f64>,
     samples: usize,
 ) -> PyResult<Option<CurveOut<'py>>> {
-    let t = topology(topology_name)?;
-    let (p, s) = row(t, &params, &signs)?;
-    let (p, s) = (&p[..], &s[..]);
+    let (t, p, s) = row(topology_name, &params, &signs)?;
     if samples < 2 {
         return Err(err(Error::InvalidParameter {
             name: "samples".into(),
@@ -89,7 +97,7 @@ fn atlas_curve<'py>(
             value: samples.to_string(),
         }));
     }
-    Ok(coupler_curve(t, p, s, samples).map(|c| {
+    Ok(coupler_curve(t, &p, &s, samples).map(|c| {
         let n = c.points.len();
         let flat: Vec<f64> = c.points.iter().flatten().copied().collect();
         (grid(py, n, 2, flat), c.theta.into_pyarray(py), c.closed, c.conditioning)
@@ -108,10 +116,8 @@ fn atlas_pose<'py>(
     signs: PyReadonlyArray1<'py, f64>,
     theta: f64,
 ) -> PyResult<Option<PoseOut<'py>>> {
-    let t = topology(topology_name)?;
-    let (p, s) = row(t, &params, &signs)?;
-    let (p, s) = (&p[..], &s[..]);
-    Ok(pose(t, p, s, theta).map(|q| {
+    let (t, p, s) = row(topology_name, &params, &signs)?;
+    Ok(pose(t, &p, &s, theta).map(|q| {
         let flat: Vec<f64> = q.points[..q.count].iter().flatten().copied().collect();
         (pose_names(t).to_vec(), grid(py, q.count, 2, flat), q.conditioning)
     }))
@@ -139,22 +145,13 @@ fn atlas_match<'py>(
         params.as_slice().map_err(|_| err(Error::array("params", "must be C-contiguous float64")))?,
         signs.as_slice().map_err(|_| err(Error::array("signs", "must be C-contiguous float64")))?,
     );
-    if params.ndim() != 2 || params.shape()[1] != t.params() {
+    if params.shape()[1] != t.params() {
         return Err(err(Error::array("params", format!("must have {} columns for {}", t.params(), t.name()))));
     }
     let n = params.shape()[0];
     let m = pts.len();
     let found = Signals::detach(py, |signals| {
-        match_many(
-            t,
-            p,
-            s,
-            SAMPLES,
-            &pts,
-            closed,
-            Search { offsets, resolution, local: resolution >= Search::FINE.resolution },
-            signals,
-        )
+        match_many(t, p, s, SAMPLES, &pts, closed, search(offsets, resolution), signals)
     })?;
     Ok(placements(py, found, n, m))
 }
@@ -206,26 +203,15 @@ fn atlas_match_curves<'py>(
     }
     let curves: Vec<Curve> = (0..n)
         .map(|i| {
-            let row: Vec<(Xy, f64)> = (0..m)
+            let (points, theta) = (0..m)
                 .map(|j| (pts[i * m + j], th[[i, j]]))
                 .filter(|(p, t)| t.is_finite() && p[0].is_finite() && p[1].is_finite())
-                .collect();
-            Curve {
-                points: row.iter().map(|r| r.0).collect(),
-                theta: row.iter().map(|r| r.1).collect(),
-                closed: closed[i],
-                conditioning: f64::NAN,
-            }
+                .unzip();
+            Curve { points, theta, closed: closed[i], conditioning: f64::NAN }
         })
         .collect();
     let found = Signals::detach(py, |signals| {
-        match_curves(
-            &curves,
-            &tgt,
-            target_closed,
-            Search { offsets, resolution, local: resolution >= Search::FINE.resolution },
-            signals,
-        )
+        match_curves(&curves, &tgt, target_closed, search(offsets, resolution), signals)
     })?;
     Ok(placements(py, found, n, tgt.len()))
 }

@@ -68,8 +68,9 @@ pub fn draw(topology: Topology, seed: u64, index: u64) -> Option<Entry> {
         let ratio = |r: &mut Rng| r.log_uniform(0.2, 5.0);
         match topology {
             Topology::FourBar => {
-                let v = [ratio(&mut rng), ratio(&mut rng), ratio(&mut rng), 0.0, 0.0];
-                params[..5].copy_from_slice(&v);
+                for slot in params.iter_mut().take(3) {
+                    *slot = ratio(&mut rng);
+                }
                 params[3] = rng.uniform(-1.0, 2.0);
                 params[4] = rng.uniform(-1.5, 1.5);
                 signs[0] = rng.sign();

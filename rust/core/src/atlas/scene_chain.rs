@@ -110,7 +110,7 @@ pub(super) fn stephenson3_curve(p: &[f64], samples: usize) -> Option<Curve> {
         let k = (lo + j) % samples;
         let (pts, cond) = rows[k]?;
         // past the drawn angle backwards the input sits a turn lower
-        let turn = if !closed && k >= lo && lo > 0 { TAU } else { 0.0 };
+        let turn = if !closed && k >= lo { TAU } else { 0.0 };
         curve.points.push(pts[7]);
         curve.theta.push(theta[k] - turn);
         curve.conditioning = curve.conditioning.min(cond);

@@ -195,6 +195,23 @@ impl Scene {
         let n = 3 * lay.moving.len();
         let mut gx = DMatrix::<f64>::zeros(n, n);
         let mut gxi = DMatrix::<f64>::zeros(n, nf);
+        // R d w of p's drawn vector on link l, w = xi_p - xi_o: for each free coordinate f
+        // of p or o, add(f, R e) with e its change of w (times sg); nothing where p is the
+        // origin (w is 0 whatever the drawing)
+        let drawn = |p: usize, l: usize, sg: f64, add: &mut dyn FnMut(usize, Xy)| {
+            if p == origin(l) {
+                return;
+            }
+            for (q, sq) in [(p, 1.0), (origin(l), -1.0)] {
+                for j in 0..2 {
+                    if let Some(f) = lay.fcol[q][j] {
+                        let mut e = [0.0; 2];
+                        e[j] = sg * sq;
+                        add(f, turn(l, e));
+                    }
+                }
+            }
+        };
         // d pos_l(p) = d t_l + perp(R w) d phi_l + R d w, w = xi_p - xi_o, into row r, sign sg
         let body = |r: usize, p: usize, l: usize, sg: f64, gx: &mut DMatrix<f64>, gxi: &mut DMatrix<f64>| {
             let c = lay.block[l];
@@ -203,20 +220,10 @@ impl Scene {
                 gx[(r + k, c + k)] += sg;
                 gx[(r + k, c + 2)] += sg * pw[k];
             }
-            if p == origin(l) {
-                return; // its drawn vector is 0
-            }
-            for (q, sq) in [(p, 1.0), (origin(l), -1.0)] {
-                for j in 0..2 {
-                    if let Some(f) = lay.fcol[q][j] {
-                        let mut e = [0.0; 2];
-                        e[j] = sg * sq;
-                        let re = turn(l, e);
-                        gxi[(r, f)] += re[0];
-                        gxi[(r + 1, f)] += re[1];
-                    }
-                }
-            }
+            drawn(p, l, sg, &mut |f, re| {
+                gxi[(r, f)] += re[0];
+                gxi[(r + 1, f)] += re[1];
+            });
         };
         for (i, &(p, l, owner)) in lay.rows.iter().enumerate() {
             let r = 2 * i;
@@ -247,19 +254,7 @@ impl Scene {
             gx[(r, col)] += c[0];
             gx[(r, col + 1)] += c[1];
             gx[(r, col + 2)] += c[0] * pw[0] + c[1] * pw[1];
-            if p == origin(l) {
-                return;
-            }
-            for (q, sq) in [(p, 1.0), (origin(l), -1.0)] {
-                for j in 0..2 {
-                    if let Some(f) = lay.fcol[q][j] {
-                        let mut e = [0.0; 2];
-                        e[j] = sq;
-                        let re = turn(l, e);
-                        gxi[(r, f)] += c[0] * re[0] + c[1] * re[1];
-                    }
-                }
-            }
+            drawn(p, l, 1.0, &mut |f, re| gxi[(r, f)] += c[0] * re[0] + c[1] * re[1]);
         };
         // point p (read through link l) on the line (a, b) of guide g at its drawn offset:
         // cross(R_g v0, pos(p) - pos_g(a)) - cross(v0, xi_p - xi_a) = 0, v0 = xi_b - xi_a
@@ -349,19 +344,10 @@ impl Scene {
                     o[k * nf + f] = dx[(c + k, f)] + pw[k] * dx[(c + 2, f)];
                 }
             }
-            if p != origin(l) {
-                for (q, sq) in [(p, 1.0), (origin(l), -1.0)] {
-                    for j in 0..2 {
-                        if let Some(f) = lay.fcol[q][j] {
-                            let mut e = [0.0; 2];
-                            e[j] = sq;
-                            let re = turn(l, e);
-                            o[f] += re[0];
-                            o[nf + f] += re[1];
-                        }
-                    }
-                }
-            }
+            drawn(p, l, 1.0, &mut |f, re| {
+                o[f] += re[0];
+                o[nf + f] += re[1];
+            });
         }
         true
     }
