@@ -19,6 +19,7 @@ pub mod forces;
 pub mod fourbar;
 pub mod interrupt;
 pub mod parallel;
+pub(crate) mod rng;
 pub mod scene;
 pub mod simd;
 pub mod solve;

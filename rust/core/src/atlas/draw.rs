@@ -10,6 +10,7 @@ use std::f64::consts::TAU;
 use super::curve::{coupler_curve, Curve, SAMPLES};
 use super::descriptor::{describe, DESCRIPTOR};
 use super::{Topology, MAX_PARAMS};
+use crate::rng::SplitMix64 as Rng;
 
 /// Draws tried for one entry before it is given up (never met in practice: about half
 /// of all draws assemble somewhere).
@@ -30,79 +31,68 @@ pub struct Entry {
     pub draws: u32,
 }
 
-/// SplitMix64 (Steele, Lea and Flood 2014): a tiny generator, good enough for drawing
-/// geometry and the same on every platform.
-struct Rng(u64);
+/// Uniform in [lo, hi).
+fn uniform(r: &mut Rng, lo: f64, hi: f64) -> f64 {
+    lo + (hi - lo) * r.uniform()
+}
 
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [lo, hi).
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
-    }
-    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.uniform(lo.ln(), hi.ln()).exp()
-    }
-    fn sign(&mut self) -> f64 {
-        if self.next() >> 63 == 0 {
-            1.0
-        } else {
-            -1.0
-        }
+fn log_uniform(r: &mut Rng, lo: f64, hi: f64) -> f64 {
+    uniform(r, lo.ln(), hi.ln()).exp()
+}
+
+fn sign(r: &mut Rng) -> f64 {
+    if r.next_u64() >> 63 == 0 {
+        1.0
+    } else {
+        -1.0
     }
 }
 
 /// Entry `index` of the atlas of `topology` drawn from `seed`; None only if
 /// 10 000 draws all failed.
 pub fn draw(topology: Topology, seed: u64, index: u64) -> Option<Entry> {
-    let mut rng = Rng(seed ^ Rng(index ^ 0xD1B5_4A32_D192_ED03).next());
+    let mut rng = Rng(seed ^ Rng(index ^ 0xD1B5_4A32_D192_ED03).next_u64());
     for draws in 1..=MAX_DRAWS {
         let mut params = [f64::NAN; MAX_PARAMS];
         let mut signs = [0.0; 2];
-        let ratio = |r: &mut Rng| r.log_uniform(0.2, 5.0);
+        let ratio = |r: &mut Rng| log_uniform(r, 0.2, 5.0);
         match topology {
             Topology::FourBar => {
                 for slot in params.iter_mut().take(3) {
                     *slot = ratio(&mut rng);
                 }
-                params[3] = rng.uniform(-1.0, 2.0);
-                params[4] = rng.uniform(-1.5, 1.5);
-                signs[0] = rng.sign();
+                params[3] = uniform(&mut rng, -1.0, 2.0);
+                params[4] = uniform(&mut rng, -1.5, 1.5);
+                signs[0] = sign(&mut rng);
             }
             Topology::SliderCrank => {
-                params[0] = rng.log_uniform(1.05, 6.0);
-                params[1] = rng.uniform(-1.5, 1.5);
-                params[2] = rng.uniform(-1.0, 2.0);
-                params[3] = rng.uniform(-1.5, 1.5);
-                signs[0] = rng.sign();
+                params[0] = log_uniform(&mut rng, 1.05, 6.0);
+                params[1] = uniform(&mut rng, -1.5, 1.5);
+                params[2] = uniform(&mut rng, -1.0, 2.0);
+                params[3] = uniform(&mut rng, -1.5, 1.5);
+                signs[0] = sign(&mut rng);
             }
             Topology::Watt2 => {
                 for slot in params.iter_mut().take(4) {
                     *slot = ratio(&mut rng);
                 }
-                params[4] = rng.uniform(0.0, TAU);
-                params[5] = rng.uniform(-1.0, 3.0);
-                params[6] = rng.uniform(-2.0, 2.0);
+                params[4] = uniform(&mut rng, 0.0, TAU);
+                params[5] = uniform(&mut rng, -1.0, 3.0);
+                params[6] = uniform(&mut rng, -2.0, 2.0);
                 params[7] = ratio(&mut rng);
                 params[8] = ratio(&mut rng);
-                params[9] = rng.uniform(-1.0, 2.0);
-                params[10] = rng.uniform(-1.5, 1.5);
-                signs = [rng.sign(), rng.sign()];
+                params[9] = uniform(&mut rng, -1.0, 2.0);
+                params[10] = uniform(&mut rng, -1.5, 1.5);
+                signs = [sign(&mut rng), sign(&mut rng)];
             }
             Topology::Stephenson3 => {
                 // the crank tip near its pivot j7 (1, 0), the other points on a plate
-                let (r, phi) = (rng.log_uniform(0.15, 0.8), rng.uniform(0.0, TAU));
+                let (r, phi) = (log_uniform(&mut rng, 0.15, 0.8), uniform(&mut rng, 0.0, TAU));
                 params[0] = 1.0 + r * phi.cos();
                 params[1] = r * phi.sin();
                 for k in 1..6 {
-                    params[2 * k] = rng.uniform(-1.0, 2.5);
-                    params[2 * k + 1] = rng.uniform(-1.5, 2.0);
+                    params[2 * k] = uniform(&mut rng, -1.0, 2.5);
+                    params[2 * k + 1] = uniform(&mut rng, -1.5, 2.0);
                 }
             }
         }

@@ -15,7 +15,6 @@ use crate::Error;
 mod eval;
 mod lu;
 mod reduction;
-mod rng;
 mod track;
 
 use reduction::Reduced;

@@ -5,8 +5,8 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::lu::lu_solve;
-use super::rng::SplitMix64;
 use super::{Quadric, C};
+use crate::rng::SplitMix64;
 use crate::wrap_angle;
 use crate::Error;
 

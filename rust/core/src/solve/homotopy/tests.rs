@@ -2,8 +2,8 @@
 //! closed form, Bezout counts, the published assembly counts of the Stephenson triad and
 //! the double butterfly, and real roots checked by the crate's own Newton solver.
 
-use super::rng::SplitMix64;
 use super::*;
+use crate::rng::SplitMix64;
 use crate::solve::newton::{self, NewtonOptions, System};
 use crate::wrap_angle;
 use crate::{FourBar, Mode};

@@ -32,10 +32,10 @@
 use super::eval::Work;
 use super::lu::lu_solve;
 use super::reduction::Reduced;
-use super::rng::SplitMix64;
 use super::{HomotopyOptions, Solutions, C, INFINITE_X0, PARALLEL_PATHS};
 use crate::interrupt::{Flag, Interrupt, Poll};
 use crate::parallel::prelude::*;
+use crate::rng::SplitMix64;
 use crate::{wrap_angle, Error};
 
 #[derive(Clone, Copy, Debug, PartialEq)]

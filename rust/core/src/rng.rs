@@ -1,6 +1,7 @@
-//! The random generator of the homotopy's gammas and start systems.
+//! The project's random generator: the homotopy's gammas and start systems, and the
+//! atlas's random linkages (each a function of its seed alone, the same on every platform).
 
-/// splitmix64: a tiny, good-enough PRNG for the random gammas (no dependency).
+/// SplitMix64 (Steele, Lea and Flood 2014): a tiny, good-enough generator (no dependency).
 #[derive(Clone, Debug)]
 pub(crate) struct SplitMix64(pub(crate) u64);
 
