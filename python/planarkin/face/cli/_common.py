@@ -12,6 +12,7 @@ import math
 import time
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -143,6 +144,17 @@ def scene_argument(parser: argparse.ArgumentParser, what: str, *extra: str) -> N
         f"four-bar of --links (see 'planarkin scenes'); the four-bar's own options ({flags}) "
         "are then an error",
     )
+
+
+def parsed_options(args: argparse.Namespace, skip: Iterable[str] = ()) -> dict[str, Any]:
+    """Every option as parsed (defaults included), by name, paths as text: what a command's
+    report records of how it was run (the subcommand's own fields and ``skip`` left out)."""
+    left_out = {"func", "command", *skip}
+    return {
+        k: str(val) if isinstance(val, Path) else val
+        for k, val in sorted(vars(args).items())
+        if k not in left_out
+    }
 
 
 def out_argument(parser: argparse.ArgumentParser, default: str = "figures") -> None:

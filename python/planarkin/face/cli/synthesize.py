@@ -30,7 +30,7 @@ from ...synthesis.start import MINIMAX_ITER
 from ..figures import synthesis as synthesis_figures
 from ..progress import bar, shown
 from . import synthesize_path
-from ._common import figure_file, format_argument, json_text, quiet_argument
+from ._common import figure_file, format_argument, json_text, parsed_options, quiet_argument
 
 PROBLEMS = ("ackermann", "path")
 #: defaults of the full run (the shipped design in examples/ackermann/ is this run's)
@@ -377,7 +377,7 @@ def _finish(
     settings = rep.Settings(**{f.name: getattr(args, f.name) for f in fields(rep.Settings)})
     report = rep.report(
         problem, res, rows, choice, sc, settings, command=command_line(args),
-        options=_options(args), versions=versions(), stop=stop,
+        options=parsed_options(args), versions=versions(), stop=stop,
     )  # fmt: skip
     report["wall_s"] = time.perf_counter() - t0
     paths = write(args.out, truth, best.x, report, sc, figures=not args.no_figures, fmt=args.format)
@@ -428,16 +428,6 @@ def _generated_words(v: dict[str, Any]) -> str:
             f"{v['generated_fixed_signs_max_error_deg']:.3g} deg)"
         )
     return words
-
-
-def _options(args: argparse.Namespace) -> dict[str, Any]:
-    """Every option as parsed (defaults included)."""
-    out: dict[str, Any] = {}
-    for k, val in sorted(vars(args).items()):
-        if k in ("func", "command"):
-            continue
-        out[k] = str(val) if isinstance(val, Path) else val
-    return out
 
 
 def write(

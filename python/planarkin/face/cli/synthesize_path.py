@@ -19,7 +19,14 @@ from typing import Any
 from ...synthesis.path.results import PathResult, staged
 from ...synthesis.path.targets import KINDS, SVG_SAMPLES, load_target
 from ..progress import bar, shown
-from ._common import figure_file, format_argument, json_text, out_argument, quiet_argument
+from ._common import (
+    figure_file,
+    format_argument,
+    json_text,
+    out_argument,
+    parsed_options,
+    quiet_argument,
+)
 
 #: the topologies a path synthesis draws from ("auto": every one, the best kept)
 TOPOLOGIES = ("four-bar", "slider-crank", "watt2", "stephenson3", "auto")
@@ -196,16 +203,6 @@ def command_line(args: argparse.Namespace) -> str:
     return shlex.join(words)
 
 
-def _options(args: argparse.Namespace) -> dict[str, Any]:
-    """Every option as parsed (defaults included)."""
-    out: dict[str, Any] = {}
-    for k, val in sorted(vars(args).items()):
-        if k in ("func", "command", "problem"):
-            continue
-        out[k] = str(val) if isinstance(val, Path) else val
-    return out
-
-
 class _Stages:
     """One bar per stage of the pipeline ("retrieval", "refine", "verify", ...), each
     replaced by the next; none in a pipe or with --quiet."""
@@ -265,7 +262,7 @@ def run(args: argparse.Namespace) -> int:
         print("planarkin: interrupted; nothing written", file=sys.stderr)
         return 130
     bars.close()
-    res = replace(res, options={**_options(args), **res.options})
+    res = replace(res, options={**parsed_options(args, ("problem",)), **res.options})
     interrupted = res.stopped == "interrupted"
     if not res.designs:
         why = f" ({res.stopped})" if res.stopped != "done" else ""
