@@ -9,7 +9,7 @@ from typing import Any
 
 from tqdm import tqdm
 
-__all__ = ["ENV", "FALLBACK_COLUMNS", "bar", "shown"]
+__all__ = ["ENV", "FALLBACK_COLUMNS", "Stages", "bar", "shown"]
 
 #: The environment variable that forces the bars on (1) or off (0) whatever stderr is.
 ENV = "PLANARKIN_PROGRESS"
@@ -52,3 +52,36 @@ def bar(total: int, what: str, *, quiet: bool = False, unit: str = "step") -> tq
         dynamic_ncols=sized,
         ncols=None if sized else FALLBACK_COLUMNS,
     )
+
+
+class Stages:
+    """A long command's progress reports ``(stage, done, total)`` as one bar per stage
+    labelled "planarkin ``what``: stage" (``what`` alone for the stage ""), each replaced by
+    the next, a stage's total taken as it is reported; none in a pipe or with --quiet.
+    ``done`` is the most reported in the stage so far; ``close`` also clears the line a bar
+    cut short by Ctrl-C leaves."""
+
+    def __init__(self, what: str, quiet: bool, unit: str = "step") -> None:
+        self.what, self.quiet, self.unit = what, quiet, unit
+        self.stage: str | None = None
+        self.bar: Any = None
+        self.done = 0
+
+    def __call__(self, stage: str, done: int, total: int) -> None:
+        if stage != self.stage or self.bar is None:
+            if self.bar is not None:
+                self.bar.close()
+            self.stage, self.done = stage, 0
+            label = f"{self.what}: {stage}" if stage else self.what
+            self.bar = bar(max(int(total), 0), label, quiet=self.quiet, unit=self.unit)
+        if total != self.bar.total:
+            self.bar.total = total
+        self.bar.update(max(0, int(done) - self.done))
+        self.done = max(self.done, int(done))
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+        if shown(self.quiet):
+            sys.stderr.write("\r\x1b[K")
+            sys.stderr.flush()

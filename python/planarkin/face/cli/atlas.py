@@ -10,9 +10,8 @@ import math
 import sys
 import time
 from pathlib import Path
-from typing import Any
 
-from ..progress import bar, shown
+from ..progress import Stages
 from ._common import json_text, quiet_argument, table
 
 #: the topologies an atlas is built for (as ``synthesize path --topology`` names them)
@@ -76,27 +75,6 @@ def _check(args: argparse.Namespace) -> None:
         raise ValueError(f"--out {str(args.out)!r} is a file, not a folder")
 
 
-class _Shards:
-    """One bar over the shards, opened at the first report (it gives the total)."""
-
-    def __init__(self, quiet: bool) -> None:
-        self.quiet = quiet
-        self.bar: Any = None
-        self.done = 0
-
-    def __call__(self, done: int, total: int) -> None:
-        if self.bar is None:
-            self.bar = bar(int(total), "atlas build", quiet=self.quiet, unit="shard")
-        self.bar.update(max(0, int(done) - self.done))
-        self.done = max(self.done, int(done))
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.close()
-        if shown(self.quiet):
-            sys.stderr.write("\r\x1b[K")
-            sys.stderr.flush()
-
 
 def build(args: argparse.Namespace) -> int:
     """``planarkin atlas build``; returns the exit code."""
@@ -104,7 +82,7 @@ def build(args: argparse.Namespace) -> int:
     from ...atlas import build as build_atlas
 
     t0 = time.perf_counter()
-    shards = _Shards(args.quiet)
+    shards = Stages("atlas build", args.quiet, unit="shard")
     try:
         atlas = build_atlas(
             args.topology,
@@ -113,7 +91,7 @@ def build(args: argparse.Namespace) -> int:
             seed=args.seed,
             scheduler=args.scheduler,
             shard_size=args.shard_size,
-            progress=shards,
+            progress=lambda done, total: shards("", done, total),
         )
     except KeyboardInterrupt:
         shards.close()

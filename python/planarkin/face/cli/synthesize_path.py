@@ -14,11 +14,10 @@ import sys
 import time
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
 
 from ...synthesis.path.results import PathResult, staged
 from ...synthesis.path.targets import KINDS, SVG_SAMPLES, load_target
-from ..progress import bar, shown
+from ..progress import Stages
 from ._common import (
     figure_file,
     format_argument,
@@ -203,34 +202,6 @@ def command_line(args: argparse.Namespace) -> str:
     return shlex.join(words)
 
 
-class _Stages:
-    """One bar per stage of the pipeline ("retrieval", "refine", "verify", ...), each
-    replaced by the next; none in a pipe or with --quiet."""
-
-    def __init__(self, quiet: bool) -> None:
-        self.quiet = quiet
-        self.stage: str | None = None
-        self.bar: Any = None
-        self.done = 0
-
-    def __call__(self, stage: str, done: int, total: int) -> None:
-        if stage != self.stage or self.bar is None:
-            if self.bar is not None:
-                self.bar.close()
-            self.stage, self.done = stage, 0
-            self.bar = bar(max(int(total), 0), f"synthesize path: {stage}", quiet=self.quiet)
-        if total != self.bar.total:
-            self.bar.total = total
-        self.bar.update(max(0, int(done) - self.done))
-        self.done = max(self.done, int(done))
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.close()
-        if shown(self.quiet):
-            sys.stderr.write("\r\x1b[K")  # a bar cut short by Ctrl-C leaves its line
-            sys.stderr.flush()
-
 
 def run(args: argparse.Namespace) -> int:
     """``planarkin synthesize path``; returns the exit code."""
@@ -241,7 +212,7 @@ def run(args: argparse.Namespace) -> int:
     )
     from ...synthesis import path as path_api
 
-    bars = _Stages(args.quiet)
+    bars = Stages("synthesize path", args.quiet)
     try:
         res = path_api.path(
             target,
