@@ -75,7 +75,6 @@ def _check(args: argparse.Namespace) -> None:
         raise ValueError(f"--out {str(args.out)!r} is a file, not a folder")
 
 
-
 def build(args: argparse.Namespace) -> int:
     """``planarkin atlas build``; returns the exit code."""
     _check(args)

@@ -202,7 +202,6 @@ def command_line(args: argparse.Namespace) -> str:
     return shlex.join(words)
 
 
-
 def run(args: argparse.Namespace) -> int:
     """``planarkin synthesize path``; returns the exit code."""
     _check(args)
