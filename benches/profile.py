@@ -10,6 +10,7 @@ not depend on what else the machine is doing, unlike timings on a shared 2-core 
     python benches/profile.py group         # double-butterfly-1's sweep (a 6x6 group), 361 angles
     python benches/profile.py group_near    # the same, 361 angles within 20 deg (all converge)
     python benches/profile.py jansen        # Jansen's leg, the foot requested, 361 angles
+    python benches/profile.py slider30      # the slider-crank's piston, a full turn from 30 deg away
 
 For cycles rather than instructions: ``perf record -g python benches/profile.py batch --run 20``
 then ``perf report --no-children``.
@@ -36,6 +37,7 @@ KINDS = {
     "group": (361, 10),
     "group_near": (361, 10),
     "jansen": (361, 100),
+    "slider30": (361, 100),
 }
 
 
@@ -54,6 +56,8 @@ def workload(kind: str, reps: int) -> None:
     db_near = db.input_angle + np.radians(np.linspace(-20.0, 20.0, 361))
     jansen = pk.scenes.load("jansen")
     j_theta = jansen.input_angle + np.radians(np.arange(361.0))
+    slider = pk.scenes.load("slider-crank")
+    s_theta = slider.input_angle + np.radians(np.arange(361.0) + 30.0)
     calls = {
         "seed": lambda: fb.sweep(),
         "seed_cf": lambda: fb.sweep(predictor="closed-form"),
@@ -63,6 +67,7 @@ def workload(kind: str, reps: int) -> None:
         "group": lambda: db.sweep(db_theta),
         "group_near": lambda: db.sweep(db_near, outputs="all"),
         "jansen": lambda: jansen.sweep(j_theta, outputs=["foot"]),
+        "slider30": lambda: slider.sweep(s_theta, outputs=["B"]),
     }
     fn = calls[kind]
     fn()

@@ -72,6 +72,12 @@ fn slider(c: &mut Criterion) {
         let mut b = Bufs::new(&plan, N, omega.is_some());
         g.bench_function(name, |bch| bch.iter(|| b.run(&plan, &theta, &opts)));
     }
+    // a full turn from 30 deg past the drawn angle: the same column path (issue 36)
+    let plan = sc.plan(Some(&["B".to_string()])).expect("the plan compiles");
+    let opts = SceneSweepOptions::new(NewtonOptions::default(), max_step, None).expect("valid options");
+    let shifted: Vec<f64> = theta.iter().map(|t| t + 30f64.to_radians()).collect();
+    let mut b = Bufs::new(&plan, N, false);
+    g.bench_function("piston_from_30", |bch| bch.iter(|| b.run(&plan, &shifted, &opts)));
     g.finish();
 }
 

@@ -26,15 +26,6 @@ pub(crate) fn zeros_named<T: planarkin_core::error::Zeroed>(what: &str, len: usi
     planarkin_core::error::try_zeros_advised(|| what.to_string(), len, huge_pages).map_err(err)
 }
 
-/// The core's buffers advised as [`zeros`] advises its own (huge pages where large).
-pub(crate) struct HugePages;
-
-impl planarkin_core::scene::Advise for HugePages {
-    fn advise<T>(&self, v: &mut Vec<T>) {
-        huge_pages(v);
-    }
-}
-
 /// Buffers at least this large are backed by transparent huge pages where the system
 /// allows it (NumPy asks the same for its arrays of 4 MiB and more).
 const HUGE_PAGE_MIN: usize = 4 << 20;
@@ -117,4 +108,55 @@ pub(crate) fn grid<'py, T: numpy::Element>(py: Python<'py>, m: usize, n: usize, 
 /// `v` (a * b * c values, row-major) as an (a, b, c) array.
 pub(crate) fn cube<T: numpy::Element>(py: Python<'_>, shape: (usize, usize, usize), v: Vec<T>) -> Arr3<'_, T> {
     Array3::from_shape_vec(shape, v).expect("a * b * c values").into_pyarray(py)
+}
+
+/// Several outputs of one element type in one zeroed allocation (MemoryError naming
+/// `what` and the values, where it fails or their count overflows): the kernel writes
+/// them as consecutive slices ([`carve`]), and NumPy takes them as views of one array
+/// ([`Slab::view`]). One allocation and one array owner, where a buffer per output cost
+/// about as much as a small sweep's own work (BENCHMARKS.md, issue 36).
+pub(crate) struct Slab<'py, T: numpy::Element> {
+    base: Arr1<'py, T>,
+    at: usize,
+}
+
+/// `lens.iter().sum()` zeros, or MemoryError naming `what`.
+pub(crate) fn slab_zeros<T: planarkin_core::error::Zeroed>(what: &str, lens: &[usize]) -> PyResult<Vec<T>> {
+    let total = lens.iter().try_fold(0usize, |a, &l| a.checked_add(l));
+    let total = total.ok_or_else(|| PyMemoryError::new_err(format!("{what}: the values do not fit in memory")))?;
+    zeros(what, total)
+}
+
+/// `v` cut into consecutive slices of `lens` (which sum to at most its length).
+pub(crate) fn carve<T, const K: usize>(mut v: &mut [T], lens: [usize; K]) -> [&mut [T]; K] {
+    lens.map(|len| {
+        let (head, rest) = std::mem::take(&mut v).split_at_mut(len);
+        v = rest;
+        head
+    })
+}
+
+impl<'py, T: numpy::Element> Slab<'py, T> {
+    /// The values of `v`, handed to NumPy without a copy, to be viewed in order.
+    pub(crate) fn new(py: Python<'py>, v: Vec<T>) -> Self {
+        Slab { base: v.into_pyarray(py), at: 0 }
+    }
+
+    /// The next `shape`'s worth of values, as an array of that shape viewing the slab.
+    pub(crate) fn view<D: numpy::ndarray::Dimension>(
+        &mut self,
+        shape: impl numpy::ndarray::IntoDimension<Dim = D>,
+    ) -> Bound<'py, numpy::PyArray<T, D>> {
+        let shape = shape.into_dimension();
+        let len = shape.size();
+        // SAFETY: the slab's array is contiguous, owned by this module's container and never
+        // resized; no Rust reference to its values outlives this call.
+        let all = unsafe { self.base.as_slice() }.expect("a slab is contiguous");
+        let values = &all[self.at..self.at + len];
+        self.at += len;
+        let view = numpy::ndarray::ArrayView::from_shape(shape, values).expect("the shape's values");
+        // SAFETY: the view's values live in the slab's array, which the new array keeps
+        // alive as its base, and which is never reallocated.
+        unsafe { numpy::PyArray::borrow_from_array(&view, self.base.clone().into_any()) }
+    }
 }

@@ -25,7 +25,7 @@ pub use gradient::{Free, DET_STEP};
 pub use input::{Linear, LinearKind, Pivoted};
 pub use limits::{Coordinate, Limit};
 pub use model::{Link, Prismatic, PrismaticSpec, Scene, SceneSpec, Slot, SlotSpec};
-pub use sweep::{Advise, NoAdvice, Rates, ScenePredictor, SceneSweepBuffers, SceneSweepOptions, SceneSweepOut};
+pub use sweep::{Rates, ScenePredictor, SceneSweepBuffers, SceneSweepOptions, SceneSweepOut};
 pub use vec2::Xy;
 
 #[cfg(test)]

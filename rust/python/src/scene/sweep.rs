@@ -3,11 +3,11 @@
 //! buffers type becomes NumPy arrays without a copy.
 
 use numpy::{IntoPyArray, PyReadonlyArray1};
-use planarkin_core::scene::{Plan, Scene, ScenePredictor, SceneSweepBuffers, SceneSweepOptions};
+use planarkin_core::scene::{Plan, Scene, ScenePredictor, SceneSweepOptions, SceneSweepOut};
 use planarkin_core::NewtonOptions;
 use pyo3::prelude::*;
 
-use crate::buffers::{cube, grid, grid_len, slice, Arr1, Arr2, Arr3, HugePages};
+use crate::buffers::{carve, grid_len, slab_zeros, slice, zeros, Arr1, Arr2, Arr3, Slab};
 use crate::errors::{err, Signals};
 
 /// `Scene.plan`: the plan for `outputs` (None: every point and link).
@@ -88,35 +88,38 @@ impl PyPlan {
         for (m, k) in [(n, 2 * np), (n, nl), (n, ns)] {
             grid_len(what, m, k)?;
         }
-        let named = |len: usize| format!("{what} of {len} values");
-        let mut b = SceneSweepBuffers::advised(plan, n, omega.is_some(), &named, &HugePages).map_err(err)?;
-        Signals::detach(py, |signals| plan.sweep(t, &opts, b.out(), signals))?;
-        let SceneSweepBuffers {
-            points,
-            angles,
-            status,
-            nit,
-            det,
-            limit,
-            step_status,
-            step_det,
-            point_status,
-            velocity: vel,
-            acceleration: acc,
-        } = b;
-        Ok((
-            cube(py, (n, np, 2), points),
-            grid(py, n, nl, angles),
-            status.into_pyarray(py),
-            nit.into_pyarray(py),
-            det.into_pyarray(py),
-            limit.into_pyarray(py),
-            grid(py, n, ns, step_status),
-            grid(py, n, ns, step_det),
-            grid(py, n, np, point_status),
-            vel.zip(acc).map(|((v, w), (a, al))| {
-                (cube(py, (n, np, 2), v), grid(py, n, nl, w), cube(py, (n, np, 2), a), grid(py, n, nl, al))
-            }),
-        ))
+        // every output in three allocations (reals, codes, counts) that NumPy views
+        let rates = omega.is_some();
+        let (pn, ln) = (n * np * 2, n * nl);
+        let rate_lens = if rates { [pn, ln, pn, ln] } else { [0; 4] };
+        let mut reals: Vec<f64> = slab_zeros(what, &[pn, ln, n, n, n * ns, rate_lens.iter().sum()])?;
+        let mut codes: Vec<i8> = slab_zeros(what, &[n, n * ns, n * np])?;
+        let mut nit: Vec<u32> = zeros(what, n)?;
+        {
+            let [points, angles, det, limit, step_det, v, w, a, al] =
+                carve(&mut reals, [pn, ln, n, n, n * ns, rate_lens[0], rate_lens[1], rate_lens[2], rate_lens[3]]);
+            let [status, step_status, point_status] = carve(&mut codes, [n, n * ns, n * np]);
+            let (velocity, acceleration) = if rates { (Some((v, w)), Some((a, al))) } else { (None, None) };
+            let out = SceneSweepOut {
+                points,
+                angles,
+                status,
+                nit: &mut nit,
+                det,
+                limit,
+                step_status,
+                step_det,
+                point_status,
+                velocity,
+                acceleration,
+            };
+            Signals::detach(py, |signals| plan.sweep(t, &opts, out, signals))?;
+        }
+        let (mut r, mut c) = (Slab::new(py, reals), Slab::new(py, codes));
+        let (points, angles, det, limit, step_det) =
+            (r.view((n, np, 2)), r.view((n, nl)), r.view(n), r.view(n), r.view((n, ns)));
+        let (status, step_status, point_status) = (c.view(n), c.view((n, ns)), c.view((n, np)));
+        let kin = rates.then(|| (r.view((n, np, 2)), r.view((n, nl)), r.view((n, np, 2)), r.view((n, nl))));
+        Ok((points, angles, status, nit.into_pyarray(py), det, limit, step_status, step_det, point_status, kin))
     }
 }

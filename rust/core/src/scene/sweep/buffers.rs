@@ -2,22 +2,8 @@
 //! values (fallibly), lent to [`Plan::sweep`] as a [`SceneSweepOut`], then handed on.
 
 use super::options::SceneSweepOut;
-use crate::error::{try_zeros_advised, Error, Zeroed};
+use crate::error::{try_zeros, Error, Zeroed};
 use crate::scene::build::Plan;
-
-/// What a caller may ask of a buffer before anything writes to it (the Python bindings ask
-/// for huge pages); [`NoAdvice`] asks nothing.
-pub trait Advise {
-    /// Called once per buffer, right after it is allocated zeroed.
-    fn advise<T>(&self, v: &mut Vec<T>);
-}
-
-/// No advice.
-pub struct NoAdvice;
-
-impl Advise for NoAdvice {
-    fn advise<T>(&self, _: &mut Vec<T>) {}
-}
 
 /// (N, P, 2) point rates and (N, L) link rates.
 pub type Rates = (Vec<f64>, Vec<f64>);
@@ -55,39 +41,32 @@ impl SceneSweepBuffers {
     /// accelerations when `rates`; an [`Error::Allocation`] naming "scene sweep outputs"
     /// when memory is short.
     pub fn new(plan: &Plan, n: usize, rates: bool) -> Result<Self, Error> {
-        Self::advised(plan, n, rates, &|len| format!("scene sweep outputs of {len} values"), &NoAdvice)
+        Self::named(plan, n, rates, &|len| format!("scene sweep outputs of {len} values"))
     }
 
-    /// [`SceneSweepBuffers::new`] naming a failed allocation `what(len)` and handing each
-    /// buffer to `advise` first.
-    pub fn advised(
-        plan: &Plan,
-        n: usize,
-        rates: bool,
-        what: &dyn Fn(usize) -> String,
-        advise: &impl Advise,
-    ) -> Result<Self, Error> {
+    /// [`SceneSweepBuffers::new`] naming a failed allocation `what(len)`.
+    pub fn named(plan: &Plan, n: usize, rates: bool, what: &dyn Fn(usize) -> String) -> Result<Self, Error> {
         let (np, nl, ns) = (plan.points().len(), plan.links().len(), plan.steps().len());
         let too_big = || Error::Allocation { what: what(usize::MAX), bytes: u128::MAX };
         let npn = n.checked_mul(2 * np).ok_or_else(too_big)?;
         let nln = n.checked_mul(nl).ok_or_else(too_big)?;
         let nsn = n.checked_mul(ns).ok_or_else(too_big)?;
-        fn zeros<T: Zeroed>(len: usize, what: &dyn Fn(usize) -> String, a: &impl Advise) -> Result<Vec<T>, Error> {
-            try_zeros_advised(|| what(len), len, |v| a.advise(v))
+        fn zeros<T: Zeroed>(len: usize, what: &dyn Fn(usize) -> String) -> Result<Vec<T>, Error> {
+            try_zeros(|| what(len), len)
         }
         let rate = || -> Result<Option<Rates>, Error> {
-            Ok(if rates { Some((zeros(npn, what, advise)?, zeros(nln, what, advise)?)) } else { None })
+            Ok(if rates { Some((zeros(npn, what)?, zeros(nln, what)?)) } else { None })
         };
         Ok(Self {
-            points: zeros(npn, what, advise)?,
-            angles: zeros(nln, what, advise)?,
-            status: zeros(n, what, advise)?,
-            nit: zeros(n, what, advise)?,
-            det: zeros(n, what, advise)?,
-            limit: zeros(n, what, advise)?,
-            step_status: zeros(nsn, what, advise)?,
-            step_det: zeros(nsn, what, advise)?,
-            point_status: zeros(npn / 2, what, advise)?,
+            points: zeros(npn, what)?,
+            angles: zeros(nln, what)?,
+            status: zeros(n, what)?,
+            nit: zeros(n, what)?,
+            det: zeros(n, what)?,
+            limit: zeros(n, what)?,
+            step_status: zeros(nsn, what)?,
+            step_det: zeros(nsn, what)?,
+            point_status: zeros(npn / 2, what)?,
             velocity: rate()?,
             acceleration: rate()?,
         })

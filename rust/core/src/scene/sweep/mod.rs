@@ -15,5 +15,5 @@ mod stroke;
 mod ways;
 mod write;
 
-pub use buffers::{Advise, NoAdvice, Rates, SceneSweepBuffers};
+pub use buffers::{Rates, SceneSweepBuffers};
 pub use options::{ScenePredictor, SceneSweepOptions, SceneSweepOut};

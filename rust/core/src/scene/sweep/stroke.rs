@@ -6,7 +6,7 @@
 //! rounding errors wide: the end is the last value reached, the dead point itself (SINGULAR
 //! there, as an angle input's dead point is: its rates are unbounded).
 
-use super::buffers::{NoAdvice, SceneSweepBuffers};
+use super::buffers::SceneSweepBuffers;
 use super::options::SceneSweepOptions;
 use crate::error::Error;
 use crate::interrupt::Interrupt;
@@ -38,7 +38,7 @@ impl Probe {
 impl Plan {
     fn probe(&self, s: &[f64], opts: &SceneSweepOptions, interrupt: &dyn Interrupt) -> Result<Probe, Error> {
         let what = |_: usize| "stroke probe".to_string();
-        let mut b = SceneSweepBuffers::advised(self, s.len(), false, &what, &NoAdvice)?;
+        let mut b = SceneSweepBuffers::named(self, s.len(), false, &what)?;
         self.sweep(s, opts, b.out(), interrupt)?;
         Ok(Probe { status: b.status })
     }

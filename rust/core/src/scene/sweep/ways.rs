@@ -63,6 +63,9 @@ pub(super) fn other(theta: &[f64], theta0: f64, ks: impl Iterator<Item = usize>)
 /// One pass and no sort ([`steps_within`]): a sweep from any start, or shuffled, costs
 /// about what one from the drawn value does.
 pub(super) fn covered(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -> bool {
+    if let Some(answer) = covered_in_order(theta, theta0, max_step, linear) {
+        return answer;
+    }
     let finite = || theta.iter().copied().filter(|t| t.is_finite());
     // both direct ways walked in one pass; where their offsets come in increasing order
     // (a sweep from the drawn value, either way) that pass answers
@@ -80,13 +83,67 @@ pub(super) fn covered(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -
     direct || (!linear && steps_within(|| finite().map(|t| turned(t - theta0)), max_step, Some(TAU)))
 }
 
-/// One pass over nonnegative offsets from 0: whether they came in increasing order, in
-/// steps of at most `max_step` (and on to `end`), and their count and range.
+/// [`covered`]'s answer for the usual arrays, in branch-free passes that vectorize (None:
+/// the general walk answers): every value finite and on one side of the drawn value, in
+/// increasing or decreasing order, or, for an angle, in at most two increasing runs modulo
+/// the turn within two turns of it (a full turn from any start).
+fn covered_in_order(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -> Option<bool> {
+    covered_in_order_kernel(theta, theta0, max_step, linear)
+}
+
+crate::simd::avx2_kernel! {
+    /// [`covered_in_order_body`], 4 lanes wide where the CPU has AVX2 (comparisons, sums
+    /// and masks only: the same answer on every path).
+    fn covered_in_order_kernel(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -> Option<bool> = covered_in_order_body;
+}
+
+#[inline(always)]
+fn covered_in_order_body<const AVX: bool>(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -> Option<bool> {
+    // (loops that count, two counts at most: they vectorize, where min and max do not)
+    let (mut below, mut nonfinite) = (0usize, 0usize);
+    for &t in theta {
+        below += (t < theta0) as usize;
+        nonfinite += !t.is_finite() as usize;
+    }
+    let n = theta.len();
+    if nonfinite > 0 || n == 0 {
+        return None;
+    }
+    let (above, below) = (below == 0, below == n);
+    let direct = if above {
+        Walk::in_order(theta, |t| t - theta0, max_step, None)?
+    } else if below {
+        Walk::in_order(theta, |t| theta0 - t, max_step, None)?
+    } else {
+        return None;
+    };
+    if direct || linear {
+        return Some(direct);
+    }
+    let mut far = 0usize;
+    for &t in theta {
+        let x = t - theta0;
+        far += !(x > -TAU && x < 2.0 * TAU) as usize;
+    }
+    if far > 0 {
+        return None;
+    }
+    Walk::in_order(theta, |t| turned_near(t - theta0), max_step, Some(TAU))
+}
+
+/// One pass over nonnegative offsets from 0: whether they came in increasing order, or in
+/// two increasing runs (a full turn asked for from some other angle, taken modulo the
+/// turn, rises to the turn's end and again from 0), the steps within each run at most
+/// `max_step`, and their count and range.
 struct Walk {
     max_step: f64,
     end: Option<f64>,
     at: f64,
-    sorted: bool,
+    /// The first offset, and the last before the one descent and the first after it.
+    first: f64,
+    top: f64,
+    bottom: f64,
+    descents: usize,
     ok: bool,
     n: usize,
     lo: f64,
@@ -96,13 +153,20 @@ struct Walk {
 impl Walk {
     fn new(max_step: f64, end: Option<f64>) -> Self {
         let (lo, hi) = (end.unwrap_or(f64::INFINITY), end.unwrap_or(0.0));
-        Walk { max_step, end, at: 0.0, sorted: true, ok: true, n: 0, lo, hi }
+        let (first, top, bottom) = (0.0, 0.0, 0.0);
+        Walk { max_step, end, at: 0.0, first, top, bottom, descents: 0, ok: true, n: 0, lo, hi }
     }
 
     #[inline]
     fn visit(&mut self, x: f64) {
-        self.sorted &= x >= self.at;
-        self.ok &= x - self.at <= self.max_step;
+        // (selects, not branches: the loop stays tight)
+        let down = x < self.at;
+        let start = self.n == 0;
+        self.descents += (down && !start) as usize;
+        self.top = if down { self.at } else { self.top };
+        self.bottom = if down { x } else { self.bottom };
+        self.first = if start { x } else { self.first };
+        self.ok &= down | start | (x - self.at <= self.max_step);
         self.at = x;
         self.n += 1;
         // (finite offsets: plain comparisons)
@@ -114,20 +178,83 @@ impl Walk {
         }
     }
 
-    /// The answer where the offsets came in increasing order (None: they did not).
+    /// [`Walk::answer`] for the offsets `f(t)` of every value of `theta`, visited in the
+    /// array's order or, where they decrease throughout, the reverse order, from pairs of
+    /// neighbours in one pass with no branch (it vectorizes).
+    #[inline(always)]
+    fn in_order(theta: &[f64], f: impl Fn(f64) -> f64, max_step: f64, end: Option<f64>) -> Option<bool> {
+        let (n, step) = (theta.len(), max_step);
+        let pairs = || theta.iter().zip(&theta[1..]).map(|(&a, &b)| (f(a), f(b)));
+        // (counts, not flags, and the descent's pair by the bits of its values, or-ed: the
+        // loop vectorizes; with one descent they are its values)
+        let (mut descents, mut ascents, mut long) = (0usize, 0usize, 0usize);
+        let (mut top, mut bottom) = (0u64, 0u64);
+        for (a, b) in pairs() {
+            let (down, up) = (b < a, b > a);
+            descents += down as usize;
+            ascents += up as usize;
+            long += (!down & (b - a > step)) as usize;
+            let mask = 0u64.wrapping_sub(down as u64);
+            top |= a.to_bits() & mask;
+            bottom |= b.to_bits() & mask;
+        }
+        let (first, last) = (f(theta[0]), f(theta[n - 1]));
+        let mut w = Walk::new(max_step, end);
+        w.n = n;
+        if descents <= 1 {
+            (w.first, w.at, w.ok, w.descents) = (first, last, long == 0, descents);
+            (w.top, w.bottom) = (f64::from_bits(top), f64::from_bits(bottom));
+        } else if ascents == 0 {
+            // decreasing throughout: the steps the other way
+            let long = pairs().map(|(a, b)| (a - b > step) as usize).sum::<usize>();
+            (w.first, w.at, w.ok) = (last, first, long == 0);
+        } else {
+            return None;
+        }
+        w.answer()
+    }
+
+    /// The answer where the offsets came in increasing order, or in two increasing runs
+    /// that each step by at most a step (None: otherwise). Two such runs cover from the
+    /// lower of their firsts to the higher of their lasts in such steps where they overlap
+    /// or lie at most a step apart (a value between two of one run's neighbours only
+    /// shortens their gap); then the steps from 0 and on to `end` remain. (A run with a
+    /// longer step may still be covered by the other's values: that needs the buckets.)
     fn answer(&self) -> Option<bool> {
-        self.sorted.then(|| self.ok && self.end.is_none_or(|e| e - self.at <= self.max_step))
+        let step = self.max_step;
+        let from_zero = |x: f64| self.n == 0 || x <= step;
+        let to_end = |last: f64| self.end.is_none_or(|e| e - last <= step);
+        match self.descents {
+            0 => Some(self.ok && from_zero(self.first) && to_end(self.at)),
+            // runs [first, top] and [bottom, at], top > bottom
+            1 if self.ok => Some(
+                from_zero(self.first.min(self.bottom)) && self.first - self.at <= step && to_end(self.top.max(self.at)),
+            ),
+            _ => None,
+        }
     }
 }
 
-/// `x.rem_euclid(TAU)`, with no fmod for an offset already within the turn.
+/// `x.rem_euclid(TAU)`, with no fmod for an offset within a turn down or two turns up
+/// ([`turned_near`]).
 #[inline]
 fn turned(x: f64) -> f64 {
-    if (0.0..TAU).contains(&x) {
-        x
+    if x > -TAU && x < 2.0 * TAU {
+        turned_near(x)
     } else {
         x.rem_euclid(TAU)
     }
+}
+
+/// `x.rem_euclid(TAU)` for `-TAU < x < 2 TAU`: within the turn `x`; in the second turn
+/// `x - TAU`, exact (Sterbenz: `TAU <= x <= 2 TAU`) as fmod's answer is; below 0,
+/// `x + TAU`, the sum `rem_euclid` rounds (`x % TAU` is `x` there). Written as
+/// `(x - a) + b` with `a` and `b` each `TAU` or 0 by a mask (adding or taking 0 changes
+/// nothing), so a loop of it vectorizes.
+#[inline(always)]
+fn turned_near(x: f64) -> f64 {
+    let turn = |on: bool| f64::from_bits(TAU.to_bits() & 0u64.wrapping_sub(on as u64));
+    (x - turn(x >= TAU)) + turn(x < 0.0)
 }
 
 /// Whether the nonnegative offsets `xs()` (in any order), visited in increasing order from
@@ -142,7 +269,7 @@ fn steps_within<I: Iterator<Item = f64>>(xs: impl Fn() -> I, max_step: f64, end:
 
 impl Walk {
     /// Whether the offsets this walk visited, `xs()` again, step by at most a step in
-    /// increasing order: the walk's answer where they came in order; otherwise exact and
+    /// increasing order: the walk's answer where they came in order (or rotated); otherwise exact and
     /// in linear time, the offsets in buckets half a step wide, where neighbours in one
     /// bucket are closer than a step, so only the gaps between the last of a bucket and the
     /// first of the next one that holds any need checking. More than a step per offset is
@@ -201,6 +328,18 @@ mod tests {
     }
 
     #[test]
+    fn turned_is_rem_euclid_bit_for_bit() {
+        let mut x = -3.0 * TAU;
+        while x < 4.0 * TAU {
+            assert_eq!(turned(x).to_bits(), x.rem_euclid(TAU).to_bits(), "{x}");
+            x += 0.0137;
+        }
+        for x in [TAU, 2.0 * TAU, f64::from_bits(TAU.to_bits() - 1), f64::from_bits((2.0 * TAU).to_bits() - 1)] {
+            assert_eq!(turned(x).to_bits(), x.rem_euclid(TAU).to_bits(), "{x}");
+        }
+    }
+
+    #[test]
     fn a_shifted_full_turn_is_covered_modulo_the_turn() {
         let n = 361;
         let step = TAU / (n - 1) as f64;
@@ -211,8 +350,9 @@ mod tests {
         assert!(!covered(&half, 0.0, 1.5 * step, false));
     }
 
-    /// The bucket pass answers as sorting and walking the gaps does, on shuffled values with
-    /// gaps on either side of the step, repeats, values a turn or more away, and NaN.
+    /// The one pass answers as sorting and walking the gaps does, on shuffled, rotated and
+    /// reversed values with gaps on either side of the step, repeats, values a turn or more
+    /// away, and NaN.
     #[test]
     fn coverage_in_one_pass_agrees_with_sorting() {
         let sorted_check = |theta: &[f64], theta0: f64, max_step: f64, linear: bool| {
@@ -252,8 +392,20 @@ mod tests {
             if case % 5 == 0 {
                 theta.push(theta[0] + 3.0 * TAU);
             }
-            for k in (1..theta.len()).rev() {
-                theta.swap(k, (next() * (k + 1) as f64) as usize);
+            match case % 4 {
+                // in order, from some other value: a rotated run modulo the turn
+                1 => {
+                    let by = (next() * theta.len() as f64) as usize;
+                    theta.sort_by(f64::total_cmp);
+                    theta.rotate_left(by);
+                }
+                // reversed
+                2 => theta.sort_by(|a, b| b.total_cmp(a)),
+                _ => {
+                    for k in (1..theta.len()).rev() {
+                        theta.swap(k, (next() * (k + 1) as f64) as usize);
+                    }
+                }
             }
             let linear = case % 3 == 0;
             let want = sorted_check(&theta, theta0, max_step, linear);

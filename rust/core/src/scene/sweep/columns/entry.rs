@@ -83,7 +83,6 @@ fn sweep_body(
     for &(p, _) in &plan.fixed {
         fixed[p] = true;
     }
-    let inputs: Vec<Vec<usize>> = plan.ops.iter().map(Op::inputs).collect();
     let angle = plan.ops.iter().any(|o| matches!(o, Op::Input { .. }));
     let mut scratch =
         vel.then(|| Scratch { pos: vec![[0.0; 2]; np], vel: vec![[0.0; 2]; np], acc: vec![[0.0; 2]; np] });
@@ -130,7 +129,6 @@ fn sweep_body(
                         s => (&mut sdet[s * B..], &mut sst[s * B..]),
                     };
                     let sv = if plan.linear { &sv[..m] } else { &block[..m] };
-                    let ins = &inputs[i];
                     let singular = opts.closed_form_singular();
                     match (scratch.as_mut(), op) {
                         // a slot on a line fixed in ground (a slider-crank's): the line once
@@ -139,8 +137,9 @@ fn sweep_body(
                             let (p, d) = l.place(c.point(l.base, 0), c.point(l.a, 0), c.point(l.b, 0));
                             rrp_fixed_line_block(r, p, unit(d), &mut c, m, singular, det, st);
                         }
-                        (None, _) => slider_block(op, ins, &mut c, sv, singular, det, st),
-                        (Some(k), _) => slider_rates_block(op, ins, &mut c, sv, singular, k, det, st),
+                        // (the inputs found here, once a block: most plans have no such op)
+                        (None, _) => slider_block(op, &op.inputs(), &mut c, sv, singular, det, st),
+                        (Some(k), _) => slider_rates_block(op, &op.inputs(), &mut c, sv, singular, k, det, st),
                     }
                     note(&mut first_bad[..m], &st[..m]);
                 }

@@ -73,12 +73,28 @@ fn write_poses(plan: &Plan, c: &Columns, first_bad: &[i8], rows: Range<usize>, o
     if nl > 0 {
         let angles = &mut out.angles[rows.start * nl..rows.end * nl];
         let fast = crate::simd::enabled();
+        // each link's directions down the block's column first (a branch-free loop that
+        // vectorizes), then into its place in the rows
+        let (mut dx, mut dy, mut dir) = ([0.0; B], [0.0; B], [0.0; B]);
         for (i, &(a, b)) in plan.link_points.iter().enumerate() {
+            let (dx, dy, dir) = (&mut dx[..m], &mut dy[..m], &mut dir[..m]);
+            for (((dx, dy), (xa, ya)), (xb, yb)) in dx
+                .iter_mut()
+                .zip(dy.iter_mut())
+                .zip(c.x[col(a)].iter().zip(&c.y[col(a)]))
+                .zip(c.x[col(b)].iter().zip(&c.y[col(b)]))
+            {
+                *dx = xb - xa;
+                *dy = yb - ya;
+            }
+            if fast {
+                crate::simd::directions_body(dx, dy, dir, true);
+            } else {
+                crate::simd::directions_body(dx, dy, dir, false);
+            }
             let both = good(a).zip(good(b));
-            for (j, (row, (oa, ob))) in angles.chunks_exact_mut(nl).zip(both).enumerate() {
-                let (pa, pb) = (a * B + j, b * B + j);
-                let d = [c.x[pb] - c.x[pa], c.y[pb] - c.y[pa]];
-                row[i] = if oa && ob { crate::simd::direction(d, fast) } else { f64::NAN };
+            for ((row, (oa, ob)), &d) in angles.chunks_exact_mut(nl).zip(both).zip(&*dir) {
+                row[i] = if oa && ob { d } else { f64::NAN };
             }
         }
     }
