@@ -8,7 +8,6 @@ import copy
 import json
 import math
 from collections.abc import Iterable, Mapping
-from functools import partial
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -470,7 +469,7 @@ class Scene:
         reach a value that the drawn sides close at.
         """
         plan, core = self._compiled(outputs)
-        kind = self.input_kind
+        kind = "angle" if "link" in self._data["input"] else "displacement"  # input_kind
         if max_step is None:
             max_step = self._max_step
         if theta is None:
@@ -481,8 +480,11 @@ class Scene:
                 t = t.reshape(1)
             if t.ndim != 1:
                 raise ValueError(f"theta must be a 1-D array of input angles, got shape {t.shape}")
-        tol, max_iter = as_float("tol", tol), as_i64("max_iter", max_iter)
-        ms = as_float("max_step", max_step)
+        # (a float or str as given, without the call: a small sweep's arguments cost
+        # about a tenth of it)
+        tol = tol if type(tol) is float else as_float("tol", tol)
+        max_iter = as_i64("max_iter", max_iter)
+        ms = max_step if type(max_step) is float else as_float("max_step", max_step)
         if omega is not None:
             if rate is not None:
                 raise TypeError("sweep() takes rate or its former name omega, not both")
@@ -491,13 +493,13 @@ class Scene:
             w = None if rate is None else as_float("rate", rate)
             if w is not None and not math.isfinite(w):  # the core would name it omega
                 raise ValueError(f"rate must be finite, got {w}")
-        p = as_str("predictor", predictor)
+        p = predictor if type(predictor) is str else as_str("predictor", predictor)
         pts, ang, status, nit, det, limit, sst, sdet, pst, kin = core.sweep(
             t, tol, max_iter, ms, w, p
         )
         vel, acc = (None, None) if kin is None else (kin[:2], kin[2:])
         # the output coordinate is computed when it is first read
-        output = None if self._data["output"] is None else partial(self._output_of, core)
+        output = None if self._data["output"] is None else self._output_of
         sw = SceneSweep.build(
             plan, t, pts, ang, status, nit, det, limit, sst, sdet, pst, vel, acc,
             w, kind, output, self._data["units"],
@@ -507,17 +509,16 @@ class Scene:
         sw.__dict__["_svg_links"], sw.__dict__["_svg_ground"] = self._svg
         return sw
 
-    def _output_of(
-        self, core: Any, names: tuple[str, ...], coords: np.ndarray
-    ) -> np.ndarray | None:
-        """The output coordinate along a sweep of the plan ``core``, from its reported points
-        (``names``); None: no output, or its points are not among those reported. A
+    def _output_of(self, names: tuple[str, ...], coords: np.ndarray) -> np.ndarray | None:
+        """The output coordinate along a sweep from its reported points (``names``, and
+        their ``coords``); None: no output, or its points are not among those reported. A
         displacement is the core's (as the web page's)."""
         o = self.output
         if o is None:
             return None
         if "link" not in self._data["output"]:
-            return self._core.linear_output(core.points, np.ascontiguousarray(coords))
+            index = list(self._data["points"]).index
+            return self._core.linear_output([index(n) for n in names], np.ascontiguousarray(coords))
         link, pivot = o
         tip = next(q for q in self._data["links"][link] if q != pivot)
         if pivot not in names or tip not in names:

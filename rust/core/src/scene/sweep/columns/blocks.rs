@@ -16,7 +16,7 @@ use crate::Status;
 pub(super) fn input_block(
     pivot: Xy,
     (q, lam, mu): (usize, f64, f64),
-    c: &mut Columns,
+    c: &mut Columns<'_>,
     trig: &[(f64, f64)],
     block: &[f64],
     vel: bool,
@@ -45,19 +45,19 @@ pub(super) fn input_block(
 /// A rigid carry at the block's values: q = a + m (b - a) (complex `ratio`), its status the
 /// first failure of a and b, with its rates where `vel`.
 #[inline(always)]
-pub(super) fn carry_block((q, a, bb): (usize, usize, usize), ratio: Xy, c: &mut Columns, m: usize, vel: bool) {
+pub(super) fn carry_block((q, a, bb): (usize, usize, usize), ratio: Xy, c: &mut Columns<'_>, m: usize, vel: bool) {
     let (oq, oa, ob) = (q * B, a * B, bb * B);
     let (m0, m1) = (ratio[0], ratio[1]);
     // disjoint columns: the loops vectorize
-    let (xa, xb, xq) = two_in_one_out(&mut c.x, a, bb, q, m);
-    let (ya, yb, yq) = two_in_one_out(&mut c.y, a, bb, q, m);
+    let (xa, xb, xq) = two_in_one_out(c.x, a, bb, q, m);
+    let (ya, yb, yq) = two_in_one_out(c.y, a, bb, q, m);
     for j in 0..m {
         let (ax, ay) = (xa[j], ya[j]);
         let (dx, dy) = (xb[j] - ax, yb[j] - ay);
         xq[j] = ax + (m0 * dx - m1 * dy);
         yq[j] = ay + (m1 * dx + m0 * dy);
     }
-    let (sa, sb, sq) = two_in_one_out(&mut c.st, a, bb, q, m);
+    let (sa, sb, sq) = two_in_one_out(c.st, a, bb, q, m);
     for ((q, &a), &b) in sq.iter_mut().zip(sa).zip(sb) {
         *q = if a != OK { a } else { b };
     }
@@ -84,15 +84,15 @@ pub(super) fn rrp_fixed_line_block(
     r: &Rrp,
     p: Xy,
     u: Xy,
-    c: &mut Columns,
+    c: &mut Columns<'_>,
     m: usize,
     singular: f64,
     det: &mut [f64],
     sst: &mut [i8],
 ) {
-    let (kx, qx) = two_columns(&mut c.x, r.k, r.p, m);
-    let (ky, qy) = two_columns(&mut c.y, r.k, r.p, m);
-    let (kst, qst) = two_columns(&mut c.st, r.k, r.p, m);
+    let (kx, qx) = two_columns(c.x, r.k, r.p, m);
+    let (ky, qy) = two_columns(c.y, r.k, r.p, m);
+    let (kst, qst) = two_columns(c.st, r.k, r.p, m);
     let (na, nonfinite, sing) = (Status::NotAssemblable.code(), Status::NonFinite.code(), Status::Singular.code());
     for j in 0..m {
         let (x, dt, meets) = r.place_branch_free([kx[j], ky[j]], p, u, r.side);
@@ -126,7 +126,7 @@ pub(super) fn rrp_fixed_line_block(
 pub(super) fn slider_block(
     op: &Op,
     ins: &[usize],
-    c: &mut Columns,
+    c: &mut Columns<'_>,
     sv: &[f64],
     singular: f64,
     det: &mut [f64],
@@ -163,7 +163,7 @@ pub(super) fn slider_block(
 pub(super) fn slider_rates_block(
     op: &Op,
     ins: &[usize],
-    c: &mut Columns,
+    c: &mut Columns<'_>,
     sv: &[f64],
     singular: f64,
     k: &mut Scratch,
@@ -210,7 +210,7 @@ pub(super) fn slider_rates_block(
 #[inline(always)]
 pub(super) fn dyad_block(
     d: &Dyad,
-    c: &mut Columns,
+    c: &mut Columns<'_>,
     m: usize,
     singular: f64,
     vel: bool,
@@ -221,8 +221,8 @@ pub(super) fn dyad_block(
     {
         // `Dyad::solve`'s closed form over the block's values (it has no branch, so this
         // vectorizes), its cases kept as numbers; the statuses after
-        let (x1, x2, xq) = two_in_one_out(&mut c.x, d.k1, d.k2, d.p, m);
-        let (y1, y2, yq) = two_in_one_out(&mut c.y, d.k1, d.k2, d.p, m);
+        let (x1, x2, xq) = two_in_one_out(c.x, d.k1, d.k2, d.p, m);
+        let (y1, y2, yq) = two_in_one_out(c.y, d.k1, d.k2, d.p, m);
         let det = &mut det[..m];
         let (na, nonfinite, sing) = (Status::NotAssemblable.code(), Status::NonFinite.code(), Status::Singular.code());
         let mut case = [0.0; B];
@@ -231,7 +231,7 @@ pub(super) fn dyad_block(
             let (p, dt, cs) = closed_form([x1[j], y1[j]], [x2[j], y2[j]], d.side, d.r1, d.r2);
             (xq[j], yq[j], det[j], case[j]) = (p[0], p[1], dt, cs);
         }
-        let (s1, s2, sq) = two_in_one_out(&mut c.st, d.k1, d.k2, d.p, m);
+        let (s1, s2, sq) = two_in_one_out(c.st, d.k1, d.k2, d.p, m);
         // the common block: both known points solved and the dyad closes, away from its
         // dead points, at every value (folds, not searches: they vectorize)
         let known = s1.iter().zip(s2).fold(OK, |a, (&x, &y)| a | x | y) == OK;

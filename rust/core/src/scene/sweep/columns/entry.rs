@@ -61,33 +61,24 @@ fn sweep_body(
     // velocities and accelerations go together: both come with `omega`
     let vel = opts.omega.is_some();
     let nv = if vel { np * B } else { 0 };
-    let mut c = Columns {
-        x: vec![0.0; np * B],
-        y: vec![0.0; np * B],
-        vx: vec![0.0; nv],
-        vy: vec![0.0; nv],
-        ax: vec![0.0; nv],
-        ay: vec![0.0; nv],
-        st: vec![OK; np * B],
-    };
+    let ns = plan.steps.len();
+    // the block's columns and the steps' conditioning and statuses in two allocations
+    let mut reals = vec![0.0; 2 * np * B + 4 * nv + ns * B];
+    let mut codes = vec![OK; np * B + ns * B];
+    let (cols, sdet) = reals.split_at_mut(2 * np * B + 4 * nv);
+    let (st, sst) = codes.split_at_mut(np * B);
+    sdet.fill(1.0);
+    let mut c = Columns::carve(cols, st, np * B, nv);
     for &(p, xy) in &plan.fixed {
         c.x[p * B..(p + 1) * B].fill(xy[0]);
         c.y[p * B..(p + 1) * B].fill(xy[1]);
     }
-    let ns = plan.steps.len();
-    let mut step_of = vec![usize::MAX; plan.ops.len()];
-    for (s, &i) in plan.step_op.iter().enumerate() {
-        step_of[i] = s;
-    }
-    let mut fixed = vec![false; np];
-    for &(p, _) in &plan.fixed {
-        fixed[p] = true;
-    }
+    // the step an operation opens (none: a carry), and whether a point is fixed in ground
+    let step_of = |i: usize| plan.step_op.iter().position(|&o| o == i);
+    let fixed = |p: usize| plan.fixed.iter().any(|&(q, _)| q == p);
     let angle = plan.ops.iter().any(|o| matches!(o, Op::Input { .. }));
     let mut scratch =
         vel.then(|| Scratch { pos: vec![[0.0; 2]; np], vel: vec![[0.0; 2]; np], acc: vec![[0.0; 2]; np] });
-    let mut sdet = vec![1.0; ns * B];
-    let mut sst = vec![OK; ns * B];
     // the conditioning and status of an operation that opens no step (a carry)
     let (mut cdet, mut cst) = ([1.0; B], [OK; B]);
     let mut first_bad = [OK; B];
@@ -118,21 +109,21 @@ fn sweep_body(
                     note(&mut first_bad[..m], &c.st[q * B..q * B + m]);
                 }
                 Op::Dyad(d) => {
-                    let s = step_of[i];
+                    let s = step_of(i).expect("a dyad opens a step");
                     dyad_block(d, &mut c, m, opts.closed_form_singular(), vel, &mut sdet[s * B..], &mut sst[s * B..]);
                     note(&mut first_bad[..m], &sst[s * B..s * B + m]);
                 }
                 Op::Group(_) => unreachable!("the column sweep runs plans with no group"),
                 op => {
-                    let (det, st) = match step_of[i] {
-                        usize::MAX => (&mut cdet[..], &mut cst[..]),
-                        s => (&mut sdet[s * B..], &mut sst[s * B..]),
+                    let (det, st) = match step_of(i) {
+                        None => (&mut cdet[..], &mut cst[..]),
+                        Some(s) => (&mut sdet[s * B..], &mut sst[s * B..]),
                     };
                     let sv = if plan.linear { &sv[..m] } else { &block[..m] };
                     let singular = opts.closed_form_singular();
                     match (scratch.as_mut(), op) {
                         // a slot on a line fixed in ground (a slider-crank's): the line once
-                        (None, Op::Rrp(r)) if r.line.inputs().iter().all(|&p| fixed[p]) => {
+                        (None, Op::Rrp(r)) if r.line.inputs().iter().all(|&p| fixed(p)) => {
                             let l = &r.line;
                             let (p, d) = l.place(c.point(l.base, 0), c.point(l.a, 0), c.point(l.b, 0));
                             rrp_fixed_line_block(r, p, unit(d), &mut c, m, singular, det, st);
@@ -145,7 +136,7 @@ fn sweep_body(
                 }
             }
         }
-        write_block(plan, &c, &sdet, &sst, &first_bad, k0, m, opts, out);
+        write_block(plan, &c, sdet, sst, &first_bad, k0, m, opts, out);
     }
     Ok(())
 }

@@ -10,15 +10,28 @@ pub(super) const B: usize = 128;
 pub(super) const OK: i8 = 0;
 
 /// Columns of one block: point p's values for the block's angles are `[p * B .. p * B + m]`.
-pub(super) struct Columns {
-    pub(super) x: Vec<f64>,
-    pub(super) y: Vec<f64>,
-    pub(super) vx: Vec<f64>,
-    pub(super) vy: Vec<f64>,
+pub(super) struct Columns<'a> {
+    pub(super) x: &'a mut [f64],
+    pub(super) y: &'a mut [f64],
+    pub(super) vx: &'a mut [f64],
+    pub(super) vy: &'a mut [f64],
     /// Second derivatives by the input angle (empty unless accelerations are asked for).
-    pub(super) ax: Vec<f64>,
-    pub(super) ay: Vec<f64>,
-    pub(super) st: Vec<i8>,
+    pub(super) ax: &'a mut [f64],
+    pub(super) ay: &'a mut [f64],
+    pub(super) st: &'a mut [i8],
+}
+
+impl<'a> Columns<'a> {
+    /// The columns cut from one buffer `reals` (positions of `len` values each, then rates
+    /// of `nv` each) and the statuses `st`.
+    pub(super) fn carve(reals: &'a mut [f64], st: &'a mut [i8], len: usize, nv: usize) -> Self {
+        let (x, rest) = reals.split_at_mut(len);
+        let (y, rest) = rest.split_at_mut(len);
+        let (vx, rest) = rest.split_at_mut(nv);
+        let (vy, rest) = rest.split_at_mut(nv);
+        let (ax, ay) = rest.split_at_mut(nv);
+        Columns { x, y, vx, vy, ax, ay, st }
+    }
 }
 
 /// One input value's known points, indexed by point, for the slider solves with rates
@@ -37,7 +50,7 @@ pub(super) fn note(first_bad: &mut [i8], st: &[i8]) {
     }
 }
 
-impl Columns {
+impl Columns<'_> {
     /// Point p's position at the block's value j.
     #[inline(always)]
     pub(super) fn point(&self, p: usize, j: usize) -> Xy {
@@ -63,7 +76,7 @@ pub(super) fn two_in_one_out<T>(v: &mut [T], a: usize, b: usize, q: usize, m: us
 
 /// The first failure among an operation's inputs at the block's value `j`.
 #[inline(always)]
-pub(super) fn inputs_status(c: &Columns, ins: &[usize], j: usize) -> i8 {
+pub(super) fn inputs_status(c: &Columns<'_>, ins: &[usize], j: usize) -> i8 {
     ins.iter().map(|&p| c.st[p * B + j]).find(|&s| s != OK).unwrap_or(OK)
 }
 

@@ -17,7 +17,7 @@ use crate::scene::vec2::angular_acceleration;
 #[inline(always)]
 pub(super) fn write_block(
     plan: &Plan,
-    c: &Columns,
+    c: &Columns<'_>,
     sdet: &[f64],
     sst: &[i8],
     first_bad: &[i8],
@@ -37,7 +37,7 @@ pub(super) fn write_block(
 
 /// The positions (scene coordinates) and the links' angles.
 #[inline(always)]
-fn write_poses(plan: &Plan, c: &Columns, first_bad: &[i8], rows: Range<usize>, out: &mut SceneSweepOut<'_>) {
+fn write_poses(plan: &Plan, c: &Columns<'_>, first_bad: &[i8], rows: Range<usize>, out: &mut SceneSweepOut<'_>) {
     let (np, nl, m) = (plan.points.len(), plan.links.len(), first_bad.len());
     let (sc, org) = (plan.scale, plan.origin);
     let col = |p: usize| p * B..p * B + m;
@@ -105,7 +105,7 @@ fn write_poses(plan: &Plan, c: &Columns, first_bad: &[i8], rows: Range<usize>, o
 #[inline(always)]
 fn write_rates(
     plan: &Plan,
-    c: &Columns,
+    c: &Columns<'_>,
     first_bad: &[i8],
     rows: Range<usize>,
     omega: f64,

@@ -204,15 +204,8 @@ fn the_dyad_block_is_dyad_solve_bit_for_bit() {
         Dyad { p: 2, k1: 0, k2: 1, r1: 5.0, r2: 5.0, side: 1.0, links },
         Dyad { p: 0, k1: 2, k2: 1, r1: 2.5, r2: 4.0, side: -1.0, links },
     ] {
-        let mut c = Columns {
-            x: vec![0.0; 3 * B],
-            y: vec![0.0; 3 * B],
-            vx: vec![],
-            vy: vec![],
-            ax: vec![],
-            ay: vec![],
-            st: vec![OK; 3 * B],
-        };
+        let (mut reals, mut st) = (vec![0.0; 6 * B], vec![OK; 3 * B]);
+        let mut c = Columns::carve(&mut reals, &mut st, 3 * B, 0);
         let (o1, o2) = (d.k1 * B, d.k2 * B);
         for j in 0..B {
             (c.x[o1 + j], c.y[o1 + j], c.x[o2 + j], c.y[o2 + j]) = (next(), next(), next(), next());
