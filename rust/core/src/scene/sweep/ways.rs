@@ -83,10 +83,11 @@ pub(super) fn covered(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -
     direct || (!linear && steps_within(|| finite().map(|t| turned(t - theta0)), max_step, Some(TAU)))
 }
 
-/// [`covered`]'s answer for the usual arrays, in branch-free passes that vectorize (None:
-/// the general walk answers): every value finite and on one side of the drawn value, in
-/// increasing or decreasing order, or, for an angle, in at most two increasing runs modulo
-/// the turn within two turns of it (a full turn from any start).
+/// [`covered`]'s answer where every value is finite and on one side of the drawn value (and,
+/// for the turn, within two turns of it), in branch-free passes that vectorize where the
+/// values are in increasing or decreasing order, or in two increasing runs modulo the turn
+/// (a full turn from any start), and the buckets otherwise (shuffled); None: the general
+/// walk answers.
 fn covered_in_order(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -> Option<bool> {
     covered_in_order_kernel(theta, theta0, max_step, linear)
 }
@@ -110,16 +111,50 @@ fn covered_in_order_body<const AVX: bool>(theta: &[f64], theta0: f64, max_step: 
         return None;
     }
     let (above, below) = (below == 0, below == n);
-    let direct = if above {
-        Walk::in_order(theta, |t| t - theta0, max_step, None)?
-    } else if below {
-        Walk::in_order(theta, |t| theta0 - t, max_step, None)?
-    } else {
+    if !(above || below) {
         return None;
-    };
-    if direct || linear {
-        return Some(direct);
     }
+    if linear {
+        return Some(direct_way(theta, theta0, above, max_step));
+    }
+    // covered either way: with neither end at the drawn value (a full turn from elsewhere)
+    // the turn is asked first, else the direct way (the order changes no answer)
+    let offset = |t: f64| if above { t - theta0 } else { theta0 - t };
+    if offset(theta[0]) > max_step && offset(theta[n - 1]) > max_step {
+        match turn_way(theta, theta0, max_step) {
+            Some(true) => Some(true),
+            turned => {
+                if direct_way(theta, theta0, above, max_step) {
+                    Some(true)
+                } else {
+                    turned
+                }
+            }
+        }
+    } else if direct_way(theta, theta0, above, max_step) {
+        Some(true)
+    } else {
+        turn_way(theta, theta0, max_step)
+    }
+}
+
+// (functions, not closures, so that they are compiled into the kernel, with its features)
+
+/// The direct way over finite values all above (or all below) `theta0`.
+#[inline(always)]
+fn direct_way(theta: &[f64], theta0: f64, above: bool, max_step: f64) -> bool {
+    // (each way its own closure: a select between them would keep the loops scalar)
+    if above {
+        Walk::check(theta, |t| t - theta0, max_step, None)
+    } else {
+        Walk::check(theta, |t| theta0 - t, max_step, None)
+    }
+}
+
+/// The way modulo the turn over finite values, where all lie within two turns of `theta0`
+/// (None: some do not).
+#[inline(always)]
+fn turn_way(theta: &[f64], theta0: f64, max_step: f64) -> Option<bool> {
     let mut far = 0usize;
     for &t in theta {
         let x = t - theta0;
@@ -128,7 +163,7 @@ fn covered_in_order_body<const AVX: bool>(theta: &[f64], theta0: f64, max_step: 
     if far > 0 {
         return None;
     }
-    Walk::in_order(theta, |t| turned_near(t - theta0), max_step, Some(TAU))
+    Some(Walk::check(theta, |t| turned_near(t - theta0), max_step, Some(TAU)))
 }
 
 /// One pass over nonnegative offsets from 0: whether they came in increasing order, or in
@@ -178,13 +213,25 @@ impl Walk {
         }
     }
 
-    /// [`Walk::answer`] for the offsets `f(t)` of every value of `theta`, visited in the
-    /// array's order or, where they decrease throughout, the reverse order, from pairs of
-    /// neighbours in one pass with no branch (it vectorizes).
+    /// Whether the offsets `f(t)` of every value of `theta` step by at most a step in
+    /// increasing order: [`Walk::in_order`], or the buckets where it cannot tell.
     #[inline(always)]
-    fn in_order(theta: &[f64], f: impl Fn(f64) -> f64, max_step: f64, end: Option<f64>) -> Option<bool> {
+    fn check(theta: &[f64], f: impl Fn(f64) -> f64 + Copy, max_step: f64, end: Option<f64>) -> bool {
+        match Walk::in_order(theta, f, max_step, end) {
+            Ok(answer) => answer,
+            Err((lo, hi)) => buckets(|| theta.iter().map(|&t| f(t)), theta.len(), (lo, hi), max_step, end),
+        }
+    }
+
+    /// [`Walk::answer`] for the offsets `f(t)` of every value of `theta` (at least one),
+    /// visited in the array's order or, where they decrease throughout, the reverse order,
+    /// from pairs of neighbours in one pass with no branch (it vectorizes); where it has
+    /// none, their range (with `end`), for the buckets.
+    #[inline(always)]
+    fn in_order(theta: &[f64], f: impl Fn(f64) -> f64, max_step: f64, end: Option<f64>) -> Result<bool, (f64, f64)> {
         let (n, step) = (theta.len(), max_step);
         let pairs = || theta.iter().zip(&theta[1..]).map(|(&a, &b)| (f(a), f(b)));
+        let (first, last) = (f(theta[0]), f(theta[n - 1]));
         // (counts, not flags, and the descent's pair by the bits of its values, or-ed: the
         // loop vectorizes; with one descent they are its values)
         let (mut descents, mut ascents, mut long) = (0usize, 0usize, 0usize);
@@ -198,7 +245,6 @@ impl Walk {
             top |= a.to_bits() & mask;
             bottom |= b.to_bits() & mask;
         }
-        let (first, last) = (f(theta[0]), f(theta[n - 1]));
         let mut w = Walk::new(max_step, end);
         w.n = n;
         if descents <= 1 {
@@ -209,9 +255,21 @@ impl Walk {
             let long = pairs().map(|(a, b)| (a - b > step) as usize).sum::<usize>();
             (w.first, w.at, w.ok) = (last, first, long == 0);
         } else {
-            return None;
+            w.descents = descents;
         }
-        w.answer()
+        if let Some(answer) = w.answer() {
+            return Ok(answer);
+        }
+        // the range, for the buckets: by the bits, which order nonnegative offsets as their
+        // values (a loop that vectorizes)
+        let (mut lo, mut hi) = (i64::MAX, 0i64);
+        for &t in theta {
+            let x = f(t).to_bits() as i64;
+            lo = lo.min(x);
+            hi = hi.max(x);
+        }
+        let (lo, hi) = (f64::from_bits(lo as u64), f64::from_bits(hi as u64));
+        Err(end.map_or((lo, hi), |e| (lo.min(e), hi.max(e))))
     }
 
     /// The answer where the offsets came in increasing order, or in two increasing runs
@@ -269,37 +327,51 @@ fn steps_within<I: Iterator<Item = f64>>(xs: impl Fn() -> I, max_step: f64, end:
 
 impl Walk {
     /// Whether the offsets this walk visited, `xs()` again, step by at most a step in
-    /// increasing order: the walk's answer where they came in order (or rotated); otherwise exact and
-    /// in linear time, the offsets in buckets half a step wide, where neighbours in one
-    /// bucket are closer than a step, so only the gaps between the last of a bucket and the
-    /// first of the next one that holds any need checking. More than a step per offset is
-    /// never covered.
+    /// increasing order: the walk's answer where they came in order (or in two runs);
+    /// otherwise the buckets'.
     fn covers<I: Iterator<Item = f64>>(&self, xs: impl Fn() -> I) -> bool {
-        if let Some(answer) = self.answer() {
-            return answer;
-        }
-        let (max_step, n, lo, hi) = (self.max_step, self.n, self.lo, self.hi);
-        // (the first step, and enough offsets to span the rest)
-        if !(lo <= max_step && hi <= (n + 1) as f64 * max_step) {
+        self.answer().unwrap_or_else(|| buckets(xs, self.n, (self.lo, self.hi), self.max_step, self.end))
+    }
+}
+
+/// Whether the `n` nonnegative offsets `xs()` (in any order; their range `lo..=hi`, with
+/// `end` where given), visited in increasing order from 0 and on to `end`, step by at most
+/// `max_step`: exact and in linear time, the offsets in buckets half a step wide, where
+/// neighbours in one bucket are closer than a step, so only the gaps between the last of a
+/// bucket and the first of the next one that holds any need checking. More than a step
+/// per offset is never covered.
+#[inline(always)]
+fn buckets<I: Iterator<Item = f64>>(
+    xs: impl Fn() -> I,
+    n: usize,
+    (lo, hi): (f64, f64),
+    max_step: f64,
+    end: Option<f64>,
+) -> bool {
+    // (the first step, and enough offsets to span the rest)
+    if !(lo <= max_step && hi <= (n + 1) as f64 * max_step) {
+        return false;
+    }
+    // (by a product: a bucket's width is within rounding of half a step, well below one)
+    let per = 2.0 / max_step;
+    let count = (hi * per) as usize + 1;
+    // (each bucket's least and greatest offset in two arrays, written whole: no masked
+    // store, whose value a following load of the same bucket cannot be forwarded)
+    let (mut least, mut most) = (vec![f64::INFINITY; count], vec![f64::NEG_INFINITY; count]);
+    for x in xs() {
+        let b = ((x * per) as usize).min(count - 1);
+        let (lo, hi) = (least[b], most[b]);
+        least[b] = if x < lo { x } else { lo };
+        most[b] = if x > hi { x } else { hi };
+    }
+    let mut at = 0.0;
+    for (&lo, &top) in least.iter().zip(&most).filter(|(lo, top)| lo <= top) {
+        if lo - at > max_step {
             return false;
         }
-        // (by a product: a bucket's width is within rounding of half a step, well below one)
-        let per = 2.0 / max_step;
-        let buckets = (hi * per) as usize + 1;
-        let mut span = vec![(f64::INFINITY, f64::NEG_INFINITY); buckets];
-        for x in xs() {
-            let b = &mut span[((x * per) as usize).min(buckets - 1)];
-            *b = (b.0.min(x), b.1.max(x));
-        }
-        let mut at = 0.0;
-        for &(lo, top) in span.iter().filter(|b| b.0 <= b.1) {
-            if lo - at > max_step {
-                return false;
-            }
-            at = top;
-        }
-        self.end.is_none_or(|e| e - at <= max_step)
+        at = top;
     }
+    end.is_none_or(|e| e - at <= max_step)
 }
 
 #[cfg(test)]
