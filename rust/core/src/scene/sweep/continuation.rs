@@ -475,10 +475,15 @@ impl<'p> Solver<'p> {
     ) -> (Status, f64) {
         let Op::Group(g) = &self.plan.ops[i] else { unreachable!("op {i} is a group") };
         let n = g.n();
+        // the nodes' velocities where something reads them: the rates asked for, or a later
+        // operation (a carry, dyad or group on these points); else only the tangents are kept
+        let rates = self.need_acc || i + 1 < self.plan.ops.len();
         let (pos, vel) = (&mut self.pos, &mut self.vel);
-        g.place_moving(&out.phi[..n], &out.dphi[..n], &out.cs[..g.nrot], anchors, anchor_vel, |p, xy, v| {
+        g.place_moving(&out.phi[..n], &out.dphi[..n], &out.cs[..g.nrot], anchors, anchor_vel, rates, |p, xy, v| {
             pos[p] = xy;
-            vel[p] = v;
+            if rates {
+                vel[p] = v;
+            }
         });
         if self.need_acc {
             let anchor_acc = g.with_held(|a| self.acc[a], 0.0);

@@ -66,7 +66,8 @@ impl Group {
     /// Positions (as [`Group::place`] gives them, bit for bit) and velocities (per unit
     /// input rate, from the anchors' velocities and the unknowns' rates `dx`) of the nodes
     /// in one pass, from the rotations' (cos, sin) `cs` (those of [`GroupSolve::cs`]), with
-    /// no allocation for a group of up to 32 points (a sweep's every solved angle).
+    /// no allocation for a group of up to 32 points (a sweep's every solved angle); the
+    /// velocities only where `rates` (zero otherwise).
     pub(crate) fn place_moving(
         &self,
         x: &[f64],
@@ -74,6 +75,7 @@ impl Group {
         cs: &[Xy],
         anchors: &[Xy],
         anchor_vel: &[Xy],
+        rates: bool,
         mut put: impl FnMut(usize, Xy, Xy),
     ) {
         const SMALL: usize = 32;
@@ -92,10 +94,12 @@ impl Group {
         for (k, nd) in (na..).zip(&self.nodes) {
             let (m, arm) = (nd.term.m(&cs[..self.nrot], anchors), nd.term.arm(x, self.held_of(anchors)));
             let r = cmul(m, arm);
-            let (b, vb) = (pos[nd.base], vel[nd.base]);
+            let b = pos[nd.base];
             pos[k] = [b[0] + r[0], b[1] + r[1]];
-            let w = self.term_rate(&nd.term, m, arm, dx, anchor_vel);
-            vel[k] = [vb[0] + w[0], vb[1] + w[1]];
+            if rates {
+                let (vb, w) = (vel[nd.base], self.term_rate(&nd.term, m, arm, dx, anchor_vel));
+                vel[k] = [vb[0] + w[0], vb[1] + w[1]];
+            }
             put(nd.point, pos[k], vel[k]);
         }
     }
