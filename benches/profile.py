@@ -10,7 +10,7 @@ not depend on what else the machine is doing, unlike timings on a shared 2-core 
     python benches/profile.py group         # double-butterfly-1's sweep (a 6x6 group), 361 angles
     python benches/profile.py group_near    # the same, 361 angles within 20 deg (all converge)
     python benches/profile.py jansen        # Jansen's leg, the foot requested, 361 angles
-    python benches/profile.py slider30      # the slider-crank's piston, a full turn from 30 deg away
+    python benches/profile.py slider30      # the slider-crank's piston, a turn from 30 deg away
 
 For cycles rather than instructions: ``perf record -g python benches/profile.py batch --run 20``
 then ``perf report --no-children``.

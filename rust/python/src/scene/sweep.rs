@@ -91,14 +91,15 @@ impl PyPlan {
         // every output in three allocations (reals, codes, counts) that NumPy views
         let rates = omega.is_some();
         let (pn, ln) = (n * np * 2, n * nl);
-        let rate_lens = if rates { [pn, ln, pn, ln] } else { [0; 4] };
-        let mut reals: Vec<f64> = slab_zeros(what, &[pn, ln, n, n, n * ns, rate_lens.iter().sum()])?;
-        let mut codes: Vec<i8> = slab_zeros(what, &[n, n * ns, n * np])?;
+        let [v, w] = if rates { [pn, ln] } else { [0; 2] };
+        // (their sums checked: a MemoryError where they overflow, never a wrapped size)
+        let (real_lens, code_lens) = ([pn, ln, n, n, n * ns, v, w, v, w], [n, n * ns, n * np]);
+        let mut reals: Vec<f64> = slab_zeros(what, &real_lens)?;
+        let mut codes: Vec<i8> = slab_zeros(what, &code_lens)?;
         let mut nit: Vec<u32> = zeros(what, n)?;
         {
-            let [points, angles, det, limit, step_det, v, w, a, al] =
-                carve(&mut reals, [pn, ln, n, n, n * ns, rate_lens[0], rate_lens[1], rate_lens[2], rate_lens[3]]);
-            let [status, step_status, point_status] = carve(&mut codes, [n, n * ns, n * np]);
+            let [points, angles, det, limit, step_det, v, w, a, al] = carve(&mut reals, real_lens);
+            let [status, step_status, point_status] = carve(&mut codes, code_lens);
             let (velocity, acceleration) = if rates { (Some((v, w)), Some((a, al))) } else { (None, None) };
             let out = SceneSweepOut {
                 points,

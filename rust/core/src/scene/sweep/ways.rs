@@ -60,8 +60,10 @@ pub(super) fn other(theta: &[f64], theta0: f64, ks: impl Iterator<Item = usize>)
 /// an angle, when the values cover the whole turn that way (taken modulo a turn, the gaps
 /// between neighbours at most `max_step`): then a column sweep whose every step is far from
 /// a dead point is the motion reached either way, and the values' order does not matter.
-/// One pass and no sort ([`steps_within`]): a sweep from any start, or shuffled, costs
-/// about what one from the drawn value does.
+/// No sort: vectorized passes over the usual arrays ([`covered_in_order`]), buckets for
+/// shuffled ones, and one general walk ([`steps_within`]) for the rest (values on both
+/// sides of the drawn one, NaN): a sweep from any start, or shuffled, costs about what one
+/// from the drawn value does.
 pub(super) fn covered(theta: &[f64], theta0: f64, max_step: f64, linear: bool) -> bool {
     if let Some(answer) = covered_in_order(theta, theta0, max_step, linear) {
         return answer;
