@@ -191,3 +191,15 @@ def test_ivf_index_recall_against_the_exact_scan():
         recalls.append(np.intersect1d(ex.rows, ap.rows).size / 100)
     assert np.mean(recalls) >= 0.9, recalls
     assert math.isfinite(np.mean(recalls))
+
+
+def test_curve_matching_names_the_length_that_is_wrong():
+    """The kernel's placement of ready-made curves checks each argument's length on its own:
+    a wrong ``closed`` is named, not reported as points of the right length."""
+    from planarkin import _core
+
+    points, theta, target = np.zeros((6, 2)), np.zeros((2, 3)), np.eye(4, 2)
+    with pytest.raises(ValueError, match=r"closed has length 3, expected 2"):
+        _core.atlas_match_curves(points, theta, [True] * 3, target, True, 4, 8)
+    with pytest.raises(ValueError, match=r"points has length 6, expected 9"):
+        _core.atlas_match_curves(points, np.zeros((3, 3)), [True] * 3, target, True, 4, 8)

@@ -198,8 +198,12 @@ fn atlas_match_curves<'py>(
     let tgt = points_of("target", &target)?;
     let th = theta.as_array();
     let (n, m) = (th.nrows(), th.ncols());
-    if closed.len() != n || pts.len() != n * m {
+    // (each length named on its own: one message for both would read "expected 6, got 6")
+    if pts.len() != n * m {
         return Err(err(Error::Shape { name: "points".into(), got: pts.len(), expected: n * m }));
+    }
+    if closed.len() != n {
+        return Err(err(Error::Shape { name: "closed".into(), got: closed.len(), expected: n }));
     }
     let curves: Vec<Curve> = (0..n)
         .map(|i| {
