@@ -66,85 +66,67 @@ impl Reader<'_> {
         }
     }
 
-    fn array(&mut self, depth: usize) -> Option<Value> {
+    /// The items of a list or mapping (at its opening bracket) up to `close`, each read by
+    /// `item` (a value, or a key and its value), separated by commas.
+    fn items(&mut self, close: u8, mut item: impl FnMut(&mut Self) -> Option<()>) -> Option<()> {
         self.i += 1;
         self.ws();
-        let mut items = Vec::new();
-        if self.peek()? == b']' {
+        if self.peek()? == close {
             self.i += 1;
-            return Some(Value::List(items));
+            return Some(());
         }
         loop {
-            items.push(self.value(depth + 1)?);
+            item(self)?;
             self.ws();
             match self.peek()? {
                 b',' => {
                     self.i += 1;
                     self.ws();
                 }
-                b']' => {
+                c if c == close => {
                     self.i += 1;
-                    return Some(Value::List(items));
+                    return Some(());
                 }
                 _ => return None,
             }
         }
     }
 
+    fn array(&mut self, depth: usize) -> Option<Value> {
+        let mut items = Vec::new();
+        self.items(b']', |r| {
+            items.push(r.value(depth + 1)?);
+            Some(())
+        })?;
+        Some(Value::List(items))
+    }
+
     fn object(&mut self, depth: usize) -> Option<Value> {
-        self.i += 1;
-        self.ws();
         let mut entries = Vec::new();
-        if self.peek()? == b'}' {
-            self.i += 1;
-            return Some(Value::Map(entries));
-        }
-        loop {
-            if self.peek()? != b'"' {
+        self.items(b'}', |r| {
+            if r.peek()? != b'"' {
                 return None;
             }
-            let key = self.string()?;
-            self.ws();
-            if self.peek()? != b':' {
+            let key = r.string()?;
+            r.ws();
+            if r.peek()? != b':' {
                 return None;
             }
-            self.i += 1;
-            self.ws();
-            entries.push((Value::Str(key), self.value(depth + 1)?));
-            self.ws();
-            match self.peek()? {
-                b',' => {
-                    self.i += 1;
-                    self.ws();
-                }
-                b'}' => {
-                    self.i += 1;
-                    return (!twice(&entries)).then_some(Value::Map(entries));
-                }
-                _ => return None,
-            }
-        }
+            r.i += 1;
+            r.ws();
+            entries.push((Value::Str(key), r.value(depth + 1)?));
+            Some(())
+        })?;
+        (!twice(&entries)).then_some(Value::Map(entries))
     }
 
     /// A string (at its opening quote): control characters refused as Python's strict
     /// reader refuses them, escapes read as it reads them.
     fn string(&mut self) -> Option<String> {
         self.i += 1;
-        let start = self.i;
-        // the common string has no escape: one slice of the text
+        let mut out = String::new();
         loop {
-            match self.peek()? {
-                b'"' => {
-                    self.i += 1;
-                    return Some(self.text[start..self.i - 1].to_owned());
-                }
-                b'\\' => break,
-                c if c < 0x20 => return None,
-                _ => self.i += 1,
-            }
-        }
-        let mut out = String::from(&self.text[start..self.i]);
-        loop {
+            // a run with no escape: one slice of the text (a string without escapes is one)
             let run = self.i;
             loop {
                 match self.peek()? {
