@@ -125,47 +125,42 @@ fn lengths(d: Entries<'_>) -> Result<Option<Vec<LengthSpec>>, Error> {
     Ok(Some(out))
 }
 
-/// Whether `data` nests a list or mapping deeper than [`MAX_DEPTH`]: [`too_deep`]'s walk
-/// without the names (asked only of data refused); no recursion.
-fn nests_too_deep(data: &Value) -> bool {
-    let mut todo: Vec<(&Value, usize)> = vec![(data, 1)];
-    while let Some((v, depth)) = todo.pop() {
-        if let Some(m) = v.as_map() {
-            if depth > MAX_DEPTH {
-                return true;
-            }
-            todo.extend(m.iter().map(|(_, x)| (x, depth + 1)));
-        } else if let Some(l) = v.as_list() {
-            if depth > MAX_DEPTH {
-                return true;
-            }
-            todo.extend(l.iter().map(|x| (x, depth + 1)));
-        }
-    }
-    false
+/// How a value is reached from the list or mapping holding it.
+#[derive(Clone, Copy)]
+enum Step<'a> {
+    Key(&'a Value),
+    Index(usize),
 }
 
-/// The first list or mapping nested deeper than [`MAX_DEPTH`], by its dotted name
-/// (parents first, in order, as Python's walk finds it); no recursion.
-fn too_deep(data: &Value) -> Option<String> {
-    let mut todo: Vec<(String, &Value, usize)> = vec![(String::new(), data, 1)];
-    while let Some((name, v, depth)) = todo.pop() {
-        let container = v.as_map().is_some() || v.as_list().is_some();
-        if depth > MAX_DEPTH && container {
-            return Some(name);
-        }
+/// The first list or mapping nested deeper than [`MAX_DEPTH`] (parents first, in order, as
+/// Python's walk finds it), as `child` names it from `root` down; no recursion. Named with
+/// `()` it is only a check, which costs nothing per value: a file of many points is walked
+/// once that way, and again with names only where it is refused ([`dotted`]).
+fn too_deep<'a, T>(data: &'a Value, root: T, child: impl Fn(&T, Step<'a>) -> T) -> Option<T> {
+    let mut todo = vec![(root, data, 1usize)];
+    while let Some((t, v, depth)) = todo.pop() {
         if let Some(m) = v.as_map() {
-            for (k, x) in m.iter().rev() {
-                let n = if name.is_empty() { k.str() } else { format!("{name}.{}", k.str()) };
-                todo.push((n, x, depth + 1));
+            if depth > MAX_DEPTH {
+                return Some(t);
             }
+            todo.extend(m.iter().rev().map(|(k, x)| (child(&t, Step::Key(k)), x, depth + 1)));
         } else if let Some(l) = v.as_list() {
-            for (i, x) in l.iter().enumerate().rev() {
-                todo.push((format!("{name}[{i}]"), x, depth + 1));
+            if depth > MAX_DEPTH {
+                return Some(t);
             }
+            todo.extend(l.iter().enumerate().rev().map(|(i, x)| (child(&t, Step::Index(i)), x, depth + 1)));
         }
     }
     None
+}
+
+/// A value's dotted name from its parent's `name` (the data's own is empty).
+fn dotted(name: &str, step: Step<'_>) -> String {
+    match step {
+        Step::Key(k) if name.is_empty() => k.str(),
+        Step::Key(k) => format!("{name}.{}", k.str()),
+        Step::Index(i) => format!("{name}[{i}]"),
+    }
 }
 
 /// A point's coordinate: a double as it is (most are), anything else by [`real`], which
@@ -184,7 +179,8 @@ pub fn parse(data: &Value) -> Result<Parsed, Error> {
     let Some(d) = data.as_map() else {
         return fail("scene", format!("must be a mapping, got {}", data.type_name()));
     };
-    if let Some(name) = nests_too_deep(data).then(|| too_deep(data)).flatten() {
+    if too_deep(data, (), |_, _| ()).is_some() {
+        let name = too_deep(data, String::new(), |n, s| dotted(n, s)).unwrap_or_default();
         return fail("scene", format!("{name} nests deeper than {MAX_DEPTH} levels (a scene has at most 4)"));
     }
     let unknown: Vec<String> =
