@@ -99,7 +99,7 @@ impl<'p> Solver<'p> {
                 .ops
                 .iter()
                 .map(|o| match o {
-                    Op::Group(g) => Some(GroupState::new(plan.theta0, g.sign, opts.max_step / JUMP_MIN)),
+                    Op::Group(g) => Some(GroupState::new(plan.theta0, g.sign)),
                     _ => None,
                 })
                 .collect(),
@@ -501,7 +501,7 @@ impl<'p> Solver<'p> {
         }
         let t = Tangent { theta, phi: out.phi, dphi, det: out.det };
         let st = self.groups[i].as_mut().expect("a group has a state");
-        st.push(t);
+        st.push(t, self.opts.max_step / JUMP_MIN);
         st.theta = theta;
         st.sign = sign;
         st.limit = None;

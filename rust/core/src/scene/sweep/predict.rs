@@ -138,13 +138,12 @@ pub(super) struct GroupState {
     /// Sign of the conditioning on the branch followed (as drawn; it changes at a change
     /// point).
     pub(super) sign: f64,
-    /// The last two solutions' (input value, tangent) at least `spacing` apart (the older
-    /// first): the curvature a
-    /// step across a change point extrapolates with (see `jump`). Its last solutions are
-    /// splits a hair apart there, where a tangent is off by about the solution's error over
-    /// the conditioning, and two such tangents give no curvature.
+    /// The last two solutions' (input value, tangent) at least a given spacing apart (see
+    /// [`GroupState::push`]; the older first): the curvature a step across a change point
+    /// extrapolates with (see `jump`). Its last solutions are splits a hair apart there,
+    /// where a tangent is off by about the solution's error over the conditioning, and two
+    /// such tangents give no curvature.
     pub(super) spaced: [Option<(f64, [f64; MAX])>; 2],
-    pub(super) spacing: f64,
     /// The quintic's weights for the last abscissae it was used with (as ratios to the
     /// step): a sweep at even steps computes them once.
     pub(super) weights: Option<([f64; 2], [f64; 5])>,
@@ -152,8 +151,8 @@ pub(super) struct GroupState {
 
 impl GroupState {
     /// The state at the drawn pose (`theta`), on the branch of conditioning sign `sign`.
-    pub(super) fn new(theta: f64, sign: f64, spacing: f64) -> Self {
-        GroupState { theta, tangents: [None; 3], head: 0, limit: None, sign, spaced: [None; 2], spacing, weights: None }
+    pub(super) fn new(theta: f64, sign: f64) -> Self {
+        GroupState { theta, tangents: [None; 3], head: 0, limit: None, sign, spaced: [None; 2], weights: None }
     }
 
     /// The last solution's tangent.
@@ -182,11 +181,12 @@ impl GroupState {
     }
 
     /// Records a new solution: the last one becomes the previous one if it was taken at
-    /// another input value (else the history restarts), and so on down the line.
-    pub(super) fn push(&mut self, t: Tangent) {
+    /// another input value (else the history restarts), and so on down the line; it joins
+    /// the spaced ones where it lies at least `spacing` from the last of them.
+    pub(super) fn push(&mut self, t: Tangent, spacing: f64) {
         match self.spaced[1] {
             Some((at, _)) if at == t.theta => self.spaced[1] = Some((t.theta, t.dphi)),
-            Some((at, _)) if (t.theta - at).abs() < self.spacing => {}
+            Some((at, _)) if (t.theta - at).abs() < spacing => {}
             _ => self.spaced = [self.spaced[1], Some((t.theta, t.dphi))],
         }
         match self.tangent() {
@@ -355,7 +355,7 @@ mod tests {
 
     /// Its weights give the interpolant's value at any step, the step's length scaled out.
     #[test]
-    pub(super) fn hermite5_weights_give_its_value_at_any_scale() {
+    fn hermite5_weights_give_its_value_at_any_scale() {
         let (d1, p0, pm) = (0.7, (-0.2, 1.3), (-0.5, -0.4));
         for (a0, am, h) in [(-0.3, -0.55, 0.25), (-1.0, -2.0, 1e-3), (0.4, 0.9, -0.2)] {
             let want = Hermite5::new(a0, am).eval(d1, p0, pm, h);
