@@ -68,7 +68,8 @@ class Scene:
     (361, 2)
     """
 
-    __slots__ = ("_core", "_data", "_forces", "_max_step", "_moved", "_plans", "_svg", "_theta")
+    __slots__ = ("_core", "_data", "_forces", "_kind", "_max_step", "_moved", "_plans", "_svg",
+                 "_theta")  # fmt: skip
 
     #: Other tools' formats, set by ``planarkin.interop`` (the scene subject imports none):
     #: format name -> (reader, writer) behind ``from_pyslvs`` and ``to_pyslvs``.
@@ -105,6 +106,8 @@ class Scene:
             "loads": loads,
             "limits": limits,
         }
+        # (read by every sweep: found once)
+        self._kind = "angle" if "link" in self._data["input"] else "displacement"
         self._plans: dict[tuple[str, ...] | None, tuple[Plan, Any]] = {}
         self._theta: np.ndarray | None = None
         self._forces: Any = None
@@ -270,7 +273,7 @@ class Scene:
     def input_kind(self) -> str:
         """ "angle" (a crank's absolute direction, radians) or "displacement" (along a slot
         or prismatic pair from the drawn pose, scene units)."""
-        return "angle" if "link" in self._data["input"] else "displacement"
+        return self._kind
 
     @property
     def output(self) -> tuple[str, str] | None:
@@ -469,7 +472,7 @@ class Scene:
         reach a value that the drawn sides close at.
         """
         plan, core = self._compiled(outputs)
-        kind = "angle" if "link" in self._data["input"] else "displacement"  # input_kind
+        kind = self._kind
         if max_step is None:
             max_step = self._max_step
         if theta is None:
@@ -517,8 +520,8 @@ class Scene:
         if o is None:
             return None
         if "link" not in self._data["output"]:
-            index = list(self._data["points"]).index
-            return self._core.linear_output([index(n) for n in names], np.ascontiguousarray(coords))
+            index = {n: i for i, n in enumerate(self._data["points"])}
+            return self._core.linear_output([index[n] for n in names], np.ascontiguousarray(coords))
         link, pivot = o
         tip = next(q for q in self._data["links"][link] if q != pivot)
         if pivot not in names or tip not in names:
